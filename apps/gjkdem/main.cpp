@@ -1,0 +1,31 @@
+// gjkdem: pair queries and benchmarks in the format of query-format.md.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"gjkdem: GJK-based contact detection for convex particles"};
+  app.require_subcommand(1);
+
+  gjkdem::app::QueryOptions query;
+  CLI::App* q = app.add_subcommand("query", "answer pair queries (JSON Lines in, JSON Lines out)");
+  q->add_option("--in", query.in, "input file (default: standard input)");
+  q->add_option("--out", query.out, "output file (default: standard output)");
+
+  gjkdem::app::BenchOptions bench;
+  CLI::App* b = app.add_subcommand("bench", "time one query type over every pair of a file");
+  b->add_option("--in", bench.in, "input file (default: standard input)");
+  b->add_option("--query", bench.query, "intersect | distance | penetration | contact")->capture_default_str();
+  b->add_option("--repeat", bench.repeat, "timed passes over all pairs")->capture_default_str();
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (q->parsed()) return gjkdem::app::run_query(query);
+    if (b->parsed()) return gjkdem::app::run_bench(bench);
+  } catch (const std::exception& e) {
+    std::cerr << "gjkdem: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# gjkdem set-up, build and run. Usage:
+#   ./build.sh run     install what is missing, build, run the main job (default example)
+#   ./build.sh test    install what is missing, build, run every test
+#   ./build.sh bench   install the peer libraries too, build, run the benchmarks
+# Packages come from Debian's archive only (apt-get); nothing is downloaded elsewhere.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+mode="${1:-run}"
+base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3 python3-numpy python3-scipy)
+peer_pkgs=(libccd-dev libfcl-dev libbullet-dev)
+
+install_missing() {
+  local missing=()
+  for p in "$@"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "build.sh: installing ${missing[*]}"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+  cmake --build build -j"$(nproc)"
+}
+
+case "$mode" in
+  run)
+    install_missing "${base_pkgs[@]}"
+    build
+    build/gjkdem query --in examples/pairs.jsonl
+    ;;
+  test)
+    install_missing "${base_pkgs[@]}"
+    build
+    ctest --test-dir build --output-on-failure -j"$(nproc)"
+    ;;
+  bench)
+    install_missing "${base_pkgs[@]}" "${peer_pkgs[@]}"
+    build
+    for q in intersect distance penetration; do
+      build/gjkdem bench --in examples/pairs.jsonl --query "$q" --repeat 20
+    done
+    if [ -x build/bench/bench_peers ]; then build/bench/bench_peers; fi
+    ;;
+  *)
+    echo "usage: $0 run|test|bench" >&2
+    exit 2
+    ;;
+esac

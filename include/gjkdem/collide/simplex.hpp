@@ -1,0 +1,156 @@
+#pragma once
+// The GJK simplex and its closest-point sub-algorithm.
+//
+// The sub-algorithm follows the signed-volumes method of Montanari, Petrinic and
+// Barbieri (ACM TOG 36(3), 2017): barycentric coordinates of the origin's
+// projection come from signed volumes (areas) of sub-simplices, and only the
+// faces (edges) whose sign disagrees with the whole are searched further. Unlike
+// Johnson's sub-algorithm it needs no nested determinant ratios, and it degrades
+// gracefully on flat or duplicate simplices (those fall through to their edges).
+// Departures: the triangle case uses the dominant axis of the triangle normal
+// for its 2D projection; the segment case projects directly.
+#include "gjkdem/math/vec3.hpp"
+
+namespace gjkdem {
+
+/// One vertex of the Minkowski difference A - B with the points it came from.
+struct SupportPoint {
+  Vec3 w;  ///< a - b
+  Vec3 a;  ///< on A
+  Vec3 b;  ///< on B
+};
+
+struct Simplex {
+  SupportPoint p[4];
+  Real lambda[4] = {1, 0, 0, 0};  ///< barycentric weights of the closest point
+  int size = 0;
+};
+
+namespace detail {
+
+struct SubSimplex {
+  unsigned mask = 0;          // bit i: vertex i kept
+  Real lambda[4] = {0, 0, 0, 0};
+  Vec3 v;                     // closest point
+  Real dist_sq = 0;
+};
+
+inline bool same_sign(Real a, Real b) noexcept { return (a > 0 && b > 0) || (a < 0 && b < 0); }
+
+inline void closest_on_segment(const Vec3* w, int i, int j, SubSimplex& r) noexcept {
+  const Vec3 t = w[j] - w[i];
+  const Real tt = dot(t, t);
+  const Real s = tt > 0 ? -dot(w[i], t) / tt : 0;
+  r = {};
+  if (!(s > 0)) {
+    r.mask = 1u << i; r.lambda[i] = 1; r.v = w[i];
+  } else if (s >= 1) {
+    r.mask = 1u << j; r.lambda[j] = 1; r.v = w[j];
+  } else {
+    r.mask = (1u << i) | (1u << j); r.lambda[i] = 1 - s; r.lambda[j] = s; r.v = w[i] + t * s;
+  }
+  r.dist_sq = dot(r.v, r.v);
+}
+
+inline void closest_on_triangle(const Vec3* w, int i, int j, int k, SubSimplex& r) noexcept {
+  const Vec3 n = cross(w[j] - w[i], w[k] - w[i]);
+  const Real nn = dot(n, n);
+  if (nn > 0) {
+    const Vec3 p0 = n * (dot(w[i], n) / nn);  // origin projected on the plane
+    const int ax = std::fabs(n.x) >= std::fabs(n.y) ? (std::fabs(n.x) >= std::fabs(n.z) ? 0 : 2)
+                                                    : (std::fabs(n.y) >= std::fabs(n.z) ? 1 : 2);
+    const int u = (ax + 1) % 3, v = (ax + 2) % 3;
+    auto area = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+      return (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+    };
+    const Real mu = area(w[i], w[j], w[k]);
+    const Real ci = area(p0, w[j], w[k]), cj = area(w[i], p0, w[k]), ck = area(w[i], w[j], p0);
+    if (same_sign(mu, ci) && same_sign(mu, cj) && same_sign(mu, ck)) {
+      r = {};
+      r.mask = (1u << i) | (1u << j) | (1u << k);
+      r.lambda[i] = ci / mu; r.lambda[j] = cj / mu; r.lambda[k] = ck / mu;
+      r.v = w[i] * r.lambda[i] + w[j] * r.lambda[j] + w[k] * r.lambda[k];
+      r.dist_sq = dot(r.v, r.v);
+      return;
+    }
+    // Outside: search the edges opposite the vertices whose sign disagrees.
+    const Real c[3] = {ci, cj, ck};
+    const int idx[3] = {i, j, k};
+    bool found = false;
+    for (int m = 0; m < 3; ++m) {
+      if (same_sign(mu, c[m])) continue;
+      SubSimplex e;
+      closest_on_segment(w, idx[(m + 1) % 3], idx[(m + 2) % 3], e);
+      if (!found || e.dist_sq < r.dist_sq) { r = e; found = true; }
+    }
+    if (found) return;
+  }
+  // Degenerate (zero-area) triangle: the closest point lies on one of its edges.
+  SubSimplex e;
+  closest_on_segment(w, i, j, r);
+  closest_on_segment(w, j, k, e);
+  if (e.dist_sq < r.dist_sq) r = e;
+  closest_on_segment(w, k, i, e);
+  if (e.dist_sq < r.dist_sq) r = e;
+}
+
+inline void closest_on_tetrahedron(const Vec3* w, SubSimplex& r) noexcept {
+  // c[m] = signed volume of the tetrahedron with the origin in place of vertex m;
+  // they sum to the whole volume and are the barycentric weights times it.
+  const Real c[4] = {dot(w[1], cross(w[2], w[3])), -dot(w[0], cross(w[2], w[3])), dot(w[0], cross(w[1], w[3])),
+                     -dot(w[0], cross(w[1], w[2]))};
+  const Real mu = c[0] + c[1] + c[2] + c[3];
+  if (same_sign(mu, c[0]) && same_sign(mu, c[1]) && same_sign(mu, c[2]) && same_sign(mu, c[3])) {
+    r = {};
+    r.mask = 15;
+    for (int m = 0; m < 4; ++m) r.lambda[m] = c[m] / mu;
+    return;  // origin inside: v = 0
+  }
+  bool found = false;
+  for (int m = 0; m < 4; ++m) {
+    if (mu != 0 && same_sign(mu, c[m])) continue;
+    SubSimplex f;
+    closest_on_triangle(w, (m + 1) % 4, (m + 2) % 4, (m + 3) % 4, f);
+    if (!found || f.dist_sq < r.dist_sq) { r = f; found = true; }
+  }
+}
+
+}  // namespace detail
+
+/// Reduces `s` to the smallest sub-simplex whose hull holds its point closest to
+/// the origin, sets the barycentric weights, and returns that point (zero when
+/// a full tetrahedron encloses the origin).
+inline Vec3 reduce_to_closest(Simplex& s) noexcept {
+  Vec3 w[4];
+  for (int m = 0; m < s.size; ++m) w[m] = s.p[m].w;
+  detail::SubSimplex r;
+  switch (s.size) {
+    case 1: s.lambda[0] = 1; return w[0];
+    case 2: detail::closest_on_segment(w, 0, 1, r); break;
+    case 3: detail::closest_on_triangle(w, 0, 1, 2, r); break;
+    default: detail::closest_on_tetrahedron(w, r); break;
+  }
+  int n = 0;
+  Vec3 v{};
+  for (int m = 0; m < s.size; ++m) {
+    if (!(r.mask & (1u << m))) continue;
+    s.p[n] = s.p[m];
+    s.lambda[n] = r.lambda[m];
+    v += w[m] * r.lambda[m];
+    ++n;
+  }
+  s.size = n;
+  return n == 4 ? Vec3{} : v;
+}
+
+/// Witness points: the barycentric combination of the simplex's A and B points.
+inline void simplex_witnesses(const Simplex& s, Vec3& on_a, Vec3& on_b) noexcept {
+  on_a = {};
+  on_b = {};
+  for (int m = 0; m < s.size; ++m) {
+    on_a += s.p[m].a * s.lambda[m];
+    on_b += s.p[m].b * s.lambda[m];
+  }
+}
+
+}  // namespace gjkdem

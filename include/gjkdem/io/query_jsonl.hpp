@@ -1,0 +1,57 @@
+#pragma once
+// Reading and writing the pair-query format (../shared/spec/query-format.md):
+// one JSON object per line in, one per line out. This is an I/O boundary: it
+// validates everything and throws QueryFormatError with a message that names
+// the field at fault; the CLI adds the line number.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "gjkdem/collide/query.hpp"
+
+namespace gjkdem::io {
+
+struct QueryFormatError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A shape read from the format: shapes are given in world coordinates, so the
+/// reader moves each core to a local frame centred on the shape (small local
+/// coordinates keep round-off low at large offsets) and returns the pose.
+struct PlacedInput {
+  Shape shape;
+  Transform pose;
+};
+
+struct PairInput {
+  std::string id_json = "null";  ///< the input's id, re-serialised as JSON
+  PlacedInput a, b;
+};
+
+/// Parses one input line (already known not to be blank or a comment).
+/// On failure throws QueryFormatError; `id_json` receives the id when readable.
+PairInput parse_pair(std::string_view line, std::string& id_json);
+
+/// Parses one SHAPE object given as JSON text.
+PlacedInput parse_shape(std::string_view json_text);
+
+/// Optional volume-based fields; absent ones are written as null.
+struct OverlapFields {
+  bool computed = false;
+  Real volume = 0;
+  bool has_centroid = false;
+  Vec3 centroid;
+  bool has_normal = false;
+  Vec3 contact_normal;
+};
+
+/// One result line (no trailing newline).
+std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& overlap = {});
+
+/// One error line (no trailing newline).
+std::string format_error(const std::string& id_json, const std::string& message);
+
+/// True for lines the format skips: blank or starting with '#'.
+bool is_skipped_line(std::string_view line);
+
+}  // namespace gjkdem::io

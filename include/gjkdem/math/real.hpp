@@ -1,0 +1,7 @@
+#pragma once
+// Scalar type used throughout gjkdem. Double precision: DEM grains are
+// millimetres while walls and offsets reach kilometres, and the query tolerances
+// (1e-9 of a pair's size) are out of reach in single precision.
+namespace gjkdem {
+using Real = double;
+}  // namespace gjkdem

@@ -1,0 +1,26 @@
+#pragma once
+// Convex hull of a point cloud in 3D, with the flat, collinear and single-point
+// cases reported rather than failed.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "gjkdem/math/vec3.hpp"
+
+namespace gjkdem {
+
+enum class HullDimension { Empty, Point, Segment, Polygon, Solid };
+
+struct ConvexHull {
+  HullDimension dimension = HullDimension::Empty;
+  std::vector<Vec3> vertices;                ///< hull vertices only (interior/duplicate points dropped)
+  std::vector<std::array<int, 3>> triangles; ///< outward (counter-clockwise) triangles, Solid only
+  bool manifold = false;                     ///< triangles form a closed 2-manifold (Euler check passed)
+};
+
+/// Hull of `points`. Points within kHullRelTol * (bounding diagonal) of a face
+/// plane count as on it. For a Polygon the vertices are the 2D hull in order; for
+/// a Segment its two ends.
+ConvexHull convex_hull(std::span<const Vec3> points);
+
+}  // namespace gjkdem

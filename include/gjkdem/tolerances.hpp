@@ -1,0 +1,49 @@
+#pragma once
+// Every default tolerance of gjkdem, in one place. See docs/tolerances.md for how
+// the values were chosen. Geometric tolerances are relative to the size of the
+// pair (the larger bounding diameter of the two shapes) unless the name says
+// otherwise; QuerySettings copies them so each call may override them.
+#include "gjkdem/math/real.hpp"
+
+namespace gjkdem {
+
+/// GJK stops when the duality gap |v|^2 - v.w falls below kGjkRelTol * |v|^2
+/// (relative; v = closest point of the simplex, w = newest support point), so the
+/// distance is known to about kGjkRelTol/2 relative. Raising it saves iterations
+/// on curved shapes and loosens distances; below ~1e-14 it is round-off.
+inline constexpr Real kGjkRelTol = 1e-11;
+
+/// Absolute companion of kGjkRelTol for near-touching pairs, relative to the pair
+/// size: GJK also stops once the distance is bracketed to kGjkAbsTol * size.
+inline constexpr Real kGjkAbsTol = 1e-13;
+
+/// Cores closer than kGjkTouchTol * size count as touching and go to EPA
+/// (relative). It sits well above double round-off (1e-16 * coordinates) and far
+/// below the 1e-9 accuracy the query format asks for.
+inline constexpr Real kGjkTouchTol = 1e-13;
+
+/// Hard cap on GJK iterations. Polytopes finish in tens; smooth curved shapes
+/// converge linearly and may take a hundred at kGjkRelTol. Reaching the cap gives
+/// status MaxIterations with the best bound found.
+inline constexpr int kMaxGjkIterations = 256;
+
+/// EPA stops when the support in the closest face's normal lies within
+/// kEpaRelTol * depth + kEpaAbsTol * size of that face (relative).
+inline constexpr Real kEpaRelTol = 1e-11;
+inline constexpr Real kEpaAbsTol = 1e-13;
+
+/// EPA buffers are fixed-size (no heap in a query). When they fill up EPA returns
+/// the best face it has with status OutOfMemory rather than failing.
+inline constexpr int kEpaMaxVertices = 256;
+inline constexpr int kEpaMaxFaces = 2 * kEpaMaxVertices;
+inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
+
+/// Polytopes with more hull vertices than this hill-climb over the vertex
+/// adjacency; smaller ones scan every vertex (faster below this size).
+inline constexpr int kHillClimbMinVertices = 24;
+
+/// Points within kHullRelTol * (bounding diagonal) of a hull plane are treated as
+/// on it (relative). Raising it merges more near-coplanar points away.
+inline constexpr Real kHullRelTol = 1e-12;
+
+}  // namespace gjkdem

@@ -1,0 +1,74 @@
+#pragma once
+// GJK on a Minkowski difference (Gilbert, Johnson and Keerthi 1988; the seed
+// text's Algorithm 14; termination after van den Bergen, "Collision Detection in
+// Interactive 3D Environments", 2003, section 4.3).
+//
+// One loop serves both queries. The boolean test returns as soon as a support
+// point fails to pass the origin (a separating plane, Algorithm 14 line 5) or a
+// tetrahedron encloses it. The distance query runs until the duality gap
+// |v|^2 - v.w is within the tolerances, or until no support point improves v
+// (round-off floor), keeping the best simplex seen.
+#include "gjkdem/collide/settings.hpp"
+#include "gjkdem/collide/status.hpp"
+#include "minkowski_diff.hpp"
+
+namespace gjkdem::detail {
+
+struct GjkOutput {
+  GjkStatus status = GjkStatus::Separated;
+  Simplex simplex;  ///< its barycentric combination is v
+  Vec3 v;           ///< closest point of A - B to the origin found (frame A)
+  int iterations = 0;
+};
+
+enum class GjkMode { Distance, Boolean };
+
+/// `margin` (sum of both margins) only matters for Boolean: cores closer than it
+/// intersect, and a separating plane must clear it.
+template <class MD>
+GjkOutput gjk(MD& md, Vec3 v, Real size, Real margin, GjkMode mode, const QuerySettings& st) noexcept {
+  GjkOutput out;
+  Simplex& s = out.simplex;
+  if (!(dot(v, v) > 0)) v = {1, 0, 0};
+  s.p[0] = md.support(-v);
+  s.size = 1;
+  s.lambda[0] = 1;
+  v = s.p[0].w;
+  const Real touch_sq = (st.touch_tol * size) * (st.touch_tol * size);
+  for (int it = 1;; ++it) {
+    out.iterations = it;
+    const Real dist_sq = dot(v, v);
+    if (dist_sq <= touch_sq) { out.status = GjkStatus::Intersecting; break; }
+    if (it > st.max_gjk_iterations) { out.status = GjkStatus::MaxIterations; break; }
+    const SupportPoint w = md.support(-v);
+    const Real vw = dot(v, w.w);
+    if (mode == GjkMode::Boolean) {
+      // v.w / |v| is a lower bound on the core distance.
+      if (vw > 0 && vw * vw > margin * margin * dist_sq) { out.status = GjkStatus::Separated; break; }
+      if (dist_sq <= margin * margin) { out.status = GjkStatus::Intersecting; break; }
+    }
+    const Real gap = dist_sq - vw;
+    if (gap <= st.gjk_rel_tol * dist_sq || gap * gap <= (st.gjk_abs_tol * size) * (st.gjk_abs_tol * size) * dist_sq) {
+      out.status = GjkStatus::Separated;
+      break;
+    }
+    bool repeated = false;
+    for (int m = 0; m < s.size; ++m) repeated |= (s.p[m].w == w.w);
+    if (repeated) { out.status = GjkStatus::Separated; break; }
+
+    const Simplex before = s;
+    s.p[s.size++] = w;
+    const Vec3 v_new = reduce_to_closest(s);
+    if (s.size == 4) { v = v_new; out.status = GjkStatus::Intersecting; break; }
+    if (!(dot(v_new, v_new) < dist_sq)) {  // no progress: round-off floor reached
+      s = before;
+      out.status = GjkStatus::Separated;
+      break;
+    }
+    v = v_new;
+  }
+  out.v = v;
+  return out;
+}
+
+}  // namespace gjkdem::detail

@@ -1,0 +1,235 @@
+// The only translation unit that includes nlohmann/json (a heavy header).
+#include "gjkdem/io/query_jsonl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace gjkdem::io {
+namespace {
+
+using Json = nlohmann::json;
+
+[[noreturn]] void fail(const std::string& msg) { throw QueryFormatError(msg); }
+
+Real number(const Json& j, const std::string& what) {
+  if (!j.is_number()) fail(what + " must be a number");
+  const Real v = j.get<Real>();
+  if (!std::isfinite(v)) fail(what + " must be finite");
+  return v;
+}
+
+Vec3 vec3(const Json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 3) fail(what + " must be an array of 3 numbers");
+  return {number(j[0], what + "[0]"), number(j[1], what + "[1]"), number(j[2], what + "[2]")};
+}
+
+const Json& field(const Json& obj, const char* key, const std::string& where) {
+  const auto it = obj.find(key);
+  if (it == obj.end()) fail(where + " is missing '" + key + "'");
+  return *it;
+}
+
+Real positive(const Json& obj, const char* key, const std::string& where) {
+  const Real v = number(field(obj, key, where), where + "." + key);
+  if (!(v > 0)) fail(where + "." + key + " must be > 0 (got " + Json(v).dump() + ")");
+  return v;
+}
+
+Real non_negative(const Json& obj, const char* key, const std::string& where) {
+  const Real v = number(field(obj, key, where), where + "." + key);
+  if (v < 0) fail(where + "." + key + " must be >= 0 (got " + Json(v).dump() + ")");
+  return v;
+}
+
+Vec3 positive_vec(const Json& obj, const char* key, const std::string& where) {
+  const Vec3 v = vec3(field(obj, key, where), where + "." + key);
+  for (int k = 0; k < 3; ++k)
+    if (!(v[k] > 0)) fail(where + "." + key + " must have entries > 0");
+  return v;
+}
+
+Quat rotation(const Json& obj, const std::string& where) {
+  const auto it = obj.find("rotation");
+  if (it == obj.end()) return {};
+  const std::string what = where + ".rotation";
+  if (!it->is_array() || it->size() != 4) fail(what + " must be a quaternion [w,x,y,z]");
+  Quat q{number((*it)[0], what), number((*it)[1], what), number((*it)[2], what), number((*it)[3], what)};
+  const Real n = norm(q);
+  // Accept rounding in printed quaternions; refuse anything that is not a rotation.
+  if (!(std::fabs(n - 1) <= 1e-6)) fail(what + " must be a unit quaternion (norm " + Json(n).dump() + ")");
+  return normalized(q);
+}
+
+void check_keys(const Json& obj, std::initializer_list<const char*> allowed, const std::string& where) {
+  for (const auto& item : obj.items()) {
+    bool ok = false;
+    for (const char* k : allowed) ok |= item.key() == k;
+    if (!ok) fail(where + " has unknown key '" + item.key() + "'");
+  }
+}
+
+std::vector<Vec3> point_list(const Json& obj, const std::string& where) {
+  const Json& arr = field(obj, "vertices", where);
+  if (!arr.is_array() || arr.empty()) fail(where + ".vertices must be a non-empty array of [x,y,z]");
+  std::vector<Vec3> pts;
+  pts.reserve(arr.size());
+  for (std::size_t i = 0; i < arr.size(); ++i) pts.push_back(vec3(arr[i], where + ".vertices[" + std::to_string(i) + "]"));
+  return pts;
+}
+
+PlacedInput shape_from_json(const Json& s, const std::string& where) {
+  if (!s.is_object()) fail(where + " must be a shape object");
+  const auto t = s.find("type");
+  if (t == s.end() || !t->is_string()) fail(where + " needs a string 'type'");
+  const std::string type = t->get<std::string>();
+  static constexpr const char* kTypes[] = {"polytope", "triangle", "sphere", "box", "ellipsoid",
+                                           "capsule", "cylinder", "cone", "superellipsoid"};
+  if (std::find(std::begin(kTypes), std::end(kTypes), type) == std::end(kTypes))
+    fail(where + " has unknown type '" + type + "'");
+  PlacedInput out;
+  Real margin = 0;
+  if (s.contains("margin")) margin = non_negative(s, "margin", where);
+  if (type == "polytope" || type == "triangle") {
+    check_keys(s, {"type", "vertices", "margin"}, where);
+    std::vector<Vec3> pts = point_list(s, where);
+    if (type == "triangle" && pts.size() != 3) fail(where + ".vertices must hold exactly 3 points for a triangle");
+    Vec3 lo = pts[0], hi = pts[0];
+    for (const Vec3& p : pts)
+      for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], p[k]); hi[k] = std::fmax(hi[k], p[k]); }
+    const Vec3 centre = (lo + hi) * 0.5;
+    for (Vec3& p : pts) p -= centre;
+    out.pose.translation = centre;
+    if (type == "triangle") out.shape.core = Triangle{{pts[0], pts[1], pts[2]}};
+    else out.shape.core = make_polytope(pts);
+    out.shape.margin = margin;
+    return out;
+  }
+  if (type == "capsule") {
+    check_keys(s, {"type", "p0", "p1", "radius", "margin"}, where);
+    const Vec3 p0 = vec3(field(s, "p0", where), where + ".p0"), p1 = vec3(field(s, "p1", where), where + ".p1");
+    const Real r = non_negative(s, "radius", where);
+    const Vec3 centre = (p0 + p1) * 0.5;
+    out.pose.translation = centre;
+    out.shape = make_capsule(p0 - centre, p1 - centre, r + margin);
+    return out;
+  }
+  const Vec3 centre = vec3(field(s, "center", where), where + ".center");
+  out.pose = Transform::from(centre, rotation(s, where));
+  if (type == "sphere") {
+    check_keys(s, {"type", "center", "radius", "rotation", "margin"}, where);
+    out.shape = make_sphere(non_negative(s, "radius", where) + margin);
+    return out;
+  }
+  out.shape.margin = margin;
+  if (type == "box") {
+    check_keys(s, {"type", "center", "half_extents", "rotation", "margin"}, where);
+    const Vec3 h = vec3(field(s, "half_extents", where), where + ".half_extents");
+    if (h.x < 0 || h.y < 0 || h.z < 0) fail(where + ".half_extents must be >= 0");
+    out.shape.core = Box{h};
+  } else if (type == "ellipsoid") {
+    check_keys(s, {"type", "center", "radii", "rotation", "margin"}, where);
+    out.shape.core = Ellipsoid{positive_vec(s, "radii", where)};
+  } else if (type == "cylinder" || type == "cone") {
+    check_keys(s, {"type", "center", "radius", "half_height", "rotation", "margin"}, where);
+    const Real r = positive(s, "radius", where), h = positive(s, "half_height", where);
+    if (type == "cylinder") out.shape.core = Cylinder{r, h};
+    else out.shape.core = Cone{r, h};
+  } else if (type == "superellipsoid") {
+    check_keys(s, {"type", "center", "radii", "exponents", "rotation", "margin"}, where);
+    const Vec3 radii = positive_vec(s, "radii", where);
+    const Json& e = field(s, "exponents", where);
+    if (!e.is_array() || e.size() != 2) fail(where + ".exponents must be [e1, e2]");
+    const Real e1 = number(e[0], where + ".exponents[0]"), e2 = number(e[1], where + ".exponents[1]");
+    if (!(e1 > 0 && e1 <= 2 && e2 > 0 && e2 <= 2))
+      fail(where + ".exponents must lie in (0, 2] (convex superellipsoids only)");
+    out.shape.core = Superellipsoid{radii, e1, e2};
+  } else {
+    fail(where + " has unknown type '" + type + "'");
+  }
+  return out;
+}
+
+void append_number(std::string& s, Real v) {
+  if (v == 0) v = 0;  // no "-0"
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  s += buf;
+}
+
+void append_vec(std::string& s, const Vec3& v) {
+  s += '[';
+  append_number(s, v.x);
+  s += ',';
+  append_number(s, v.y);
+  s += ',';
+  append_number(s, v.z);
+  s += ']';
+}
+
+}  // namespace
+
+bool is_skipped_line(std::string_view line) {
+  const auto first = line.find_first_not_of(" \t\r\n");
+  return first == std::string_view::npos || line[first] == '#';
+}
+
+PlacedInput parse_shape(std::string_view json_text) {
+  Json j = Json::parse(json_text, nullptr, false);
+  if (j.is_discarded()) fail("shape is not valid JSON");
+  return shape_from_json(j, "shape");
+}
+
+PairInput parse_pair(std::string_view line, std::string& id_json) {
+  Json j = Json::parse(line, nullptr, false);
+  if (j.is_discarded()) fail("not valid JSON");
+  if (!j.is_object()) fail("a pair must be a JSON object");
+  PairInput pair;
+  if (const auto id = j.find("id"); id != j.end()) id_json = id->dump();
+  pair.id_json = id_json;
+  check_keys(j, {"id", "a", "b"}, "pair");
+  if (!j.contains("id")) fail("pair is missing 'id'");
+  if (!j.contains("a") || !j.contains("b")) fail("pair needs shapes 'a' and 'b'");
+  try {
+    pair.a = shape_from_json(j["a"], "a");
+    pair.b = shape_from_json(j["b"], "b");
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+  return pair;
+}
+
+std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& o) {
+  std::string s;
+  s.reserve(400);
+  s += "{\"id\":" + id_json + ",\"intersect\":" + (r.intersect ? "true" : "false") + ",\"distance\":";
+  append_number(s, r.distance);
+  s += ",\"witness_a\":";
+  append_vec(s, r.witness_a);
+  s += ",\"witness_b\":";
+  append_vec(s, r.witness_b);
+  s += ",\"depth\":";
+  append_number(s, r.depth);
+  s += ",\"normal\":";
+  append_vec(s, r.normal);
+  s += ",\"overlap_volume\":";
+  if (o.computed) append_number(s, o.volume);
+  else s += "null";
+  s += ",\"overlap_centroid\":";
+  if (o.has_centroid) append_vec(s, o.centroid);
+  else s += "null";
+  s += ",\"contact_normal\":";
+  if (o.has_normal) append_vec(s, o.contact_normal);
+  else s += "null";
+  s += ",\"iterations\":" + std::to_string(r.iterations) + "}";
+  return s;
+}
+
+std::string format_error(const std::string& id_json, const std::string& message) {
+  return "{\"id\":" + id_json + ",\"error\":" + Json(message).dump(-1, ' ', false, Json::error_handler_t::replace) + "}";
+}
+
+}  // namespace gjkdem::io

@@ -1,0 +1,236 @@
+// 3D convex hull by Quickhull (Barber, Dobkin and Huhdanpaa, ACM TOMS 22(4),
+// 1996): every point outside the current hull sits in the conflict list of one
+// face it sees; the farthest point of a face's list (always a vertex of the final
+// hull) removes the faces it sees, found by a walk over face adjacency, and is
+// joined to their horizon; the orphaned points move to the new faces or, seeing
+// none, are inside for good. The tolerance decides which points count as on a
+// face; the result is checked to be a closed 2-manifold and says so, so callers
+// can refuse to walk a broken one.
+#include "gjkdem/shape/convex_hull.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <unordered_map>
+
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem {
+namespace {
+
+struct Face {
+  int v[3];
+  Vec3 normal;               // unit, outward
+  Real offset;               // normal . x for x on the face
+  bool alive;
+  std::vector<int> outside;  // conflict list: points that see this face
+};
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+Face make_face(const std::vector<Vec3>& p, int a, int b, int c) {
+  const Vec3 n = normalized(cross(p[b] - p[a], p[c] - p[a]));
+  return {{a, b, c}, n, dot(n, p[a]), true, {}};
+}
+
+Real distance_to_line(const Vec3& q, const Vec3& a, const Vec3& unit_dir) {
+  const Vec3 r = q - a;
+  return length(r - unit_dir * dot(r, unit_dir));
+}
+
+// 2D hull (Andrew's monotone chain) of points on the plane through origin with
+// in-plane axes e1, e2; returns the indices of the hull in counter-clockwise order.
+std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, const Vec3& e1, const Vec3& e2,
+                              Real tol) {
+  struct P2 { Real x, y; int i; };
+  std::vector<P2> q;
+  q.reserve(p.size());
+  for (int i = 0; i < static_cast<int>(p.size()); ++i)
+    q.push_back({dot(p[i] - origin, e1), dot(p[i] - origin, e2), i});
+  std::sort(q.begin(), q.end(), [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  // Points left of a->b by more than tol (a length) make a strict left turn.
+  auto left_turn = [tol](const P2& a, const P2& b, const P2& c) {
+    const Real cr = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    return cr > tol * std::hypot(c.x - a.x, c.y - a.y);
+  };
+  std::vector<P2> h(2 * q.size());
+  std::size_t k = 0;
+  for (const P2& pt : q) {
+    while (k >= 2 && !left_turn(h[k - 2], h[k - 1], pt)) --k;
+    h[k++] = pt;
+  }
+  for (std::size_t i = q.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && !left_turn(h[k - 2], h[k - 1], q[i])) --k;
+    h[k++] = q[i];
+  }
+  std::vector<int> out;
+  for (std::size_t i = 0; i + 1 < k; ++i) out.push_back(h[i].i);
+  return out;
+}
+
+}  // namespace
+
+ConvexHull convex_hull(std::span<const Vec3> points) {
+  ConvexHull hull;
+  std::vector<Vec3> p(points.begin(), points.end());
+  std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) {
+    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+  });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.empty()) return hull;
+
+  Vec3 lo = p[0], hi = p[0];
+  for (const Vec3& q : p)
+    for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], q[k]); hi[k] = std::fmax(hi[k], q[k]); }
+  const Real diag = length(hi - lo);
+  const Real tol = kHullRelTol * diag;
+  if (p.size() == 1 || !(diag > 0)) {
+    hull.dimension = HullDimension::Point;
+    hull.vertices = {p[0]};
+    return hull;
+  }
+
+  // Initial simplex: the extremes of the widest axis, then the points farthest
+  // from their line and from their plane.
+  const Vec3 ext = hi - lo;
+  const int axis = ext.x >= ext.y ? (ext.x >= ext.z ? 0 : 2) : (ext.y >= ext.z ? 1 : 2);
+  int i0 = 0, i1 = 0;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    if (p[i][axis] < p[i0][axis]) i0 = i;
+    if (p[i][axis] > p[i1][axis]) i1 = i;
+  }
+  const Vec3 u = normalized(p[i1] - p[i0]);
+  int i2 = -1;
+  Real best = tol;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    const Real d = distance_to_line(p[i], p[i0], u);
+    if (d > best) { best = d; i2 = i; }
+  }
+  if (i2 < 0) {
+    hull.dimension = HullDimension::Segment;
+    int a = 0, b = 0;
+    for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+      if (dot(p[i], u) < dot(p[a], u)) a = i;
+      if (dot(p[i], u) > dot(p[b], u)) b = i;
+    }
+    hull.vertices = {p[a], p[b]};
+    return hull;
+  }
+  const Vec3 plane_n = normalized(cross(p[i1] - p[i0], p[i2] - p[i0]));
+  int i3 = -1;
+  best = tol;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    const Real d = std::fabs(dot(plane_n, p[i] - p[i0]));
+    if (d > best) { best = d; i3 = i; }
+  }
+  if (i3 < 0) {
+    hull.dimension = HullDimension::Polygon;
+    for (int i : polygon_hull(p, p[i0], u, cross(plane_n, u), tol)) hull.vertices.push_back(p[i]);
+    return hull;
+  }
+
+  // Solid: start from the tetrahedron, oriented outward.
+  std::vector<Face> faces;
+  std::unordered_map<std::uint64_t, int> edge_face;  // directed edge -> face holding it
+  auto add_face = [&](int a, int b, int c) {
+    faces.push_back(make_face(p, a, b, c));
+    const int f = static_cast<int>(faces.size()) - 1;
+    edge_face[edge_key(a, b)] = f;
+    edge_face[edge_key(b, c)] = f;
+    edge_face[edge_key(c, a)] = f;
+  };
+  if (dot(plane_n, p[i3] - p[i0]) > 0) std::swap(i1, i2);
+  add_face(i0, i1, i2);
+  add_face(i0, i3, i1);
+  add_face(i1, i3, i2);
+  add_face(i2, i3, i0);
+
+  auto height = [&](int f, int q) { return dot(faces[f].normal, p[q]) - faces[f].offset; };
+  auto assign = [&](int q, int first_face) {
+    for (int f = first_face; f < static_cast<int>(faces.size()); ++f)
+      if (faces[f].alive && height(f, q) > tol) { faces[f].outside.push_back(q); return; }
+  };
+  for (int q = 0; q < static_cast<int>(p.size()); ++q)
+    if (q != i0 && q != i1 && q != i2 && q != i3) assign(q, 0);
+
+  std::vector<int> visible, stack, orphans;
+  std::vector<std::pair<int, int>> horizon;
+  std::vector<char> is_visible;
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+    if (!faces[f].alive || faces[f].outside.empty()) continue;
+    int apex = faces[f].outside[0];
+    for (int q : faces[f].outside)
+      if (height(f, q) > height(f, apex)) apex = q;
+    // Faces the apex sees, connected to f.
+    is_visible.assign(faces.size(), 0);
+    visible.clear();
+    stack.assign(1, f);
+    is_visible[f] = 1;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      visible.push_back(g);
+      for (int k = 0; k < 3; ++k) {
+        const auto twin = edge_face.find(edge_key(faces[g].v[(k + 1) % 3], faces[g].v[k]));
+        if (twin == edge_face.end()) continue;
+        const int h = twin->second;
+        if (!is_visible[h] && height(h, apex) > tol) { is_visible[h] = 1; stack.push_back(h); }
+      }
+    }
+    horizon.clear();
+    orphans.clear();
+    for (int g : visible) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
+        const auto twin = edge_face.find(edge_key(b, a));
+        if (twin != edge_face.end() && !is_visible[twin->second]) horizon.emplace_back(a, b);
+      }
+      for (int q : faces[g].outside)
+        if (q != apex) orphans.push_back(q);
+      faces[g].alive = false;
+      faces[g].outside = {};
+    }
+    for (int g : visible)
+      for (int k = 0; k < 3; ++k) {
+        const auto it = edge_face.find(edge_key(faces[g].v[k], faces[g].v[(k + 1) % 3]));
+        if (it != edge_face.end() && it->second == g) edge_face.erase(it);
+      }
+    const int first_new = static_cast<int>(faces.size());
+    for (const auto& [a, b] : horizon) add_face(a, b, apex);
+    for (int q : orphans) assign(q, first_new);
+    // Faces are only appended, so the outer loop reaches the new ones later.
+  }
+
+  // Compact the surviving faces and vertices.
+  std::vector<int> remap(p.size(), -1);
+  for (const Face& f : faces) {
+    if (!f.alive) continue;
+    std::array<int, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      if (remap[f.v[k]] < 0) {
+        remap[f.v[k]] = static_cast<int>(hull.vertices.size());
+        hull.vertices.push_back(p[f.v[k]]);
+      }
+      t[k] = remap[f.v[k]];
+    }
+    hull.triangles.push_back(t);
+  }
+  hull.dimension = HullDimension::Solid;
+
+  // Closed 2-manifold: every directed edge once, its twin present, V - E + F = 2.
+  std::unordered_map<std::uint64_t, int> count;
+  for (const auto& t : hull.triangles)
+    for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
+  bool ok = true;
+  for (const auto& [key, c] : count) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    if (c != 1 || !count.contains(edge_key(b, a))) { ok = false; break; }
+  }
+  const long v = static_cast<long>(hull.vertices.size()), f = static_cast<long>(hull.triangles.size());
+  const long e = static_cast<long>(count.size()) / 2;
+  hull.manifold = ok && v - e + f == 2;
+  return hull;
+}
+
+}  // namespace gjkdem

@@ -1,0 +1,48 @@
+#include "gjkdem/shape/convex_hull.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace gjkdem {
+namespace {
+
+TEST(ConvexHull, RandomCloudsAreEnclosedAndClosed) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int c = 0; c < 40; ++c) {
+    std::vector<Vec3> pts;
+    const int n = 4 + c * 10;
+    for (int i = 0; i < n; ++i) pts.push_back({u(rng), u(rng), u(rng)});
+    const ConvexHull h = convex_hull(pts);
+    ASSERT_EQ(h.dimension, HullDimension::Solid);
+    EXPECT_TRUE(h.manifold);
+    EXPECT_EQ(h.triangles.size(), 2 * h.vertices.size() - 4);  // Euler, all faces triangles
+    for (const auto& t : h.triangles) {
+      const Vec3 nrm = normalized(cross(h.vertices[t[1]] - h.vertices[t[0]], h.vertices[t[2]] - h.vertices[t[0]]));
+      for (const Vec3& p : pts) EXPECT_LE(dot(nrm, p - h.vertices[t[0]]), 1e-12);  // all points inside
+    }
+    // Every hull vertex is an input point.
+    for (const Vec3& v : h.vertices) EXPECT_NE(std::find(pts.begin(), pts.end(), v), pts.end());
+  }
+}
+
+TEST(ConvexHull, DegenerateCloudsReportTheirDimension) {
+  EXPECT_EQ(convex_hull(std::vector<Vec3>{}).dimension, HullDimension::Empty);
+  EXPECT_EQ(convex_hull(std::vector<Vec3>{{1, 2, 3}, {1, 2, 3}}).dimension, HullDimension::Point);
+  const ConvexHull seg = convex_hull(std::vector<Vec3>{{0, 0, 0}, {1, 1, 1}, {0.5, 0.5, 0.5}, {2, 2, 2}});
+  EXPECT_EQ(seg.dimension, HullDimension::Segment);
+  EXPECT_EQ(seg.vertices.size(), 2u);
+  const ConvexHull square = convex_hull(std::vector<Vec3>{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {0.5, 0.5, 1}, {0.5, 0, 1}});
+  EXPECT_EQ(square.dimension, HullDimension::Polygon);
+  EXPECT_EQ(square.vertices.size(), 4u);
+  // A cube with points on its faces and edges keeps only the 8 corners.
+  std::vector<Vec3> cube;
+  for (int i = 0; i < 27; ++i) cube.push_back({double(i % 3) - 1, double(i / 3 % 3) - 1, double(i / 9) - 1});
+  const ConvexHull h = convex_hull(cube);
+  EXPECT_EQ(h.vertices.size(), 8u);
+  EXPECT_TRUE(h.manifold);
+}
+
+}  // namespace
+}  // namespace gjkdem
