@@ -25,17 +25,34 @@ enum class GjkMode { Distance, Boolean };
 
 /// `margin` (sum of both margins) only matters for Boolean: cores closer than it
 /// intersect, and a separating plane must clear it.
+/// `warm`/`warm_size`: search directions to replay first (a previous simplex),
+/// or none; `v` is the cold start guess, a point of A - B.
 template <class MD>
-GjkOutput gjk(MD& md, Vec3 v, Real size, Real margin, GjkMode mode, const QuerySettings& st) noexcept {
+GjkOutput gjk(MD& md, Vec3 v, const Vec3* warm, int warm_size, Real size, Real margin, GjkMode mode,
+              const QuerySettings& st) noexcept {
   GjkOutput out;
   Simplex& s = out.simplex;
-  if (!(dot(v, v) > 0)) v = {1, 0, 0};
-  s.p[0] = md.support(-v);
-  s.size = 1;
-  s.lambda[0] = 1;
-  v = s.p[0].w;
   const Real touch_sq = (st.touch_tol * size) * (st.touch_tol * size);
-  for (int it = 1;; ++it) {
+  int it = 1;
+  if (warm_size > 0) {
+    for (int k = 0; k < warm_size; ++k) s.p[k] = md.support(warm[k]);
+    s.size = warm_size;
+    v = reduce_to_closest(s);
+    it = warm_size;
+    if (s.size == 4) {
+      out.status = GjkStatus::Intersecting;
+      out.iterations = it;
+      out.v = {};
+      return out;
+    }
+  } else {
+    if (!(dot(v, v) > 0)) v = {1, 0, 0};
+    s.p[0] = md.support(-v);
+    s.size = 1;
+    s.lambda[0] = 1;
+    v = s.p[0].w;
+  }
+  for (;; ++it) {
     out.iterations = it;
     const Real dist_sq = dot(v, v);
     if (dist_sq <= touch_sq) { out.status = GjkStatus::Intersecting; break; }

@@ -19,7 +19,7 @@ struct MinkowskiDiff {
   SupportPoint support(const Vec3& d) noexcept {
     const Vec3 pa = gjkdem::support(a, d, hint_a);
     const Vec3 pb = apply(b_in_a, gjkdem::support(b, apply_inverse_rotation(b_in_a, -d), hint_b));
-    return {pa - pb, pa, pb};
+    return {pa - pb, pa, pb, d};
   }
 };
 

@@ -3,6 +3,7 @@
 #include "gjkdem/collide/query.hpp"
 
 #include "epa_impl.hpp"
+#include "gjk_boolean_impl.hpp"
 #include "gjk_impl.hpp"
 
 namespace gjkdem {
@@ -12,18 +13,19 @@ using detail::GjkMode;
 
 Real pair_size(const Shape& a, const Shape& b) noexcept { return 2 * std::fmax(bounding_radius(a), bounding_radius(b)); }
 
-Vec3 start_direction(const GjkCache* cache, const Transform& b_in_a) noexcept {
-  if (cache && cache->valid && dot(cache->direction, cache->direction) > 0) return cache->direction;
-  return -b_in_a.translation;  // A's origin minus B's: a point of A - B for centred shapes
-}
+// Cold start: A's origin minus B's, a point of A - B for centred shapes.
+Vec3 cold_start(const Transform& b_in_a) noexcept { return -b_in_a.translation; }
+
+int warm_size(const GjkCache* cache) noexcept { return cache ? cache->size : 0; }
+const Vec3* warm_dirs(const GjkCache* cache) noexcept { return cache ? cache->dirs : nullptr; }
 
 template <class MD>
-void save_cache(GjkCache* cache, const MD& md, const Vec3& v) noexcept {
+void save_cache(GjkCache* cache, const MD& md, const Simplex& s) noexcept {
   if (!cache) return;
-  cache->direction = v;
+  for (int k = 0; k < s.size; ++k) cache->dirs[k] = s.p[k].d;
+  cache->size = s.size;
   cache->hint_a = md.hint_a;
   cache->hint_b = md.hint_b;
-  cache->valid = true;
 }
 
 template <class F>
@@ -31,7 +33,7 @@ auto with_diff(const Shape& a, const Shape& b, const Transform& b_in_a, const Gj
   return std::visit(
       [&](const auto& ca, const auto& cb) {
         detail::MinkowskiDiff<std::decay_t<decltype(ca)>, std::decay_t<decltype(cb)>> md{ca, cb, b_in_a};
-        if (cache && cache->valid) { md.hint_a = cache->hint_a; md.hint_b = cache->hint_b; }
+        if (cache && cache->size > 0) { md.hint_a = cache->hint_a; md.hint_b = cache->hint_b; }
         return f(md);
       },
       a.core, b.core);
@@ -43,9 +45,25 @@ bool intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Tr
                const QuerySettings& st) noexcept {
   const Transform b_in_a = relative(pose_a, pose_b);
   return with_diff(a, b, b_in_a, cache, [&](auto& md) {
-    const auto g = detail::gjk(md, start_direction(cache, b_in_a), pair_size(a, b), a.margin + b.margin,
+    const Vec3 v0 = cold_start(b_in_a);
+    if (a.margin == 0 && b.margin == 0) {  // the seed's Algorithm 14; the distance loop settles ties
+      int iterations = 0;
+      Vec3 last_d;
+      const Vec3 d0 = warm_size(cache) > 0 ? cache->dirs[0] : -v0;
+      const auto o = detail::gjk_boolean(md, d0, st.max_gjk_iterations, iterations, last_d);
+      if (o != detail::Overlap::Undecided) {
+        if (cache) {  // a separating direction, or the last search direction
+          cache->dirs[0] = last_d;
+          cache->size = 1;
+          cache->hint_a = md.hint_a;
+          cache->hint_b = md.hint_b;
+        }
+        return o == detail::Overlap::Intersecting;
+      }
+    }
+    const auto g = detail::gjk(md, v0, warm_dirs(cache), warm_size(cache), pair_size(a, b), a.margin + b.margin,
                                GjkMode::Boolean, st);
-    save_cache(cache, md, g.v);
+    save_cache(cache, md, g.simplex);
     if (g.status == GjkStatus::Intersecting) return true;
     const Real margin = a.margin + b.margin;
     return dot(g.v, g.v) <= margin * margin;
@@ -56,8 +74,9 @@ DistanceResult distance(const Shape& a, const Transform& pose_a, const Shape& b,
                         GjkCache* cache, const QuerySettings& st) noexcept {
   const Transform b_in_a = relative(pose_a, pose_b);
   return with_diff(a, b, b_in_a, cache, [&](auto& md) {
-    const auto g = detail::gjk(md, start_direction(cache, b_in_a), pair_size(a, b), 0, GjkMode::Distance, st);
-    save_cache(cache, md, g.v);
+    const auto g = detail::gjk(md, cold_start(b_in_a), warm_dirs(cache), warm_size(cache), pair_size(a, b), 0,
+                               GjkMode::Distance, st);
+    save_cache(cache, md, g.simplex);
     DistanceResult r;
     r.status = g.status;
     r.iterations = g.iterations;
@@ -83,7 +102,8 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
   const Transform b_in_a = relative(pose_a, pose_b);
   const Real size = pair_size(a, b);
   return with_diff(a, b, b_in_a, cache, [&](auto& md) {
-    const auto g = detail::gjk(md, start_direction(cache, b_in_a), size, 0, GjkMode::Distance, st);
+    const auto g = detail::gjk(md, cold_start(b_in_a), warm_dirs(cache), warm_size(cache), size, 0,
+                               GjkMode::Distance, st);
     PenetrationResult r;
     r.gjk_status = g.status;
     r.iterations = g.iterations;
@@ -107,7 +127,7 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
       r.intersect = true;
       r.depth = e.depth + margin;
     }
-    save_cache(cache, md, g.v);
+    save_cache(cache, md, g.simplex);
     r.normal = apply_rotation(pose_a, n);
     r.witness_a = apply(pose_a, wa + n * a.margin);
     r.witness_b = apply(pose_a, wb - n * b.margin);

@@ -26,6 +26,22 @@ Polytope make_polytope(std::span<const Vec3> points) {
       data->adj.insert(data->adj.end(), list.begin(), list.end());
       data->adj_begin.push_back(static_cast<std::uint32_t>(data->adj.size()));
     }
+    // Start table: the exact support vertex of each cell's centre direction.
+    constexpr int res = kSupportMapResolution;
+    data->start.resize(6 * res * res);
+    for (int face = 0; face < 6; ++face)
+      for (int iu = 0; iu < res; ++iu)
+        for (int iv = 0; iv < res; ++iv) {
+          const int axis = face / 2;
+          Vec3 d;
+          d[axis] = face % 2 ? -1 : 1;
+          d[(axis + 1) % 3] = (iu + Real(0.5)) * 2 / res - 1;
+          d[(axis + 2) % 3] = (iv + Real(0.5)) * 2 / res - 1;
+          std::uint32_t best = 0;
+          for (std::uint32_t i = 1; i < n; ++i)
+            if (dot(data->vertices[i], d) > dot(data->vertices[best], d)) best = i;
+          data->start[detail::support_map_cell(d)] = best;
+        }
   }
   return Polytope{std::move(data)};
 }

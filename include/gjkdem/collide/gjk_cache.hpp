@@ -6,11 +6,13 @@
 
 namespace gjkdem {
 
+/// Box2D-style simplex cache: the search directions that produced the last
+/// simplex are replayed, so a pair that moved little starts next to its answer.
 struct GjkCache {
-  Vec3 direction;     ///< last closest point of A - B, in A's local frame; zero: none
-  int hint_a = 0;     ///< last support vertex of A (polytopes hill-climb from it)
-  int hint_b = 0;     ///< last support vertex of B
-  bool valid = false; ///< false: start cold
+  Vec3 dirs[4];   ///< search directions of the last simplex points, A's local frame
+  int size = 0;   ///< how many of dirs are set; 0: start cold
+  int hint_a = 0; ///< last support vertex of A (polytopes hill-climb from it)
+  int hint_b = 0; ///< last support vertex of B
 };
 
 }  // namespace gjkdem

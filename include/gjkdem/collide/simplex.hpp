@@ -18,6 +18,7 @@ struct SupportPoint {
   Vec3 w;  ///< a - b
   Vec3 a;  ///< on A
   Vec3 b;  ///< on B
+  Vec3 d;  ///< the search direction that produced it (warm starts replay it)
 };
 
 struct Simplex {

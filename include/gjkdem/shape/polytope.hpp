@@ -3,6 +3,7 @@
 // kept. Large hulls carry their vertex adjacency so that support() can hill-climb
 // from a hint instead of scanning every vertex. The data are immutable and
 // shared, so many particles can use one template.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -12,12 +13,33 @@
 
 namespace gjkdem {
 
+/// Cells per cube-face side of the support start table (6 * n * n cells).
+inline constexpr int kSupportMapResolution = 4;
+
 struct PolytopeData {
   std::vector<Vec3> vertices;            ///< hull vertices, local frame
   std::vector<std::uint32_t> adj_begin;  ///< CSR offsets into adj (size vertices+1); empty: scan
   std::vector<std::uint32_t> adj;        ///< neighbour vertex indices
+  /// Support vertex of the centre direction of each cube-map cell: hill climbing
+  /// starts there, a few steps from the answer whatever the direction.
+  std::vector<std::uint32_t> start;
   Real radius = 0;                       ///< max |vertex|
 };
+
+namespace detail {
+/// Cube-map cell of direction d (not zero): face by dominant axis, then a
+/// kSupportMapResolution^2 grid on that face.
+inline int support_map_cell(const Vec3& d) noexcept {
+  const Real ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  const int axis = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+  const Real m = std::fabs(d[axis]);
+  const Real u = d[(axis + 1) % 3] / m, v = d[(axis + 2) % 3] / m;  // in [-1, 1]
+  constexpr int n = kSupportMapResolution;
+  const int iu = std::min(n - 1, static_cast<int>((u + 1) * (Real(0.5) * n)));
+  const int iv = std::min(n - 1, static_cast<int>((v + 1) * (Real(0.5) * n)));
+  return ((2 * axis + (d[axis] < 0)) * n + iu) * n + iv;
+}
+}  // namespace detail
 
 struct Polytope {
   std::shared_ptr<const PolytopeData> data;
@@ -43,8 +65,14 @@ inline Vec3 support(const Polytope& p, const Vec3& d, int& hint) noexcept {
   }
   // Hill climbing: a linear function's local maximum on the vertex graph of a
   // convex polytope is global, and strict improvement guarantees termination.
-  int cur = (hint >= 0 && hint < n) ? hint : 0;
+  // Start from the better of the caller's hint and the cube-map cell's vertex.
+  if (!(max_abs(d) > 0)) { hint = 0; return v[0]; }
+  int cur = static_cast<int>(s.start[detail::support_map_cell(d)]);
   Real cur_dot = dot(v[cur], d);
+  if (hint >= 0 && hint < n && hint != cur) {
+    const Real h = dot(v[hint], d);
+    if (h > cur_dot) { cur_dot = h; cur = hint; }
+  }
   for (bool moved = true; moved;) {
     moved = false;
     for (std::uint32_t k = s.adj_begin[cur], e = s.adj_begin[cur + 1]; k < e; ++k) {
