@@ -53,7 +53,7 @@ TEST(Query, RandomPolytopePairsMatchBruteForce) {
     const double truth_gap = truth.intersect ? truth.depth : truth.distance;
     ++cases;
     hits += truth.intersect;
-    if (truth_gap > tol) ASSERT_EQ(r.intersect, truth.intersect);
+    if (truth_gap > tol) { ASSERT_EQ(r.intersect, truth.intersect); }
     EXPECT_NEAR(r.distance, truth.intersect ? 0.0 : truth.distance, tol);
     EXPECT_NEAR(r.depth, truth.intersect ? truth.depth : 0.0, tol);
     EXPECT_NEAR(length(r.normal), 1.0, 1e-12);
@@ -71,7 +71,7 @@ TEST(Query, RandomPolytopePairsMatchBruteForce) {
       EXPECT_EQ(intersect(a.shape, a.pose, b.shape, b.pose), truth.intersect);
       const DistanceResult d = distance(a.shape, a.pose, b.shape, b.pose);
       EXPECT_EQ(d.intersect, truth.intersect);
-      if (!d.intersect) EXPECT_NEAR(d.distance, truth.distance, tol);
+      if (!d.intersect) { EXPECT_NEAR(d.distance, truth.distance, tol); }
     }
   }
   // The generator must exercise both outcomes, or the test passes vacuously.
@@ -113,7 +113,7 @@ TEST(Query, BoxesFaceToFace) {
       EXPECT_TRUE(r.intersect);
       EXPECT_NEAR(r.depth, -gap, 1e-12);
     }
-    if (gap != 0) EXPECT_NEAR(r.normal.x, 1.0, 1e-9);
+    if (gap != 0) { EXPECT_NEAR(r.normal.x, 1.0, 1e-9); }
     EXPECT_EQ(intersect(box, pa, box, pb), gap <= 0);
   }
   // Coincident boxes: depth is the full width, along one of the axes.

@@ -76,7 +76,9 @@ TEST_P(SupportTest, ReachesFarthestSampleAndLiesOnShape) {
     EXPECT_GE(dot(s, d), best - 1e-12 * scale * length(d)) << "direction " << k;
     // The sampling is dense, so it misses the maximum by little.
     EXPECT_LE(dot(s, d), best + 2e-3 * scale * length(d)) << "direction " << k;
-    if (!std::holds_alternative<Cone>(core)) EXPECT_NEAR(implicit(core, s), 1.0, 1e-9) << "direction " << k;
+    if (!std::holds_alternative<Cone>(core)) {
+      EXPECT_NEAR(implicit(core, s), 1.0, 1e-9) << "direction " << k;
+    }
   }
 }
 
