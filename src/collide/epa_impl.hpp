@@ -37,15 +37,25 @@ struct EpaFace {
   bool obsolete;
 };
 
+/// Fixed-capacity storage left uninitialised: EPA writes each slot before
+/// reading it, and zero-filling ~60 KiB per query would cost more than EPA.
+template <class T, int N>
+struct RawArray {
+  union { T data[N]; };
+  RawArray() noexcept {}
+  T& operator[](int i) noexcept { return data[i]; }
+  const T& operator[](int i) const noexcept { return data[i]; }
+};
+
 struct EpaPolytope {
-  SupportPoint verts[kEpaMaxVertices];
-  EpaFace faces[kEpaMaxFaces];
+  RawArray<SupportPoint, kEpaMaxVertices> verts;
+  RawArray<EpaFace, kEpaMaxFaces> faces;
   int num_verts = 0;
   int num_faces = 0;
-  int free_faces[kEpaMaxFaces];
+  RawArray<int, kEpaMaxFaces> free_faces;
   int num_free = 0;
   struct HorizonEdge { int face, edge; };
-  HorizonEdge horizon[kEpaMaxFaces];
+  RawArray<HorizonEdge, kEpaMaxFaces> horizon;
   int num_horizon = 0;
 
   int new_face(int a, int b, int c) noexcept {
@@ -229,7 +239,7 @@ EpaOutput epa(MD& md, Simplex s, Real size, const QuerySettings& st, EpaPolytope
       out.status = EpaStatus::OutOfMemory;
       break;
     }
-    int first_new[kEpaMaxFaces];
+    RawArray<int, kEpaMaxFaces> first_new;
     const int h = poly.num_horizon;
     for (int k = 0; k < h; ++k) {
       const auto [g, e] = poly.horizon[k];
