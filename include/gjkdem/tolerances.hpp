@@ -40,7 +40,7 @@ inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
 
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
-inline constexpr int kHillClimbMinVertices = 16;
+inline constexpr int kHillClimbMinVertices = 64;
 
 /// Points within kHullRelTol * (bounding diagonal) of a hull plane are treated as
 /// on it (relative). Raising it merges more near-coplanar points away.

@@ -73,16 +73,14 @@ GjkOutput gjk(MD& md, Vec3 v, const Vec3* warm, int warm_size, Real size, Real m
     for (int m = 0; m < s.size; ++m) repeated |= (s.p[m].w == w.w);
     if (repeated) { out.status = GjkStatus::Separated; break; }
 
-    const Simplex before = s;
     s.p[s.size++] = w;
     const Vec3 v_new = reduce_to_closest(s);
     if (s.size == 4) { v = v_new; out.status = GjkStatus::Intersecting; break; }
-    if (!(dot(v_new, v_new) < dist_sq)) {  // no progress: round-off floor reached
-      s = before;
-      out.status = GjkStatus::Separated;
-      break;
-    }
+    // No progress means the round-off floor is reached: v_new is then as good as
+    // v up to round-off, and consistent with the simplex kept for the witnesses.
+    const bool progress = dot(v_new, v_new) < dist_sq;
     v = v_new;
+    if (!progress) { out.status = GjkStatus::Separated; break; }
   }
   out.v = v;
   return out;

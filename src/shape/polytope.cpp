@@ -16,6 +16,14 @@ Polytope make_polytope(std::span<const Vec3> points) {
   data->vertices = std::move(hull.vertices);
   for (const Vec3& v : data->vertices) data->radius = std::fmax(data->radius, length(v));
   const auto n = data->vertices.size();
+  data->soa_stride = static_cast<int>((n + 1) / 2 * 2);
+  data->soa.resize(3 * static_cast<std::size_t>(data->soa_stride));
+  for (int i = 0; i < data->soa_stride; ++i) {
+    const Vec3& v = data->vertices[static_cast<std::size_t>(i) < n ? i : 0];
+    data->soa[i] = v.x;
+    data->soa[data->soa_stride + i] = v.y;
+    data->soa[2 * data->soa_stride + i] = v.z;
+  }
   if (hull.dimension == HullDimension::Solid && hull.manifold && n > static_cast<std::size_t>(kHillClimbMinVertices)) {
     std::vector<std::vector<std::uint32_t>> nbr(n);
     for (const auto& t : hull.triangles)
