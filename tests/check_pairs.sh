@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# Runs `gjkdem query` on one sample family of ../shared/data/pairs and checks
-# it with ../shared/tools/check-pairs. Exit 77 (skipped) when shared/ is absent.
-# Usage: check_pairs.sh GJKDEM SHARED_DIR FAMILY FIELDS
+# Runs `gjkdem query` on a pair file and checks it against its expected answers
+# with the shared checker. Exit 77 (skipped) when the files or the checker are absent.
+# Usage: check_pairs.sh GJKDEM CHECKER IN.jsonl EXPECTED.jsonl FIELDS
 set -euo pipefail
-gjkdem="$1" shared="$2" family="$3" fields="$4"
-in="$shared/data/pairs/$family.in.jsonl"
-exp="$shared/data/pairs/$family.expected.jsonl"
-if [ ! -f "$in" ] || [ ! -f "$exp" ]; then
-  echo "no sample data at $shared/data/pairs: skipped"
-  exit 77
-fi
+gjkdem="$1" checker="$2" in="$3" exp="$4" fields="$5"
+for f in "$checker" "$in" "$exp"; do
+  if [ ! -f "$f" ]; then
+    echo "missing $f: skipped"
+    exit 77
+  fi
+done
 out="$(mktemp)"
 trap 'rm -f "$out"' EXIT
 "$gjkdem" query --in "$in" --out "$out"
-/usr/bin/python3 "$shared/tools/check-pairs" "$out" "$exp" --fields "$fields"
+/usr/bin/python3 "$checker" "$out" "$exp" --input "$in" --fields "$fields"

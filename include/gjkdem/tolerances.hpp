@@ -38,6 +38,13 @@ inline constexpr int kEpaMaxVertices = 256;
 inline constexpr int kEpaMaxFaces = 2 * kEpaMaxVertices;
 inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
 
+/// Penetration of smooth shapes: when EPA's buffers fill before it converges,
+/// a Newton polish of the normal on the sphere stops once the tangential part
+/// of the support point is below kPolishRelTol * size (relative), or after
+/// kMaxPolishIterations steps (each costs five support calls).
+inline constexpr Real kPolishRelTol = 1e-12;
+inline constexpr int kMaxPolishIterations = 30;
+
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;

@@ -5,6 +5,7 @@
 #include "epa_impl.hpp"
 #include "gjk_boolean_impl.hpp"
 #include "gjk_impl.hpp"
+#include "polish_impl.hpp"
 
 namespace gjkdem {
 namespace {
@@ -119,6 +120,8 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
     } else {
       detail::EpaPolytope poly;
       auto e = detail::epa(md, g.simplex, size, st, poly);
+      using MDType = std::decay_t<decltype(md)>;
+      detail::polish_penetration<MDType, std::decay_t<decltype(md.a)>, std::decay_t<decltype(md.b)>>(md, e, size);
       r.epa_status = e.status;
       r.epa_iterations = e.iterations;
       n = e.normal;
