@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
 #include "input_lines.hpp"
 
@@ -15,6 +16,7 @@ int run_query(const QueryOptions& opt) {
   std::unique_ptr<std::ofstream> out_file;
   std::istream& in = open_input(opt.in, in_file);
   std::ostream& out = open_output(opt.out, out_file);
+  OverlapWorkspace work;
   std::string line;
   long line_no = 0;
   int errors = 0;
@@ -25,7 +27,15 @@ int run_query(const QueryOptions& opt) {
     try {
       const io::PairInput p = io::parse_pair(line, id);
       const PenetrationResult r = penetration(p.a.shape, p.a.pose, p.b.shape, p.b.pose);
-      out << io::format_result(p.id_json, r) << '\n';
+      const OverlapResult o = overlap(p.a.shape, p.a.pose, p.b.shape, p.b.pose, work);
+      io::OverlapFields f;
+      f.computed = o.status != OverlapStatus::Unsupported;
+      f.volume = o.volume;
+      f.has_centroid = o.status == OverlapStatus::Overlapping;
+      f.centroid = o.centroid;
+      f.has_normal = o.has_normal;
+      f.contact_normal = o.contact_normal;
+      out << io::format_result(p.id_json, r, f) << '\n';
     } catch (const std::exception& e) {
       ++errors;
       out << io::format_error(id, "line " + std::to_string(line_no) + ": " + e.what()) << '\n';

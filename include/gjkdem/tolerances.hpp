@@ -45,6 +45,15 @@ inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
 inline constexpr Real kPolishRelTol = 1e-12;
 inline constexpr int kMaxPolishIterations = 30;
 
+/// Overlap clipping: a vertex within kOverlapRelTol * size of a clipping plane
+/// counts as on it (relative). Keeps slivers of round-off from becoming faces.
+inline constexpr Real kOverlapRelTol = 1e-12;
+
+/// The area-weighted contact normal is reported only when |S_A - S_B| exceeds
+/// kContactNormalRelTol times the overlap's total surface area (relative): below
+/// it the normal is undefined (one shape inside the other, shared faces).
+inline constexpr Real kContactNormalRelTol = 1e-9;
+
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;

@@ -16,6 +16,24 @@ Polytope make_polytope(std::span<const Vec3> points) {
   data->vertices = std::move(hull.vertices);
   for (const Vec3& v : data->vertices) data->radius = std::fmax(data->radius, length(v));
   const auto n = data->vertices.size();
+  if (hull.dimension == HullDimension::Solid) {
+    // Volume and centroid by the divergence theorem over tetrahedra from the
+    // bounding-box centre (the local origin for the query format's shapes).
+    Real vol6 = 0;
+    Vec3 moment;
+    for (const auto& t : hull.triangles) {
+      const Vec3 &p0 = data->vertices[t[0]], &p1 = data->vertices[t[1]], &p2 = data->vertices[t[2]];
+      const Real v6 = dot(p0, cross(p1, p2));
+      vol6 += v6;
+      moment += (p0 + p1 + p2) * (v6 / 4);
+      data->triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                                 static_cast<std::uint32_t>(t[2])});
+    }
+    data->volume = vol6 / 6;
+    data->centroid = vol6 > 0 ? moment / vol6 : Vec3{};
+  } else {
+    for (const Vec3& v : data->vertices) data->centroid += v / static_cast<Real>(n);
+  }
   data->soa_stride = static_cast<int>((n + 1) / 2 * 2);
   data->soa.resize(3 * static_cast<std::size_t>(data->soa_stride));
   for (int i = 0; i < data->soa_stride; ++i) {

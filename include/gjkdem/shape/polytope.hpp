@@ -4,6 +4,7 @@
 // from a hint instead of scanning every vertex. The data are immutable and
 // shared, so many particles can use one template.
 #include <algorithm>
+#include <array>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -31,6 +32,11 @@ struct PolytopeData {
   std::vector<Real> soa;
   int soa_stride = 0;                    ///< padded vertex count
   Real radius = 0;                       ///< max |vertex|
+  /// Outward triangles of the hull (indices into vertices); empty when the hull
+  /// is flat, a segment or a point.
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  Real volume = 0;                       ///< of the hull; 0 when flat
+  Vec3 centroid;                         ///< of the solid hull; of the vertices when flat
 };
 
 namespace detail {

@@ -1,0 +1,55 @@
+#pragma once
+// The overlap region of two convex shapes, the heart of the volume-based
+// contact model (the seed text's second stage): its volume, its centroid (the
+// contact point), and the area vectors S_A, S_B of the parts of its surface
+// that lie on A's and on B's boundary. The closed surface sums to zero area, so
+// S_A = -S_B for a proper overlap; normalize(S_A - S_B) is the contact normal,
+// pointing from A to B, and equals minus the gradient of the volume with
+// respect to B's position.
+//
+// Polytope-like cores without margins (polytope, box, triangle) are clipped
+// exactly (overlap_polyhedron.cpp). For other shapes the closed forms that
+// exist are used: empty overlaps, sphere-sphere lenses, and one shape inside
+// the other. Everything else reports OverlapStatus::Unsupported (curved
+// overlaps need the tessellation of the contact-generation issue).
+#include <vector>
+
+#include "gjkdem/shape/shape.hpp"
+
+namespace gjkdem {
+
+enum class OverlapStatus {
+  Empty,        ///< no overlap, or one of zero volume (touching, flat shapes)
+  Overlapping,  ///< volume > 0; centroid valid; normal valid when has_normal
+  Unsupported,  ///< this pair of shapes has no exact overlap computation yet
+};
+
+struct OverlapResult {
+  OverlapStatus status = OverlapStatus::Empty;
+  Real volume = 0;       ///< overlap volume, >= 0
+  Vec3 centroid;         ///< world frame (Overlapping only)
+  Vec3 area_a;           ///< S_A: sum of area * outward normal over the faces on A's boundary, world
+  Vec3 area_b;           ///< S_B: same for B
+  bool has_normal = false;
+  Vec3 contact_normal;   ///< unit normalize(S_A - S_B), world, A -> B (when has_normal)
+  int faces = 0;         ///< faces of the clipped polyhedron (statistics)
+};
+
+/// Reusable buffers of the clipping; keep one per thread so repeated calls do not allocate.
+struct OverlapWorkspace {
+  std::vector<Vec3> points[2];
+  std::vector<int> face_begin[2];
+  std::vector<unsigned char> face_body[2];
+  std::vector<Vec3> face_normal[2];
+  std::vector<Vec3> cap;
+  struct Plane {
+    Vec3 n;  ///< unit, outward
+    Real d;  ///< n . x on the plane
+  };
+  std::vector<Plane> planes;
+};
+
+OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                      OverlapWorkspace& work);
+
+}  // namespace gjkdem

@@ -1,0 +1,344 @@
+// Overlap region of two convex shapes. Polytope-like cores are clipped: A's
+// faces are cut by each face plane of B in turn (Sutherland-Hodgman on every
+// face polygon); the points where a plane cuts A's edges, with A's vertices that
+// lie on it, close the cut as a new face on B's boundary. Volume and centroid
+// follow from the divergence theorem over the fan triangles of the faces, the
+// area vectors from the faces' own area vectors. Everything runs in A's local
+// frame and is mapped to the world once.
+#include "gjkdem/contact/overlap.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem {
+namespace {
+
+constexpr Real kPi = 3.14159265358979323846;
+
+bool zero_volume(const Shape& s) {
+  if (s.margin > 0) return false;
+  if (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
+      std::holds_alternative<Triangle>(s.core))
+    return true;
+  if (const auto* p = std::get_if<Polytope>(&s.core)) return p->data->triangles.empty();
+  if (const auto* b = std::get_if<Box>(&s.core))
+    return !(b->half_extents.x > 0 && b->half_extents.y > 0 && b->half_extents.z > 0);
+  return false;
+}
+
+/// Solid polytope-like shape (clipped exactly): a solid polytope or box, no margin.
+bool clippable(const Shape& s) {
+  return s.margin == 0 && !zero_volume(s) && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
+}
+
+/// Face polygons of a clippable core, mapped by `to` (its local frame -> the working frame).
+void append_faces(const Shape& s, const Transform& to, std::vector<Vec3>& pts, std::vector<int>& begin,
+                  std::vector<unsigned char>& body, std::vector<Vec3>& normal, unsigned char tag) {
+  auto add = [&](std::initializer_list<Vec3> poly) {
+    begin.push_back(static_cast<int>(pts.size()));
+    for (const Vec3& p : poly) pts.push_back(apply(to, p));
+    const Vec3 a = pts[begin.back()], b = pts[begin.back() + 1], c = pts[begin.back() + 2];
+    normal.push_back(normalized(cross(b - a, c - a)));
+    body.push_back(tag);
+  };
+  if (const auto* p = std::get_if<Polytope>(&s.core)) {
+    const auto& v = p->data->vertices;
+    for (const auto& t : p->data->triangles) add({v[t[0]], v[t[1]], v[t[2]]});
+  } else if (const auto* bx = std::get_if<Box>(&s.core)) {
+    const Vec3 h = bx->half_extents;
+    auto c = [&](int sx, int sy, int sz) { return Vec3{sx * h.x, sy * h.y, sz * h.z}; };
+    add({c(1, -1, -1), c(1, 1, -1), c(1, 1, 1), c(1, -1, 1)});
+    add({c(-1, -1, -1), c(-1, -1, 1), c(-1, 1, 1), c(-1, 1, -1)});
+    add({c(-1, 1, -1), c(-1, 1, 1), c(1, 1, 1), c(1, 1, -1)});
+    add({c(-1, -1, -1), c(1, -1, -1), c(1, -1, 1), c(-1, -1, 1)});
+    add({c(-1, -1, 1), c(1, -1, 1), c(1, 1, 1), c(-1, 1, 1)});
+    add({c(-1, -1, -1), c(-1, 1, -1), c(1, 1, -1), c(1, -1, -1)});
+  }
+}
+
+/// Face planes of a clippable core in the working frame. Coplanar triangles give
+/// repeated planes; clipping by a repeat finds nothing outside and costs one scan.
+using Plane = OverlapWorkspace::Plane;
+
+void planes_of(const Shape& s, const Transform& to, std::vector<Plane>& planes) {
+  planes.clear();
+  if (const auto* p = std::get_if<Polytope>(&s.core)) {
+    const auto& v = p->data->vertices;
+    for (const auto& t : p->data->triangles) {
+      const Vec3 a = apply(to, v[t[0]]);
+      const Vec3 n = normalized(cross(apply(to, v[t[1]]) - a, apply(to, v[t[2]]) - a));
+      planes.push_back({n, dot(n, a)});
+    }
+  } else if (const auto* b = std::get_if<Box>(&s.core)) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (Real sign : {Real(1), Real(-1)}) {
+        Vec3 local;
+        local[axis] = sign;
+        const Vec3 n = apply_rotation(to, local);
+        planes.push_back({n, dot(n, to.translation) + b->half_extents[axis]});
+      }
+  }
+}
+
+Vec3 polygon_area_vector(const Vec3* p, int n) {
+  Vec3 a;
+  for (int i = 1; i + 1 < n; ++i) a += cross(p[i] - p[0], p[i + 1] - p[0]);
+  return a * 0.5;
+}
+
+/// Clips A's faces (already in work.points[0]) by every plane; returns the
+/// index of the buffer holding the result, or -1 when nothing is left.
+int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes, Real tol) {
+  int cur = 0;
+  for (const auto& pl : planes) {
+    const int nxt = 1 - cur;
+    auto& src = w.points[cur];
+    auto& sb = w.face_begin[cur];
+    bool any_out = false, any_in = false;
+    for (const Vec3& p : src) {
+      const Real s = dot(pl.n, p) - pl.d;
+      any_out |= s > tol;
+      any_in |= s < -tol;
+    }
+    if (!any_out) continue;       // the plane misses the region
+    if (!any_in) return -1;       // the region lies on or beyond the plane: no volume
+    auto& dst = w.points[nxt];
+    auto& db = w.face_begin[nxt];
+    auto& dbody = w.face_body[nxt];
+    auto& dn = w.face_normal[nxt];
+    dst.clear(); db.clear(); dbody.clear(); dn.clear();
+    w.cap.clear();
+    const int faces = static_cast<int>(sb.size());
+    for (int f = 0; f < faces; ++f) {
+      const int b0 = sb[f], b1 = f + 1 < faces ? sb[f + 1] : static_cast<int>(src.size());
+      const int start = static_cast<int>(dst.size());
+      for (int i = b0; i < b1; ++i) {
+        const Vec3& p = src[i];
+        const Vec3& q = src[i + 1 < b1 ? i + 1 : b0];
+        const Real sp = dot(pl.n, p) - pl.d, sq = dot(pl.n, q) - pl.d;
+        if (sp <= tol) {
+          dst.push_back(p);
+          if (sp >= -tol) w.cap.push_back(p);
+        }
+        if ((sp < -tol && sq > tol) || (sp > tol && sq < -tol)) {
+          const Vec3 x = p + (q - p) * (sp / (sp - sq));
+          dst.push_back(x);
+          w.cap.push_back(x);
+        }
+      }
+      if (static_cast<int>(dst.size()) - start >= 3) {
+        db.push_back(start);
+        dbody.push_back(w.face_body[cur][f]);
+        dn.push_back(w.face_normal[cur][f]);
+      } else {
+        dst.resize(start);
+      }
+    }
+    // Close the cut: the points on the plane, in counter-clockwise order about n.
+    auto& cap = w.cap;
+    std::vector<Vec3>::iterator last = cap.end();
+    for (auto it = cap.begin(); it != last; ++it)
+      last = std::remove_if(it + 1, last, [&](const Vec3& q) { return length(q - *it) <= tol; });
+    cap.erase(last, cap.end());
+    if (cap.size() >= 3) {
+      Vec3 c;
+      for (const Vec3& p : cap) c += p;
+      c /= static_cast<Real>(cap.size());
+      Vec3 t1, t2;
+      orthonormal_basis(pl.n, t1, t2);
+      std::sort(cap.begin(), cap.end(), [&](const Vec3& p, const Vec3& q) {
+        return std::atan2(dot(p - c, t2), dot(p - c, t1)) < std::atan2(dot(q - c, t2), dot(q - c, t1));
+      });
+      db.push_back(static_cast<int>(dst.size()));
+      dst.insert(dst.end(), cap.begin(), cap.end());
+      dbody.push_back(1);
+      dn.push_back(pl.n);
+    }
+    if (db.empty()) return -1;
+    cur = nxt;
+  }
+  return cur;
+}
+
+// Volume and centroid of inner shapes with closed forms; false when unknown.
+bool volume_of(const Shape& s, const Transform& pose, Real& vol, Vec3& centroid) {
+  if (std::holds_alternative<Point>(s.core)) {
+    vol = 4 * kPi / 3 * s.margin * s.margin * s.margin;
+    centroid = pose.translation;
+    return true;
+  }
+  if (const auto* seg = std::get_if<Segment>(&s.core)) {
+    const Real r = s.margin, len = length(seg->b - seg->a);
+    vol = kPi * r * r * len + 4 * kPi / 3 * r * r * r;
+    centroid = apply(pose, (seg->a + seg->b) * 0.5);
+    return true;
+  }
+  if (s.margin > 0) return false;
+  if (const auto* b = std::get_if<Box>(&s.core)) {
+    vol = 8 * b->half_extents.x * b->half_extents.y * b->half_extents.z;
+    centroid = pose.translation;
+    return true;
+  }
+  if (const auto* p = std::get_if<Polytope>(&s.core)) {
+    vol = p->data->volume;
+    centroid = apply(pose, p->data->centroid);
+    return true;
+  }
+  return false;
+}
+
+// Corner points of a core made of points (polytope, box, triangle, segment,
+// point), in world coordinates; false for curved cores.
+bool core_points(const Shape& s, const Transform& pose, std::vector<Vec3>& out) {
+  out.clear();
+  if (std::holds_alternative<Point>(s.core)) out.push_back(pose.translation);
+  else if (const auto* g = std::get_if<Segment>(&s.core)) out = {apply(pose, g->a), apply(pose, g->b)};
+  else if (const auto* t = std::get_if<Triangle>(&s.core)) out = {apply(pose, t->v[0]), apply(pose, t->v[1]), apply(pose, t->v[2])};
+  else if (const auto* p = std::get_if<Polytope>(&s.core)) for (const Vec3& v : p->data->vertices) out.push_back(apply(pose, v));
+  else if (const auto* b = std::get_if<Box>(&s.core)) {
+    for (int k = 0; k < 8; ++k)
+      out.push_back(apply(pose, hadamard(b->half_extents, Vec3{k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0})));
+  } else return false;
+  return true;
+}
+
+Real distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 t = b - a;
+  const Real tt = dot(t, t);
+  Real u = tt > 0 ? dot(p - a, t) / tt : 0;
+  u = std::clamp(u, Real(0), Real(1));
+  return length(p - (a + t * u));
+}
+
+/// Is `inner` entirely inside `outer`? -1 when this cannot be decided exactly.
+int contains(const Shape& outer, const Transform& po, const Shape& inner, const Transform& pi, Real tol) {
+  if (clippable(outer)) {
+    // Inside every face plane: the inner shape's support value stays below it.
+    std::vector<Plane> planes;
+    planes_of(outer, po, planes);
+    for (const auto& pl : planes) {
+      const Vec3 s = apply(pi, support(inner, apply_inverse_rotation(pi, pl.n)));
+      if (dot(pl.n, s) - pl.d > tol) return 0;
+    }
+    return 1;
+  }
+  const bool point_core = std::holds_alternative<Point>(outer.core), seg_core = std::holds_alternative<Segment>(outer.core);
+  std::vector<Vec3> pts;
+  if ((point_core || seg_core) && core_points(inner, pi, pts)) {
+    // Distance to a convex core is convex: its maximum over the inner core is at a corner.
+    Real worst = 0;
+    for (const Vec3& p : pts) {
+      const Real d = point_core ? length(p - po.translation)
+                                : distance_to_segment(p, apply(po, std::get<Segment>(outer.core).a),
+                                                      apply(po, std::get<Segment>(outer.core).b));
+      worst = std::fmax(worst, d);
+    }
+    return worst + inner.margin <= outer.margin + tol ? 1 : 0;
+  }
+  return -1;
+}
+
+void finish_normal(OverlapResult& r, Real total_area) {
+  const Vec3 s = r.area_a - r.area_b;
+  r.has_normal = length(s) > kContactNormalRelTol * total_area;
+  r.contact_normal = r.has_normal ? normalized(s) : Vec3{};
+}
+
+}  // namespace
+
+OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
+                      OverlapWorkspace& w) {
+  OverlapResult r;
+  const Real size = 2 * std::fmax(bounding_radius(a), bounding_radius(b));
+  const Real tol = kOverlapRelTol * size;
+  if (zero_volume(a) || zero_volume(b) || !intersect(a, pose_a, b, pose_b)) return r;  // Empty
+
+  if (clippable(a) && clippable(b)) {
+    for (int k = 0; k < 2; ++k) {
+      w.points[k].clear(); w.face_begin[k].clear(); w.face_body[k].clear(); w.face_normal[k].clear();
+    }
+    append_faces(a, Transform::identity(), w.points[0], w.face_begin[0], w.face_body[0], w.face_normal[0], 0);
+    planes_of(b, relative(pose_a, pose_b), w.planes);
+    // Keep only the planes that cut A at all (A's support value passes them): on
+    // large hulls most of B's faces are far from the overlap.
+    std::erase_if(w.planes, [&](const Plane& pl) { return dot(pl.n, support(a, pl.n)) <= pl.d + tol; });
+    const int res = clip(w, w.planes, tol);
+    if (res < 0) return r;
+    const auto& pts = w.points[res];
+    const auto& fb = w.face_begin[res];
+    const int faces = static_cast<int>(fb.size());
+    const Vec3 ref = pts[0];
+    Real vol6 = 0, total_area = 0;
+    Vec3 moment, sa, sb;
+    for (int f = 0; f < faces; ++f) {
+      const int b0 = fb[f], n = (f + 1 < faces ? fb[f + 1] : static_cast<int>(pts.size())) - b0;
+      const Vec3* p = &pts[b0];
+      for (int i = 1; i + 1 < n; ++i) {
+        const Real v6 = dot(p[0] - ref, cross(p[i] - ref, p[i + 1] - ref));
+        vol6 += v6;
+        moment += (p[0] + p[i] + p[i + 1] - ref * 3) * (v6 / 4);
+      }
+      const Vec3 area = polygon_area_vector(p, n);
+      total_area += length(area);
+      (w.face_body[res][f] == 0 ? sa : sb) += area;
+    }
+    r.faces = faces;
+    if (!(vol6 > 0)) return r;
+    r.status = OverlapStatus::Overlapping;
+    r.volume = vol6 / 6;
+    r.centroid = apply(pose_a, ref + moment / vol6);
+    r.area_a = apply_rotation(pose_a, sa);
+    r.area_b = apply_rotation(pose_a, sb);
+    finish_normal(r, total_area);
+    return r;
+  }
+
+  // Two spheres: a lens of two spherical caps, exact.
+  if (std::holds_alternative<Point>(a.core) && std::holds_alternative<Point>(b.core)) {
+    const Vec3 axis_vec = pose_b.translation - pose_a.translation;
+    const Real d = length(axis_vec), r1 = a.margin, r2 = b.margin;
+    if (d > std::fabs(r1 - r2)) {
+      const Vec3 axis = axis_vec / d;
+      const Real h1 = r1 - (d * d + r1 * r1 - r2 * r2) / (2 * d);  // cap of A inside B
+      const Real h2 = r2 - (d * d + r2 * r2 - r1 * r1) / (2 * d);  // cap of B inside A
+      auto cap_volume = [](Real rad, Real h) { return kPi * h * h * (3 * rad - h) / 3; };
+      auto cap_offset = [](Real rad, Real h) { return 3 * (2 * rad - h) * (2 * rad - h) / (4 * (3 * rad - h)); };
+      const Real v1 = cap_volume(r1, h1), v2 = cap_volume(r2, h2);
+      if (!(v1 + v2 > 0)) return r;
+      r.status = OverlapStatus::Overlapping;
+      r.volume = v1 + v2;
+      r.centroid = ((pose_a.translation + axis * cap_offset(r1, h1)) * v1 +
+                    (pose_b.translation - axis * cap_offset(r2, h2)) * v2) / r.volume;
+      // Each cap's area vector is its base disc's: pi rho^2 along the axis.
+      const Real rho_sq = std::fmax(Real(0), h1 * (2 * r1 - h1));
+      r.area_a = axis * (kPi * rho_sq);
+      r.area_b = -r.area_a;
+      r.has_normal = rho_sq > 0;
+      r.contact_normal = axis;
+      return r;
+    }
+  }
+
+  // One shape inside the other: the inner shape is the overlap.
+  for (int k = 0; k < 2; ++k) {
+    const Shape& outer = k ? a : b;
+    const Shape& inner = k ? b : a;
+    const Transform& po = k ? pose_a : pose_b;
+    const Transform& pi = k ? pose_b : pose_a;
+    Real vol;
+    Vec3 c;
+    if (contains(outer, po, inner, pi, tol) == 1 && volume_of(inner, pi, vol, c)) {
+      r.status = vol > 0 ? OverlapStatus::Overlapping : OverlapStatus::Empty;
+      r.volume = vol;
+      r.centroid = c;
+      return r;  // the surface is all on one boundary: no contact normal
+    }
+  }
+  r.status = OverlapStatus::Unsupported;
+  return r;
+}
+
+}  // namespace gjkdem
