@@ -35,20 +35,11 @@ int run_bench(const BenchOptions& opt) {
   std::unique_ptr<std::ifstream> in_file;
   std::istream& in = open_input(opt.in, in_file);
   std::vector<io::PairInput> pairs;
-  std::string line;
-  long line_no = 0;
-  int errors = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (io::is_skipped_line(line)) continue;
-    std::string id = "null";
-    try {
-      pairs.push_back(io::parse_pair(line, id));
-    } catch (const std::exception& e) {
-      ++errors;
-      std::cerr << "gjkdem bench: line " << line_no << " (id " << id << "): " << e.what() << "\n";
-    }
-  }
+  const int errors = for_each_pair(
+      in, [&](io::PairInput p) { pairs.push_back(std::move(p)); },
+      [](const std::string& id, const std::string& message) {
+        std::cerr << "gjkdem bench: " << message << " (id " << id << ")\n";
+      });
   if (errors > 0) {
     std::cerr << "gjkdem bench: " << errors << " bad line(s); nothing timed\n";
     return 1;
