@@ -13,7 +13,7 @@ namespace {
 
 Simplex make_simplex(std::initializer_list<Vec3> pts) {
   Simplex s;
-  for (const Vec3& p : pts) s.p[s.size++] = {p, p, {}};
+  for (const Vec3& p : pts) s.p[s.size++] = {p, p, {}, {}};
   return s;
 }
 
