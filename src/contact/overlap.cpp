@@ -272,7 +272,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     const int faces = static_cast<int>(fb.size());
     const Vec3 ref = pts[0];
     Real vol6 = 0, total_area = 0;
-    Vec3 moment, sa, sb;
+    Vec3 moment, sa, sb, ma;
     for (int f = 0; f < faces; ++f) {
       const int b0 = fb[f], n = (f + 1 < faces ? fb[f + 1] : static_cast<int>(pts.size())) - b0;
       const Vec3* p = &pts[b0];
@@ -284,6 +284,16 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       const Vec3 area = polygon_area_vector(p, n);
       total_area += length(area);
       (w.face_body[res][f] == 0 ? sa : sb) += area;
+      if (w.face_body[res][f] == 0) {  // Feng's moment: face centroid x area vector
+        Vec3 c;
+        Real weight = 0;
+        for (int i = 1; i + 1 < n; ++i) {
+          const Real t = length(cross(p[i] - p[0], p[i + 1] - p[0]));
+          c += (p[0] + p[i] + p[i + 1]) * (t / 3);
+          weight += t;
+        }
+        if (weight > 0) ma += cross(c / weight, area);
+      }
     }
     r.faces = faces;
     if (!(vol6 > 0)) return r;
@@ -292,7 +302,13 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     r.centroid = apply(pose_a, ref + moment / vol6);
     r.area_a = apply_rotation(pose_a, sa);
     r.area_b = apply_rotation(pose_a, sb);
+    // M in world: R M + t x R S_A (the moment about the world origin).
+    r.moment_a = apply_rotation(pose_a, ma) + cross(pose_a.translation, r.area_a);
     finish_normal(r, total_area);
+    if (r.has_normal) {
+      r.application_point = cross(r.area_a, r.moment_a) / dot(r.area_a, r.area_a);
+      r.has_application_point = true;
+    }
     return r;
   }
 

@@ -94,6 +94,16 @@ TEST(Overlap, ClosedForms) {
   EXPECT_NEAR(boxes.volume, 0.5, 1e-14);
   EXPECT_NEAR(boxes.centroid.x, 0.25, 1e-14);
   EXPECT_NEAR(boxes.contact_normal.x, 1.0, 1e-14);
+  // Feng's point of application: by symmetry the line of action (along x) passes
+  // through the centre of A's contact face, y = z = 0, far from the origin too.
+  ASSERT_TRUE(boxes.has_application_point);
+  EXPECT_NEAR(boxes.application_point.y, 0.0, 1e-14);
+  EXPECT_NEAR(boxes.application_point.z, 0.0, 1e-14);
+  // A common translation moves the line of action with the bodies.
+  const Vec3 far{100, -50, 20};
+  const OverlapResult near = overlap(cube, Transform::identity(), cube, Transform::from({0.5, 0.2, 0}, {}), work);
+  const OverlapResult moved = overlap(cube, Transform::from(far, {}), cube, Transform::from(far + Vec3{0.5, 0.2, 0}, {}), work);
+  EXPECT_NEAR(length(cross(moved.application_point - far - near.application_point, normalized(near.area_a))), 0.0, 1e-11);
   // Face to face, touching: empty.
   EXPECT_EQ(overlap(cube, Transform::identity(), cube, Transform::from({1, 0.2, 0}, {}), work).status, OverlapStatus::Empty);
   // Sphere lens: equal spheres r = 1 at distance 1: V = 5 pi / 12.

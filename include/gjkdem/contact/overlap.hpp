@@ -32,6 +32,14 @@ struct OverlapResult {
   Vec3 area_b;           ///< S_B: same for B
   bool has_normal = false;
   Vec3 contact_normal;   ///< unit normalize(S_A - S_B), world, A -> B (when has_normal)
+  /// M_A = sum over A's faces of (face centroid x area vector), world origin.
+  Vec3 moment_a;
+  /// Energy-conserving point of application of Feng's volume-based contact
+  /// theory (CMAME 373, 2021): the force along S_A acts on the line through this
+  /// point, x = (S_A x M_A) / |S_A|^2 (the point of that line nearest the world
+  /// origin). Valid when has_normal and the pair was clipped (polytope-like).
+  Vec3 application_point;
+  bool has_application_point = false;
   int faces = 0;         ///< faces of the clipped polyhedron (statistics)
 };
 
