@@ -1,0 +1,42 @@
+#pragma once
+// Triangle meshes from OBJ and STL (ASCII and binary) files, and their use as
+// convex particle shapes. An I/O boundary: every problem is reported with the
+// file name (and line, for text formats) as a MeshError.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gjkdem/shape/polytope.hpp"
+
+namespace gjkdem::io {
+
+struct MeshError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct TriangleMesh {
+  std::vector<Vec3> vertices;                          ///< positions (STL corners welded when equal)
+  std::vector<std::array<std::uint32_t, 3>> triangles; ///< indices into vertices
+};
+
+/// Reads .obj or .stl (by extension, case-insensitive; STL ASCII or binary by
+/// content). Throws MeshError for a missing, unreadable, malformed or empty
+/// file, or a non-finite coordinate.
+TriangleMesh read_mesh(const std::filesystem::path& file);
+
+struct ConvexMesh {
+  Polytope polytope;                  ///< the convex hull of the mesh's vertices
+  bool watertight = false;            ///< every edge shared by exactly two triangles, oppositely oriented
+  bool convex = false;                ///< watertight and enclosing the same volume as its hull
+  std::vector<std::string> warnings;  ///< what was changed, and why, naming the file
+};
+
+/// The mesh as a convex particle: its convex hull, with a warning when the mesh
+/// was not convex or not watertight. Throws MeshError when the mesh is flat
+/// (no volume). `name` is used in messages (usually the file name).
+ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name);
+
+}  // namespace gjkdem::io

@@ -1,0 +1,193 @@
+// OBJ and STL readers (only what convex particles need: positions and
+// triangles; OBJ polygons are fan-triangulated, texture/normal indices
+// ignored) and the convexification of a mesh with an honest report.
+#include "gjkdem/io/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "gjkdem/shape/convex_hull.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) { throw MeshError(file + ": " + what); }
+
+Vec3 finite_point(const std::string& file, const std::string& where, Real x, Real y, Real z) {
+  const Vec3 p{x, y, z};
+  if (!is_finite(p)) fail(file, where + ": coordinate is not finite");
+  return p;
+}
+
+std::string at_line(long line) { return "line " + std::to_string(line); }
+
+// Three coordinates from a text line; strtod also reads "nan" and "inf", so
+// those are refused by name instead of as a parse error.
+Vec3 read_point(std::istringstream& ls, const std::string& file, long line, const char* tag) {
+  Real xyz[3];
+  for (Real& c : xyz) {
+    std::string tok;
+    char* end = nullptr;
+    if (!(ls >> tok) || (c = std::strtod(tok.c_str(), &end), *end != '\0'))
+      fail(file, at_line(line) + ": '" + tag + "' needs three numbers");
+  }
+  return finite_point(file, at_line(line), xyz[0], xyz[1], xyz[2]);
+}
+
+TriangleMesh read_obj(std::istream& in, const std::string& file) {
+  TriangleMesh m;
+  std::string line;
+  long line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream ls(line);
+    std::string tag;
+    if (!(ls >> tag) || tag[0] == '#') continue;
+    if (tag == "v") {
+      m.vertices.push_back(read_point(ls, file, line_no, "v"));
+    } else if (tag == "f") {
+      std::vector<std::uint32_t> poly;
+      std::string item;
+      while (ls >> item) {
+        long idx = 0;
+        try {
+          idx = std::stol(item.substr(0, item.find('/')));
+        } catch (const std::exception&) {
+          fail(file, "line " + std::to_string(line_no) + ": bad face index '" + item + "'");
+        }
+        const long n = static_cast<long>(m.vertices.size());
+        const long k = idx < 0 ? n + idx : idx - 1;  // OBJ: 1-based, negative = relative
+        if (idx == 0 || k < 0 || k >= n)
+          fail(file, "line " + std::to_string(line_no) + ": face index " + item + " out of range");
+        poly.push_back(static_cast<std::uint32_t>(k));
+      }
+      if (poly.size() < 3) fail(file, "line " + std::to_string(line_no) + ": a face needs at least 3 vertices");
+      for (std::size_t i = 1; i + 1 < poly.size(); ++i) m.triangles.push_back({poly[0], poly[i], poly[i + 1]});
+    }
+  }
+  return m;
+}
+
+// STL stores each triangle's corners; equal corners are welded into one vertex.
+struct Welder {
+  TriangleMesh& mesh;
+  std::map<std::array<Real, 3>, std::uint32_t> index;
+  std::uint32_t add(const Vec3& p) {
+    const auto [it, inserted] = index.try_emplace({p.x, p.y, p.z}, static_cast<std::uint32_t>(mesh.vertices.size()));
+    if (inserted) mesh.vertices.push_back(p);
+    return it->second;
+  }
+};
+
+TriangleMesh read_stl_ascii(std::istream& in, const std::string& file) {
+  TriangleMesh m;
+  Welder weld{m, {}};
+  std::string line;
+  long line_no = 0;
+  std::vector<std::uint32_t> corners;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream ls(line);
+    std::string tag;
+    if (!(ls >> tag)) continue;
+    if (tag == "vertex") {
+      corners.push_back(weld.add(read_point(ls, file, line_no, "vertex")));
+    } else if (tag == "endloop") {
+      if (corners.size() != 3) fail(file, "line " + std::to_string(line_no) + ": a facet needs exactly 3 vertices");
+      m.triangles.push_back({corners[0], corners[1], corners[2]});
+      corners.clear();
+    } else if (tag != "solid" && tag != "facet" && tag != "outer" && tag != "endfacet" && tag != "endsolid") {
+      fail(file, "line " + std::to_string(line_no) + ": unexpected '" + tag + "' in ASCII STL");
+    }
+  }
+  return m;
+}
+
+TriangleMesh read_stl_binary(const std::string& bytes, const std::string& file) {
+  if (bytes.size() < 84) fail(file, "binary STL shorter than its 84-byte header");
+  std::uint32_t count;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  if (bytes.size() != 84 + 50ull * count)
+    fail(file, "binary STL says " + std::to_string(count) + " triangles but holds " + std::to_string(bytes.size()) + " bytes");
+  TriangleMesh m;
+  Welder weld{m, {}};
+  for (std::uint32_t t = 0; t < count; ++t) {
+    const char* rec = bytes.data() + 84 + 50ull * t + 12;  // skip the stored normal
+    std::array<std::uint32_t, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      float xyz[3];
+      std::memcpy(xyz, rec + 12 * k, 12);
+      tri[k] = weld.add(finite_point(file, "triangle " + std::to_string(t + 1), xyz[0], xyz[1], xyz[2]));
+    }
+    m.triangles.push_back(tri);
+  }
+  return m;
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(file, "cannot open the file");
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  TriangleMesh m;
+  if (ext == ".obj") {
+    m = read_obj(in, file);
+  } else if (ext == ".stl") {
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bool binary = true;
+    if (bytes.compare(0, 5, "solid") == 0) {
+      // Some binary files also start with "solid": trust the size when it matches.
+      std::uint32_t count = 0;
+      if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, 4);
+      binary = bytes.size() >= 84 && bytes.size() == 84 + 50ull * count;
+    }
+    if (binary) {
+      m = read_stl_binary(bytes, file);
+    } else {
+      std::istringstream text(bytes);
+      m = read_stl_ascii(text, file);
+    }
+  } else {
+    fail(file, "unknown mesh format '" + ext + "' (use .obj or .stl)");
+  }
+  if (m.triangles.empty()) fail(file, "the mesh has no triangles");
+  return m;
+}
+
+ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
+  if (mesh.triangles.empty()) fail(name, "the mesh has no triangles");
+  const ConvexHull hull = convex_hull(mesh.vertices);
+  if (hull.dimension != HullDimension::Solid) fail(name, "the mesh is flat (its points span no volume)");
+  ConvexMesh out;
+  // Watertight: each directed edge once, and its reverse present.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  out.watertight = true;
+  for (const auto& [e, count] : edges) {
+    const auto rev = edges.find({e.second, e.first});
+    if (count != 1 || rev == edges.end() || rev->second != 1) { out.watertight = false; break; }
+  }
+  Real mesh_volume = 0;
+  for (const auto& t : mesh.triangles)
+    mesh_volume += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]])) / 6;
+  out.polytope = make_polytope(mesh.vertices);
+  const Real hull_volume = out.polytope.data->volume;
+  out.convex = out.watertight && std::fabs(std::fabs(mesh_volume) - hull_volume) <= 1e-9 * hull_volume;
+  if (!out.watertight)
+    out.warnings.push_back(name + ": the mesh is not watertight (open or non-manifold edges): using its convex hull");
+  else if (!out.convex)
+    out.warnings.push_back(name + ": the mesh is not convex (volume " + std::to_string(std::fabs(mesh_volume)) +
+                           ", hull " + std::to_string(hull_volume) + "): using its convex hull");
+  return out;
+}
+
+}  // namespace gjkdem::io

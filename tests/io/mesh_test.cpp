@@ -1,0 +1,142 @@
+#include "gjkdem/io/mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+
+namespace gjkdem::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshTest : public ::testing::Test {
+ protected:
+  fs::path dir = fs::temp_directory_path() / ("gjkdem_mesh_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  void SetUp() override { fs::create_directories(dir); }
+  void TearDown() override { fs::remove_all(dir); }
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path p = dir / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+  std::string error_of(const fs::path& p) {
+    try {
+      convex_from_mesh(read_mesh(p), p.string());
+    } catch (const MeshError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+const char* kCubeObj = R"(# unit cube, outward faces
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+)";
+
+TEST_F(MeshTest, ConvexObjIsKeptWithoutWarning) {
+  const ConvexMesh m = convex_from_mesh(read_mesh(write("cube.obj", kCubeObj)), "cube.obj");
+  EXPECT_TRUE(m.watertight);
+  EXPECT_TRUE(m.convex);
+  EXPECT_TRUE(m.warnings.empty());
+  EXPECT_NEAR(m.polytope.data->volume, 1.0, 1e-14);
+  EXPECT_EQ(m.polytope.data->vertices.size(), 8u);
+}
+
+TEST_F(MeshTest, OpenAndNonConvexMeshesBecomeTheirHullWithAWarning) {
+  std::string open = kCubeObj;
+  open.erase(open.rfind("f 4 1 5 8"));  // drop one face: not watertight
+  const ConvexMesh o = convex_from_mesh(read_mesh(write("open.obj", open)), "open.obj");
+  EXPECT_FALSE(o.watertight);
+  ASSERT_EQ(o.warnings.size(), 1u);
+  EXPECT_NE(o.warnings[0].find("open.obj: the mesh is not watertight"), std::string::npos);
+  // A cube with its top centre pushed down: watertight, not convex.
+  const std::string dent = std::string(kCubeObj).replace(std::string(kCubeObj).find("f 5 6 7 8"), 9,
+                                                         "v 0.5 0.5 0.5\nf 5 6 9\nf 6 7 9\nf 7 8 9\nf 8 5 9");
+  const ConvexMesh d = convex_from_mesh(read_mesh(write("dent.obj", dent)), "dent.obj");
+  EXPECT_TRUE(d.watertight);
+  EXPECT_FALSE(d.convex);
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find("not convex"), std::string::npos);
+  EXPECT_NEAR(d.polytope.data->volume, 1.0, 1e-14);
+}
+
+TEST_F(MeshTest, StlAsciiAndBinaryAgree) {
+  const std::string ascii = R"(solid tet
+facet normal 0 0 -1
+ outer loop
+  vertex 0 0 0
+  vertex 0 1 0
+  vertex 1 0 0
+ endloop
+endfacet
+facet normal 0 -1 0
+ outer loop
+  vertex 0 0 0
+  vertex 1 0 0
+  vertex 0 0 1
+ endloop
+endfacet
+facet normal -1 0 0
+ outer loop
+  vertex 0 0 0
+  vertex 0 0 1
+  vertex 0 1 0
+ endloop
+endfacet
+facet normal 1 1 1
+ outer loop
+  vertex 1 0 0
+  vertex 0 1 0
+  vertex 0 0 1
+ endloop
+endfacet
+endsolid tet
+)";
+  const TriangleMesh a = read_mesh(write("tet.stl", ascii));
+  EXPECT_EQ(a.vertices.size(), 4u);  // corners welded
+  std::string bin(80, ' ');
+  const std::uint32_t count = 4;
+  bin.append(reinterpret_cast<const char*>(&count), 4);
+  const float tris[4][3][3] = {{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}},
+                               {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (const auto& t : tris) {
+    bin.append(12, '\0');  // normal
+    bin.append(reinterpret_cast<const char*>(t), 36);
+    bin.append(2, '\0');   // attribute
+  }
+  const ConvexMesh b = convex_from_mesh(read_mesh(write("tet_bin.STL", bin)), "tet_bin.STL");
+  EXPECT_TRUE(b.convex);
+  EXPECT_NEAR(b.polytope.data->volume, 1.0 / 6, 1e-15);
+}
+
+TEST_F(MeshTest, BadFilesAreRefusedWithTheirNameAndProblem) {
+  EXPECT_NE(error_of(dir / "missing.obj").find("missing.obj: cannot open"), std::string::npos);
+  EXPECT_NE(error_of(write("empty.obj", "# nothing\n")).find("empty.obj: the mesh has no triangles"), std::string::npos);
+  EXPECT_NE(error_of(write("nan.obj", "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).find("nan.obj: line 1: coordinate is not finite"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")).find("flat.obj: the mesh is flat"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("range.obj", "v 0 0 0\nf 1 2 3\n")).find("range.obj: line 2: face index 2 out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("shape.ply", "ply\n")).find("unknown mesh format '.ply'"), std::string::npos);
+  EXPECT_NE(error_of(write("short.stl", "abc")).find("short.stl: binary STL shorter"), std::string::npos);
+  EXPECT_NE(error_of(write("bad.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0\n")).find("bad.stl: line 4"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace gjkdem::io
