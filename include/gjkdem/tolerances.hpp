@@ -45,6 +45,11 @@ inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
 inline constexpr Real kPolishRelTol = 1e-12;
 inline constexpr int kMaxPolishIterations = 30;
 
+/// Hull triangles whose unit normals differ by less than this (length of the
+/// difference, ~radians) and whose planes agree within kHullRelTol merge into
+/// one facet. Raising it merges gently curved surfaces into flat faces.
+inline constexpr Real kHullParallelTol = 1e-9;
+
 /// Overlap clipping: a vertex within kOverlapRelTol * size of a clipping plane
 /// counts as on it (relative). Keeps slivers of round-off from becoming faces.
 inline constexpr Real kOverlapRelTol = 1e-12;

@@ -230,7 +230,82 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
   const long v = static_cast<long>(hull.vertices.size()), f = static_cast<long>(hull.triangles.size());
   const long e = static_cast<long>(count.size()) / 2;
   hull.manifold = ok && v - e + f == 2;
+  if (hull.manifold) merge_coplanar_facets(hull);
   return hull;
+}
+
+void merge_coplanar_facets(ConvexHull& hull) {
+  const auto& v = hull.vertices;
+  const int nt = static_cast<int>(hull.triangles.size());
+  Vec3 lo = v[0], hi = v[0];
+  for (const Vec3& q : v)
+    for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], q[k]); hi[k] = std::fmax(hi[k], q[k]); }
+  const Real tol = kHullRelTol * length(hi - lo);
+  std::vector<Vec3> normal(nt);
+  for (int t = 0; t < nt; ++t) {
+    const auto& tri = hull.triangles[t];
+    normal[t] = normalized(cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]));
+  }
+  std::unordered_map<std::uint64_t, int> edge_tri;
+  for (int t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) edge_tri[edge_key(hull.triangles[t][k], hull.triangles[t][(k + 1) % 3])] = t;
+  // Flood fill over edges between coplanar neighbours.
+  std::vector<int> group(nt, -1), stack;
+  int groups = 0;
+  for (int seed = 0; seed < nt; ++seed) {
+    if (group[seed] >= 0) continue;
+    group[seed] = groups;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int a = hull.triangles[t][k], b = hull.triangles[t][(k + 1) % 3];
+        const int u = edge_tri.at(edge_key(b, a));
+        if (group[u] >= 0) continue;
+        const int far = hull.triangles[u][0] + hull.triangles[u][1] + hull.triangles[u][2] - a - b;
+        if (length(normal[u] - normal[seed]) <= kHullParallelTol &&
+            std::fabs(dot(normal[seed], v[far] - v[hull.triangles[seed][0]])) <= tol) {
+          group[u] = groups;
+          stack.push_back(u);
+        }
+      }
+    }
+    ++groups;
+  }
+  // Each group's boundary: its directed edges whose reverse lies outside the
+  // group, chained head to tail.
+  hull.facets.assign(groups, {});
+  hull.facet_normals.assign(groups, Vec3{});
+  std::vector<std::unordered_map<int, int>> next(groups);
+  std::vector<Vec3> area(groups);
+  bool simple = true;  // every boundary a single loop through distinct vertices
+  for (int t = 0; t < nt; ++t) {
+    const auto& tri = hull.triangles[t];
+    area[group[t]] += cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]);
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if (group[edge_tri.at(edge_key(b, a))] != group[t]) simple &= next[group[t]].emplace(a, b).second;
+    }
+  }
+  for (int g = 0; g < groups && simple; ++g) {
+    hull.facet_normals[g] = normalized(area[g]);
+    const int start = next[g].begin()->first;
+    int cur = start;
+    do {
+      hull.facets[g].push_back(cur);
+      cur = next[g].at(cur);
+    } while (cur != start && hull.facets[g].size() <= next[g].size());
+    simple &= cur == start && hull.facets[g].size() == next[g].size();
+  }
+  if (!simple) {  // round-off made a group pinch or split: keep the plain triangles
+    hull.facets.clear();
+    hull.facet_normals.clear();
+    for (int t = 0; t < nt; ++t) {
+      hull.facets.push_back({hull.triangles[t][0], hull.triangles[t][1], hull.triangles[t][2]});
+      hull.facet_normals.push_back(normal[t]);
+    }
+  }
 }
 
 }  // namespace gjkdem

@@ -30,6 +30,12 @@ Polytope make_polytope(std::span<const Vec3> points) {
                                  static_cast<std::uint32_t>(t[2])});
     }
     data->volume = vol6 / 6;
+    data->facet_normals = hull.facet_normals;
+    data->facet_begin.push_back(0);
+    for (const auto& facet : hull.facets) {
+      for (int i : facet) data->facet_vertices.push_back(static_cast<std::uint32_t>(i));
+      data->facet_begin.push_back(static_cast<std::uint32_t>(data->facet_vertices.size()));
+    }
     data->centroid = vol6 > 0 ? moment / vol6 : Vec3{};
   } else {
     for (const Vec3& v : data->vertices) data->centroid += v / static_cast<Real>(n);

@@ -22,6 +22,8 @@ TEST(ConvexHull, RandomCloudsAreEnclosedAndClosed) {
       const Vec3 nrm = normalized(cross(h.vertices[t[1]] - h.vertices[t[0]], h.vertices[t[2]] - h.vertices[t[0]]));
       for (const Vec3& p : pts) EXPECT_LE(dot(nrm, p - h.vertices[t[0]]), 1e-12);  // all points inside
     }
+    // Random clouds have no coplanar triangles: one facet each.
+    EXPECT_EQ(h.facets.size(), h.triangles.size());
     // Every hull vertex is an input point.
     for (const Vec3& v : h.vertices) EXPECT_NE(std::find(pts.begin(), pts.end(), v), pts.end());
   }
@@ -42,6 +44,14 @@ TEST(ConvexHull, DegenerateCloudsReportTheirDimension) {
   const ConvexHull h = convex_hull(cube);
   EXPECT_EQ(h.vertices.size(), 8u);
   EXPECT_TRUE(h.manifold);
+  // Its 12 triangles merge into 6 square facets, outward.
+  ASSERT_EQ(h.facets.size(), 6u);
+  for (std::size_t f = 0; f < h.facets.size(); ++f) {
+    EXPECT_EQ(h.facets[f].size(), 4u);
+    EXPECT_NEAR(max_abs(h.facet_normals[f]), 1.0, 1e-15);
+    const Vec3 c = (h.vertices[h.facets[f][0]] + h.vertices[h.facets[f][2]]) * 0.5;
+    EXPECT_NEAR(dot(c, h.facet_normals[f]), 1.0, 1e-15);  // centre of the face, outward
+  }
 }
 
 }  // namespace

@@ -16,7 +16,16 @@ struct ConvexHull {
   std::vector<Vec3> vertices;                ///< hull vertices only (interior/duplicate points dropped)
   std::vector<std::array<int, 3>> triangles; ///< outward (counter-clockwise) triangles, Solid only
   bool manifold = false;                     ///< triangles form a closed 2-manifold (Euler check passed)
+  /// Coplanar triangles merged into convex polygons (vertex indices, counter-
+  /// clockwise seen from outside); filled when manifold.
+  std::vector<std::vector<int>> facets;
+  std::vector<Vec3> facet_normals;           ///< unit, outward, one per facet
 };
+
+/// Merges the coplanar neighbours of a manifold hull's triangles into facets
+/// (triangles whose normals agree within kHullParallelTol and whose planes are
+/// kHullRelTol-close). Called by convex_hull.
+void merge_coplanar_facets(ConvexHull& hull);
 
 /// Hull of `points`. Points within kHullRelTol * (bounding diagonal) of a face
 /// plane count as on it. For a Polygon the vertices are the 2D hull in order; for

@@ -35,6 +35,11 @@ struct PolytopeData {
   /// Outward triangles of the hull (indices into vertices); empty when the hull
   /// is flat, a segment or a point.
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  /// Facets (coplanar triangles merged, counter-clockwise from outside): facet f
+  /// is facet_vertices[facet_begin[f] .. facet_begin[f+1]); empty when flat.
+  std::vector<std::uint32_t> facet_begin;
+  std::vector<std::uint32_t> facet_vertices;
+  std::vector<Vec3> facet_normals;       ///< unit, outward
   Real volume = 0;                       ///< of the hull; 0 when flat
   Vec3 centroid;                         ///< of the solid hull; of the vertices when flat
 };
