@@ -59,6 +59,17 @@ inline constexpr Real kOverlapRelTol = 1e-12;
 /// it the normal is undefined (one shape inside the other, shared faces).
 inline constexpr Real kContactNormalRelTol = 1e-9;
 
+/// Manifolds: a face is used for face contact when its normal is within this
+/// cosine of the contact normal; below it (edge-edge, vertex contacts) a single
+/// point is reported. Relative (a cosine).
+inline constexpr Real kManifoldFaceCos = 0.95;
+
+/// Contact clustering: contacts of one pair closer than kContactMergeRelDist *
+/// size (relative) with normals within kContactMergeCos (a cosine) are one
+/// contact. Raise the distance to merge contacts of coarse wall meshes.
+inline constexpr Real kContactMergeRelDist = 1e-3;
+inline constexpr Real kContactMergeCos = 0.999;
+
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;
