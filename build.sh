@@ -9,7 +9,7 @@ cd "$(dirname "$0")"
 
 mode="${1:-run}"
 base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3 python3-numpy python3-scipy)
-peer_pkgs=(libccd-dev libfcl-dev libbullet-dev)
+peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev)
 
 install_missing() {
   local missing=()
@@ -23,7 +23,7 @@ install_missing() {
 }
 
 build() {
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@"
   cmake --build build -j"$(nproc)"
 }
 
@@ -40,11 +40,13 @@ case "$mode" in
     ;;
   bench)
     install_missing "${base_pkgs[@]}" "${peer_pkgs[@]}"
-    build
-    for q in intersect distance penetration; do
+    build -DGJKDEM_BUILD_CGAL_BENCH=ON
+    for q in intersect distance penetration contact; do
       build/gjkdem bench --in examples/pairs.jsonl --query "$q" --repeat 20
     done
-    if [ -x build/bench/bench_peers ]; then build/bench/bench_peers; fi
+    build/bench/bench_peers
+    build/bench/bench_cgal
+    build/bench/bench_queries --benchmark_min_time=0.3
     ;;
   *)
     echo "usage: $0 run|test|bench" >&2
