@@ -254,6 +254,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
   OverlapResult r;
   const Real size = 2 * std::fmax(bounding_radius(a), bounding_radius(b));
   const Real tol = kOverlapRelTol * size;
+  w.result = -1;
   if (zero_volume(a) || zero_volume(b) || !intersect(a, pose_a, b, pose_b)) return r;  // Empty
 
   if (clippable(a) && clippable(b)) {
@@ -267,6 +268,8 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     std::erase_if(w.planes, [&](const Plane& pl) { return dot(pl.n, support(a, pl.n)) <= pl.d + tol; });
     const int res = clip(w, w.planes, tol);
     if (res < 0) return r;
+    w.result = res;
+    w.frame = pose_a;
     const auto& pts = w.points[res];
     const auto& fb = w.face_begin[res];
     const int faces = static_cast<int>(fb.size());
@@ -302,6 +305,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     r.centroid = apply(pose_a, ref + moment / vol6);
     r.area_a = apply_rotation(pose_a, sa);
     r.area_b = apply_rotation(pose_a, sb);
+    r.contact_area = length(sa);
     // M in world: R M + t x R S_A (the moment about the world origin).
     r.moment_a = apply_rotation(pose_a, ma) + cross(pose_a.translation, r.area_a);
     finish_normal(r, total_area);
@@ -355,6 +359,48 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
   }
   r.status = OverlapStatus::Unsupported;
   return r;
+}
+
+std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& w) {
+  std::vector<OverlapTriangle> out;
+  if (w.result < 0) return out;
+  const auto& pts = w.points[w.result];
+  const auto& fb = w.face_begin[w.result];
+  const int faces = static_cast<int>(fb.size());
+  for (int f = 0; f < faces; ++f) {
+    const int b0 = fb[f], b1 = f + 1 < faces ? fb[f + 1] : static_cast<int>(pts.size());
+    for (int i = b0 + 1; i + 1 < b1; ++i)
+      out.push_back({{apply(w.frame, pts[b0]), apply(w.frame, pts[i]), apply(w.frame, pts[i + 1])}, w.face_body[w.result][f]});
+  }
+  return out;
+}
+
+std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& w, Real tol) {
+  std::vector<std::pair<Vec3, Vec3>> out;
+  if (w.result < 0) return out;
+  const auto& pts = w.points[w.result];
+  const auto& fb = w.face_begin[w.result];
+  const auto& body = w.face_body[w.result];
+  const int faces = static_cast<int>(fb.size());
+  struct Edge { Vec3 p, q; int body; };
+  std::vector<Edge> edges;
+  for (int f = 0; f < faces; ++f) {
+    const int b0 = fb[f], b1 = f + 1 < faces ? fb[f + 1] : static_cast<int>(pts.size());
+    for (int i = b0; i < b1; ++i) {
+      const Vec3 p = pts[i], q = pts[i + 1 < b1 ? i + 1 : b0];
+      if (length(q - p) > tol) edges.push_back({p, q, body[f]});
+    }
+  }
+  // An A edge whose reverse belongs to a B face lies on both surfaces.
+  for (const Edge& e : edges) {
+    if (e.body != 0) continue;
+    for (const Edge& g : edges)
+      if (g.body == 1 && length(g.p - e.q) <= tol && length(g.q - e.p) <= tol) {
+        out.emplace_back(apply(w.frame, e.p), apply(w.frame, e.q));
+        break;
+      }
+  }
+  return out;
 }
 
 }  // namespace gjkdem

@@ -86,6 +86,37 @@ TEST(Overlap, NormalIsMinusVolumeGradient) {
   EXPECT_GT(checked, 20);
 }
 
+TEST(Overlap, SurfaceAndIntersectionLine) {
+  OverlapWorkspace work;
+  // Unit cubes, B shifted by (0.5, 0.25, 0): the overlap is a 0.5 x 0.75 x 1 box.
+  // Only B's faces x = 0 and y = -0.25 cut A: the intersection line runs where
+  // they meet A's faces x = 0.5, y = 0.5 and z = +-0.5.
+  const Shape cube{Box{{0.5, 0.5, 0.5}}};
+  const OverlapResult r = overlap(cube, Transform::identity(), cube, Transform::from({0.5, 0.25, 0}, {}), work);
+  ASSERT_EQ(r.status, OverlapStatus::Overlapping);
+  double area[2] = {0, 0};
+  Vec3 closed;
+  for (const OverlapTriangle& t : overlap_surface(work)) {
+    const Vec3 a = cross(t.v[1] - t.v[0], t.v[2] - t.v[0]) * 0.5;
+    area[t.body] += length(a);
+    closed += a;
+  }
+  EXPECT_NEAR(length(closed), 0.0, 1e-14);  // a closed surface
+  EXPECT_NEAR(area[1], 0.75 + 0.5, 1e-14);  // B's two cut faces
+  EXPECT_NEAR(area[0] + area[1], 2 * (0.5 * 0.75 + 0.5 + 0.75), 1e-14);
+  double length_sum = 0;
+  Vec3 vector_area;
+  for (const auto& [p, q] : intersection_line(work, 1e-12)) {
+    length_sum += length(q - p);
+    vector_area += cross(p, q) * 0.5;
+  }
+  // The two B faces' boundaries minus their shared edge: 2 * (0.75 + 0.5) + 2 * 1.
+  EXPECT_NEAR(length_sum, 2 * (0.75 + 0.5) + 2, 1e-14);
+  // The loop's vector area is S_A, whose length is the contact area.
+  EXPECT_NEAR(length(vector_area - r.area_a), 0.0, 1e-14);
+  EXPECT_NEAR(r.contact_area, length(r.area_a), 1e-15);
+}
+
 TEST(Overlap, ClosedForms) {
   OverlapWorkspace work;
   // Two unit cubes offset by 0.5 along x: a 0.5 x 1 x 1 box.

@@ -30,6 +30,9 @@ struct OverlapResult {
   Vec3 centroid;         ///< world frame (Overlapping only)
   Vec3 area_a;           ///< S_A: sum of area * outward normal over the faces on A's boundary, world
   Vec3 area_b;           ///< S_B: same for B
+  /// Contact area: the area bounded by the intersection line (the closed curve
+  /// where the two surfaces cross), as a vector area equal to S_A; this is |S_A|.
+  Real contact_area = 0;
   bool has_normal = false;
   Vec3 contact_normal;   ///< unit normalize(S_A - S_B), world, A -> B (when has_normal)
   /// M_A = sum over A's faces of (face centroid x area vector), world origin.
@@ -43,7 +46,9 @@ struct OverlapResult {
   int faces = 0;         ///< faces of the clipped polyhedron (statistics)
 };
 
-/// Reusable buffers of the clipping; keep one per thread so repeated calls do not allocate.
+/// Reusable buffers of the clipping; keep one per thread so repeated calls do
+/// not allocate. After a clipped overlap it also holds the overlap polyhedron
+/// (see overlap_surface and intersection_line).
 struct OverlapWorkspace {
   std::vector<Vec3> points[2];
   std::vector<int> face_begin[2];
@@ -55,7 +60,25 @@ struct OverlapWorkspace {
     Real d;  ///< n . x on the plane
   };
   std::vector<Plane> planes;
+  int result = -1;       ///< buffer holding the last clipped polyhedron; -1: none
+  Transform frame;       ///< its frame (A's pose) for mapping to the world
 };
+
+/// One triangle of the overlap polyhedron's surface, world frame, tagged by
+/// the body whose boundary it lies on (0: A, 1: B); counter-clockwise from outside.
+struct OverlapTriangle {
+  Vec3 v[3];
+  int body;
+};
+
+/// The triangulated surface of the last clipped overlap (empty when the last
+/// call did not clip: closed forms, empty or unsupported pairs).
+std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
+
+/// The intersection line of the last clipped overlap: the edges where a face on
+/// A's boundary meets a face on B's, world frame, each as (start, end) oriented
+/// along A's face. They form closed loops; `tol` matches end points (length).
+std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& work, Real tol);
 
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                       OverlapWorkspace& work);
