@@ -7,6 +7,9 @@ namespace gjkdem::app {
 struct QueryOptions {
   std::string in;   ///< input file; empty: standard input
   std::string out;  ///< output file; empty: standard output
+  /// > 0: overlaps that have no exact computation (curved shapes, margins) are
+  /// computed on tessellations with this many support directions (approximate).
+  int tessellate = 0;
 };
 int run_query(const QueryOptions& opt);
 

@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
   CLI::App* q = app.add_subcommand("query", "answer pair queries (JSON Lines in, JSON Lines out)");
   q->add_option("--in", query.in, "input file (default: standard input)");
   q->add_option("--out", query.out, "output file (default: standard output)");
+  q->add_option("--tessellate", query.tessellate,
+                "compute curved overlaps on tessellations with N support directions (approximate; 0: leave them null)")
+      ->check(CLI::Range(0, 1000000));
 
   gjkdem::app::BenchOptions bench;
   CLI::App* b = app.add_subcommand("bench", "time one query type over every pair of a file");

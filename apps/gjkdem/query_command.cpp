@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
+#include "gjkdem/shape/tessellate.hpp"
 #include "input_lines.hpp"
 
 namespace gjkdem::app {
@@ -21,7 +22,12 @@ int run_query(const QueryOptions& opt) {
       in,
       [&](const io::PairInput& p) {
         const PenetrationResult r = penetration(p.a.shape, p.a.pose, p.b.shape, p.b.pose);
-        const OverlapResult o = overlap(p.a.shape, p.a.pose, p.b.shape, p.b.pose, work);
+        OverlapResult o = overlap(p.a.shape, p.a.pose, p.b.shape, p.b.pose, work);
+        if (o.status == OverlapStatus::Unsupported && opt.tessellate > 0) {
+          const Shape ta{tessellate(p.a.shape, opt.tessellate).polytope};
+          const Shape tb{tessellate(p.b.shape, opt.tessellate).polytope};
+          o = overlap(ta, p.a.pose, tb, p.b.pose, work);
+        }
         io::OverlapFields f;
         f.computed = o.status != OverlapStatus::Unsupported;
         f.volume = o.volume;

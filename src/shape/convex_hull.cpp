@@ -39,37 +39,44 @@ Real distance_to_line(const Vec3& q, const Vec3& a, const Vec3& unit_dir) {
   return length(r - unit_dir * dot(r, unit_dir));
 }
 
-// 2D hull (Andrew's monotone chain) of points on the plane through origin with
-// in-plane axes e1, e2; returns the indices of the hull in counter-clockwise order.
+// Points of a plane (origin, in-plane axes e1, e2) in its 2D coordinates.
 std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, const Vec3& e1, const Vec3& e2,
                               Real tol) {
-  struct P2 { Real x, y; int i; };
-  std::vector<P2> q;
+  std::vector<Vec2> q;
   q.reserve(p.size());
-  for (int i = 0; i < static_cast<int>(p.size()); ++i)
-    q.push_back({dot(p[i] - origin, e1), dot(p[i] - origin, e2), i});
-  std::sort(q.begin(), q.end(), [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  // Points left of a->b by more than tol (a length) make a strict left turn.
-  auto left_turn = [tol](const P2& a, const P2& b, const P2& c) {
-    const Real cr = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    return cr > tol * std::hypot(c.x - a.x, c.y - a.y);
-  };
-  std::vector<P2> h(2 * q.size());
-  std::size_t k = 0;
-  for (const P2& pt : q) {
-    while (k >= 2 && !left_turn(h[k - 2], h[k - 1], pt)) --k;
-    h[k++] = pt;
-  }
-  for (std::size_t i = q.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && !left_turn(h[k - 2], h[k - 1], q[i])) --k;
-    h[k++] = q[i];
-  }
-  std::vector<int> out;
-  for (std::size_t i = 0; i + 1 < k; ++i) out.push_back(h[i].i);
-  return out;
+  for (const Vec3& v : p) q.push_back({dot(v - origin, e1), dot(v - origin, e2)});
+  return convex_hull_2d(q, tol);
 }
 
 }  // namespace
+
+std::vector<int> convex_hull_2d(std::span<const Vec2> points, Real tol) {
+  // Andrew's monotone chain: sort by x then y, build the lower and upper chains.
+  std::vector<int> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return points[a].x < points[b].x || (points[a].x == points[b].x && points[a].y < points[b].y);
+  });
+  order.erase(std::unique(order.begin(), order.end(), [&](int a, int b) { return points[a] == points[b]; }), order.end());
+  if (order.size() < 3) return order;
+  // c makes a strict left turn after a -> b when it lies more than tol (a length) left of a -> c.
+  auto left_turn = [&](int a, int b, int c) {
+    const Vec2 ab = points[b] - points[a], ac = points[c] - points[a];
+    return cross(ab, ac) > tol * length(ac);
+  };
+  std::vector<int> h(2 * order.size());
+  std::size_t k = 0;
+  for (int pt : order) {
+    while (k >= 2 && !left_turn(h[k - 2], h[k - 1], pt)) --k;
+    h[k++] = pt;
+  }
+  for (std::size_t i = order.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && !left_turn(h[k - 2], h[k - 1], order[i])) --k;
+    h[k++] = order[i];
+  }
+  h.resize(k - 1);  // the last point repeats the first
+  return h;
+}
 
 ConvexHull convex_hull(std::span<const Vec3> points) {
   ConvexHull hull;

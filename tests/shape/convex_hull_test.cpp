@@ -54,5 +54,26 @@ TEST(ConvexHull, DegenerateCloudsReportTheirDimension) {
   }
 }
 
+TEST(ConvexHull2d, RandomAndDegenerateSets) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int c = 0; c < 50; ++c) {
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 3 + c; ++i) pts.push_back({u(rng), u(rng)});
+    pts.push_back(pts[0]);                            // a duplicate
+    pts.push_back((pts[1] + pts[2]) * 0.5);            // a point between two others
+    const std::vector<int> h = convex_hull_2d(pts);
+    ASSERT_GE(h.size(), 3u);
+    for (std::size_t e = 0; e < h.size(); ++e) {
+      const Vec2 a = pts[h[e]], b = pts[h[(e + 1) % h.size()]];
+      for (const Vec2& p : pts) EXPECT_GE(cross(b - a, p - a), -1e-15);  // everything on the left: CCW, enclosed
+    }
+  }
+  // Collinear points: the two ends; a square with edge midpoints: its corners.
+  EXPECT_EQ(convex_hull_2d(std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}}).size(), 2u);
+  EXPECT_EQ(convex_hull_2d(std::vector<Vec2>{{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}}).size(), 4u);
+  EXPECT_EQ(convex_hull_2d(std::vector<Vec2>{{5, 5}}).size(), 1u);
+}
+
 }  // namespace
 }  // namespace gjkdem

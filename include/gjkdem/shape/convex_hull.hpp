@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "gjkdem/math/vec2.hpp"
 #include "gjkdem/math/vec3.hpp"
 
 namespace gjkdem {
@@ -31,5 +32,11 @@ void merge_coplanar_facets(ConvexHull& hull);
 /// plane count as on it. For a Polygon the vertices are the 2D hull in order; for
 /// a Segment its two ends.
 ConvexHull convex_hull(std::span<const Vec3> points);
+
+/// Planar convex hull (Andrew's monotone chain): indices of the hull vertices
+/// in counter-clockwise order. Duplicates, interior points and points within
+/// `tol` (a length) of a hull edge are dropped; fewer than 3 distinct points
+/// come back as they are (distinct ones, sorted).
+std::vector<int> convex_hull_2d(std::span<const Vec2> points, Real tol = 0);
 
 }  // namespace gjkdem
