@@ -61,6 +61,12 @@ double implicit(const ShapeCore& core, const Vec3& p) {
 
 class SupportTest : public ::testing::TestWithParam<ShapeCore> {};
 
+std::string core_test_name(const ::testing::TestParamInfo<ShapeCore>& param_info) {
+  static const char* const kNames[] = {"Point", "Segment", "Triangle", "Box", "Ellipsoid",
+                                       "Cylinder", "Cone", "Superellipsoid", "Polytope"};
+  return std::string(kNames[param_info.param.index()]) + std::to_string(param_info.index);
+}
+
 TEST_P(SupportTest, ReachesFarthestSampleAndLiesOnShape) {
   const ShapeCore core = GetParam();
   const std::vector<Vec3> samples = sample_surface(core, 120);
@@ -92,11 +98,7 @@ INSTANTIATE_TEST_SUITE_P(
                       ShapeCore{Superellipsoid{{0.7, 1.2, 0.4}, 1.7, 1.2}},
                       ShapeCore{Superellipsoid{{1.0, 1.0, 1.0}, 2.0, 2.0}}, ShapeCore{Cylinder{0.5, 2.0}},
                       ShapeCore{Cone{1.0, 0.7}}),
-    [](const ::testing::TestParamInfo<ShapeCore>& info) {
-      static const char* names[] = {"Point", "Segment", "Triangle", "Box", "Ellipsoid",
-                                    "Cylinder", "Cone", "Superellipsoid", "Polytope"};
-      return std::string(names[info.param.index()]) + std::to_string(info.index);
-    });
+    core_test_name);
 
 TEST(Support, BoxSegmentTriangleAndMargin) {
   int hint = 0;
