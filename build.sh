@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 mode="${1:-run}"
-base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev python3 python3-numpy python3-scipy)
+base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev python3 python3-numpy python3-scipy)
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev)
 
 install_missing() {

@@ -1,0 +1,32 @@
+#pragma once
+// Volume, centre of mass and inertia of a shape, per unit density, computed
+// exactly from the shape: polytopes by integration over their hull's
+// tetrahedra, spheres, boxes, ellipsoids, cylinders, cones and capsules in
+// closed form, superellipsoids by Jaklic, Leonardis and Solina's beta-function
+// formulas ("Segmentation and Recovery of Superquadrics", 2000, ch. 2).
+// Many particles share one template, so this runs once per shape.
+#include "gjkdem/math/quat.hpp"
+#include "gjkdem/shape/shape.hpp"
+
+namespace gjkdem {
+
+struct MassProperties {
+  Real volume = 0;  ///< m^3 (mass = density * volume)
+  Vec3 centroid;    ///< centre of mass, local frame (m)
+  Mat3 inertia;     ///< about the centroid, local axes, per unit density (m^5)
+};
+
+/// Throws std::invalid_argument for shapes without volume (points, segments,
+/// triangles, flat polytopes, all without margin) and for margins on cores
+/// other than points and segments (no closed form yet).
+MassProperties mass_properties(const Shape& shape);
+
+/// Principal moments (ascending) and the rotation taking principal axes to the
+/// local frame: inertia = R diag(moments) R^T, R = to_matrix(rotation).
+struct PrincipalAxes {
+  Vec3 moments;
+  Quat rotation;
+};
+PrincipalAxes principal_axes(const Mat3& inertia);
+
+}  // namespace gjkdem
