@@ -313,6 +313,20 @@ void merge_coplanar_facets(ConvexHull& hull) {
       hull.facet_normals.push_back(normal[t]);
     }
   }
+  // Facet adjacency: the facet across each boundary edge.
+  std::unordered_map<std::uint64_t, int> edge_facet;
+  for (int f = 0; f < static_cast<int>(hull.facets.size()); ++f) {
+    const auto& poly = hull.facets[f];
+    for (std::size_t k = 0; k < poly.size(); ++k) edge_facet[edge_key(poly[k], poly[(k + 1) % poly.size()])] = f;
+  }
+  hull.facet_neighbors.assign(hull.facets.size(), {});
+  for (int f = 0; f < static_cast<int>(hull.facets.size()); ++f) {
+    const auto& poly = hull.facets[f];
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const auto it = edge_facet.find(edge_key(poly[(k + 1) % poly.size()], poly[k]));
+      hull.facet_neighbors[f].push_back(it == edge_facet.end() ? -1 : it->second);
+    }
+  }
 }
 
 }  // namespace gjkdem

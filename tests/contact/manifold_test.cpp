@@ -1,5 +1,9 @@
 #include "gjkdem/contact/manifold.hpp"
 
+#include <array>
+
+#include "gjkdem/collide/triangle_contact.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -89,6 +93,25 @@ TEST(Manifold, RandomContactsStayOnTheSurfaces) {
     }
   }
   EXPECT_GT(multi, 20);
+}
+
+// A ball resting on the shared edge of two wall triangles touches both: the
+// seed's triangle query finds one contact per triangle, clustering keeps one.
+TEST(Cluster, WallTrianglesSharingAnEdgeGiveOneContact) {
+  const Vec3 p0{-1, -1, 0}, p1{1, -1, 0}, p2{1, 1, 0}, p3{-1, 1, 0};  // two triangles, diagonal p0-p2
+  const Vec3 centre{0.2, 0.2, 0.49};                                  // above the diagonal
+  const double radius = 0.5;
+  std::vector<ContactPoint> found;
+  for (const auto& tri : {std::array<Vec3, 3>{p0, p1, p2}, std::array<Vec3, 3>{p0, p2, p3}}) {
+    const TriangleContact t = triangle_contact(tri[0], tri[1], tri[2], centre, centre, centre, radius);
+    ASSERT_TRUE(t.contact);
+    found.push_back({(t.witness_a + t.witness_b) * 0.5, t.normal, radius - t.distance});  // normal wall -> ball: +z
+  }
+  ASSERT_EQ(found.size(), 2u);
+  const std::vector<ContactPoint> merged = cluster_contacts(found, kContactMergeRelDist * 2);
+  ASSERT_EQ(merged.size(), 1u);
+  EXPECT_NEAR(merged[0].depth, 0.01, 1e-12);
+  EXPECT_NEAR(merged[0].normal.z, 1.0, 1e-12);
 }
 
 TEST(Cluster, MergesRedundantContacts) {

@@ -44,8 +44,16 @@ TEST(ConvexHull, DegenerateCloudsReportTheirDimension) {
   const ConvexHull h = convex_hull(cube);
   EXPECT_EQ(h.vertices.size(), 8u);
   EXPECT_TRUE(h.manifold);
-  // Its 12 triangles merge into 6 square facets, outward.
+  // Its 12 triangles merge into 6 square facets, outward, each next to 4 others
+  // (never to itself or its opposite face).
   ASSERT_EQ(h.facets.size(), 6u);
+  for (std::size_t f = 0; f < 6; ++f) {
+    ASSERT_EQ(h.facet_neighbors[f].size(), 4u);
+    for (int g : h.facet_neighbors[f]) {
+      ASSERT_GE(g, 0);
+      EXPECT_NEAR(dot(h.facet_normals[f], h.facet_normals[g]), 0.0, 1e-15);
+    }
+  }
   for (std::size_t f = 0; f < h.facets.size(); ++f) {
     EXPECT_EQ(h.facets[f].size(), 4u);
     EXPECT_NEAR(max_abs(h.facet_normals[f]), 1.0, 1e-15);

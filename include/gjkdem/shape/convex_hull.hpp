@@ -21,6 +21,8 @@ struct ConvexHull {
   /// clockwise seen from outside); filled when manifold.
   std::vector<std::vector<int>> facets;
   std::vector<Vec3> facet_normals;           ///< unit, outward, one per facet
+  /// facet_neighbors[f][k]: the facet across edge (facets[f][k], facets[f][k+1]).
+  std::vector<std::vector<int>> facet_neighbors;
 };
 
 /// Merges the coplanar neighbours of a manifold hull's triangles into facets
