@@ -1,0 +1,60 @@
+#include "gjkdem/dem/broad_phase.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace gjkdem {
+namespace {
+
+TEST(BroadPhase, AabbIsTight) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Shape shapes[] = {Shape{Box{{1, 2, 3}}}, Shape{Ellipsoid{{1, 0.5, 0.2}}, 0.1}, make_capsule({-1, 0, 0}, {1, 0, 0}, 0.3),
+                          Shape{Cone{0.5, 1}}};
+  for (const Shape& s : shapes)
+    for (int k = 0; k < 20; ++k) {
+      const Transform pose = Transform::from(Vec3{u(rng), u(rng), u(rng)} * 10, normalized(Quat{u(rng), u(rng), u(rng), u(rng)}));
+      const Aabb box = aabb(s, pose, 0.01);
+      // Every support point lies inside, and the faces are reached (tight).
+      double reach[6] = {-1e300, -1e300, -1e300, -1e300, -1e300, -1e300};
+      for (int d = 0; d < 2000; ++d) {
+        const Vec3 p = apply(pose, support(s, Vec3{u(rng), u(rng), u(rng)}));
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(p[a], box.lo[a]);
+          EXPECT_LE(p[a], box.hi[a]);
+          reach[2 * a] = std::fmax(reach[2 * a], p[a] - box.hi[a]);
+          reach[2 * a + 1] = std::fmax(reach[2 * a + 1], box.lo[a] - p[a]);
+        }
+      }
+      for (double r : reach) EXPECT_NEAR(r, -0.01, 0.05);  // sampled supports come close to every face
+    }
+}
+
+TEST(BroadPhase, SweepAndPruneMatchesBruteForce) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::uint32_t> order;
+  for (int round = 0; round < 5; ++round) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 800; ++i) {
+      const Vec3 c{u(rng) * 20, u(rng) * 20, u(rng) * (round + 1)};
+      const Vec3 h{0.2 + 0.3 * u(rng), 0.2 + 0.3 * u(rng), 0.2 + 0.3 * u(rng)};
+      boxes.push_back({c - h, c + h});
+    }
+    boxes.push_back({boxes[0].hi, boxes[0].hi + Vec3{1, 1, 1}});  // touching at a corner counts
+    std::vector<BodyPair> pairs, brute;
+    overlapping_pairs(boxes, order, pairs);
+    for (std::uint32_t i = 0; i < boxes.size(); ++i)
+      for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
+        bool hit = true;
+        for (int a = 0; a < 3; ++a) hit &= boxes[i].lo[a] <= boxes[j].hi[a] && boxes[j].lo[a] <= boxes[i].hi[a];
+        if (hit) brute.emplace_back(i, j);
+      }
+    EXPECT_EQ(pairs, brute) << "round " << round;
+    EXPECT_GT(brute.size(), 100u);
+  }
+}
+
+}  // namespace
+}  // namespace gjkdem
