@@ -16,35 +16,15 @@
 #include <random>
 
 #include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/dem/mass_properties.hpp"
 
 namespace gjkdem {
 namespace {
 
-// Mass properties of a unit-density hull by tetrahedra from its centroid:
-// covariance C = sum over tetrahedra of det/120 (sum_i a_i a_i^T + (sum a)(sum a)^T),
-// inertia = trace(C) I - C.
 struct Mass {
   double mass;
-  Mat3 inertia;  // about the centroid, body frame
+  Mat3 inertia;  // about the centroid, body frame (unit density)
 };
-
-Mass mass_properties(const PolytopeData& d) {
-  double c[3][3] = {};
-  double vol = 0;
-  for (const auto& t : d.triangles) {
-    const Vec3 a = d.vertices[t[0]] - d.centroid, b = d.vertices[t[1]] - d.centroid, e = d.vertices[t[2]] - d.centroid;
-    const double det = dot(a, cross(b, e));
-    vol += det / 6;
-    const Vec3 s = a + b + e;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) c[i][j] += det / 120 * (a[i] * a[j] + b[i] * b[j] + e[i] * e[j] + s[i] * s[j]);
-  }
-  Mass m{vol, {}};
-  const double tr = c[0][0] + c[1][1] + c[2][2];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m.inertia.row[i][j] = (i == j ? tr : 0) - c[i][j];
-  return m;
-}
 
 Vec3 solve(const Mat3& m, const Vec3& b) {  // Cramer's rule, m symmetric positive definite
   const Vec3 c0 = m.column(0), c1 = m.column(1), c2 = m.column(2);
@@ -114,7 +94,8 @@ double energy_drift(Application mode, std::uint64_t seed) {
     std::vector<Vec3> pts;
     for (int i = 0; i < 14; ++i) pts.push_back(hadamard(normalized(Vec3{u(rng), u(rng), u(rng)}), {1.0, 0.7, 0.5}));
     bodies[k].shape.core = make_polytope(pts);
-    bodies[k].mass = mass_properties(*std::get<Polytope>(bodies[k].shape.core).data);
+    const MassProperties mp = mass_properties(bodies[k].shape);
+    bodies[k].mass = {mp.volume, mp.inertia};
     bodies[k].q = normalized(Quat{u(rng), u(rng), u(rng), u(rng)});
     bodies[k].x = Vec3{k ? 1.1 : -1.1, 0.2 * u(rng), 0.2 * u(rng)};
     bodies[k].p = Vec3{k ? -0.5 : 0.5, 0.1 * u(rng), 0} * bodies[k].mass.mass;
