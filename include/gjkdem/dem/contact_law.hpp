@@ -6,15 +6,17 @@
 // returned force is the repulsive magnitude along the contact normal.
 //
 // Laws:
-// - linear spring-dashpot: F = k delta + c v, with c from the requested
-//   restitution e (exact for the linear oscillator: zeta = -ln e / sqrt(pi^2 +
-//   ln^2 e), c = 2 zeta sqrt(k m*));
+// - linear spring-dashpot: F = k delta + c v, c = 2 zeta sqrt(k m*);
 // - Hertz (Mindlin for the tangential part, later): F = k_n delta + gamma v with
 //   k_n = 4/3 E* sqrt(R* delta), gamma = 2 beta sqrt(S_n m*), S_n = 2 E*
 //   sqrt(R* delta) (the damped Hertz model of Tsuji et al. 1992 as written by
-//   Antypov and Elliott 2011). Its restitution does not depend on the impact
-//   speed, so beta is calibrated once per requested e by integrating the
-//   dimensionless impact (hertz_damping_for_restitution).
+//   Antypov and Elliott 2011).
+// Forces never pull (clamped at 0): at the end of a damped impact the raw laws
+// would. Clamped, neither law's restitution depends on the impact speed, so
+// zeta and beta are calibrated once per requested e by integrating the
+// dimensionless impact (the textbook zeta = -ln e / sqrt(pi^2 + ln^2 e) holds
+// only for the unclamped oscillator, which the calibration reproduces when
+// the clamp never acts).
 #include "gjkdem/math/real.hpp"
 
 namespace gjkdem {
@@ -26,9 +28,12 @@ Real effective_mass(Real m1, Real m2) noexcept;
 Real effective_radius(Real r1, Real r2) noexcept;
 Real effective_modulus(Real e1, Real nu1, Real e2, Real nu2) noexcept;
 
-/// Dashpot coefficient c (N s/m) giving restitution e in (0, 1] for a linear
-/// spring of stiffness k (N/m) and effective mass m* (kg).
-Real linear_damping(Real restitution, Real stiffness, Real effective_mass) noexcept;
+/// Damping ratio zeta giving restitution e in (0, 1] with the clamped linear
+/// law (bisection on the integrated impact, e to about 1e-6).
+Real linear_damping_ratio_for_restitution(Real restitution);
+
+/// Dashpot coefficient c = 2 zeta sqrt(k m*) (N s/m).
+Real linear_damping(Real damping_ratio, Real stiffness, Real effective_mass) noexcept;
 
 Real linear_normal_force(Real stiffness, Real damping, Real overlap, Real approach_speed) noexcept;
 

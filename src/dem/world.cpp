@@ -1,0 +1,152 @@
+#include "gjkdem/dem/world.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/dem/contact_law.hpp"
+#include "gjkdem/dem/rigid_rotation.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+constexpr Real kPi = 3.14159265358979323846;
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+Vec3 principal_moments(const World& w, const Body& b) {
+  return w.templates[b.shape].principal.moments * w.materials[b.material].density;
+}
+
+Vec3 angular_velocity_of(const World& w, const Body& b) {
+  return b.fixed ? Vec3{} : angular_velocity(b.orientation, b.angular_momentum, principal_moments(w, b));
+}
+
+Vec3 point_velocity(const World& w, const Body& b, const Vec3& p) {
+  return b.fixed ? Vec3{} : b.velocity + cross(angular_velocity_of(w, b), p - b.position);
+}
+
+// Calibrated damping per (law, restitution), computed once.
+Real damping_for(World& w, Real restitution) {
+  const Real key = w.model == ContactModel::Hertz ? restitution : -restitution;
+  const auto it = w.damping_cache.find(key);
+  if (it != w.damping_cache.end()) return it->second;
+  return w.damping_cache[key] = w.model == ContactModel::Hertz ? hertz_damping_for_restitution(restitution)
+                                                               : linear_damping_ratio_for_restitution(restitution);
+}
+
+void apply(Body& b, const Vec3& force, const Vec3& point) {
+  b.force += force;
+  b.torque += cross(point - b.position, force);
+}
+
+void compute_forces(World& w) {
+  for (Body& b : w.bodies) {
+    b.force = b.fixed ? Vec3{} : w.gravity * mass_of(w, b);
+    b.torque = {};
+  }
+  w.boxes.resize(w.bodies.size());
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    w.boxes[i] = aabb(w.templates[w.bodies[i].shape].shape, shape_pose(w, w.bodies[i]));
+  overlapping_pairs(w.boxes, w.sweep_order, w.candidates);
+  OverlapWorkspace work;
+  for (const auto& [i, j] : w.candidates) {
+    Body& a = w.bodies[i];
+    Body& b = w.bodies[j];
+    if (a.fixed && b.fixed) continue;
+    const Shape& sa = w.templates[a.shape].shape;
+    const Shape& sb = w.templates[b.shape].shape;
+    const Transform pa = shape_pose(w, a), pb = shape_pose(w, b);
+    const Material& ma = w.materials[a.material];
+    const Material& mb = w.materials[b.material];
+    if (w.model == ContactModel::Volume) {
+      // F = k V along S_A, acting on the line through Feng's point, with the
+      // twisting couple: the moment about the origin is (k V / |S_A|) M_A.
+      const OverlapResult o = overlap(sa, pa, sb, pb, work);
+      if (o.status != OverlapStatus::Overlapping || !o.has_normal) continue;
+      const Real scale = w.volume_stiffness * o.volume / length(o.area_a);
+      const Vec3 f = o.area_a * scale, moment = o.moment_a * scale;  // on B, about the world origin
+      b.force += f;
+      b.torque += moment - cross(b.position, f);
+      a.force -= f;
+      a.torque -= moment - cross(a.position, f);
+      continue;
+    }
+    const PenetrationResult r = penetration(sa, pa, sb, pb);
+    if (!r.intersect || !(r.depth > 0)) continue;
+    const Vec3 p = (r.witness_a + r.witness_b) * 0.5;
+    const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), r.normal);
+    const Real m_eff = effective_mass(a.fixed ? kInf : mass_of(w, a), b.fixed ? kInf : mass_of(w, b));
+    const Real restitution = std::sqrt(ma.restitution * mb.restitution);
+    Real magnitude;
+    if (w.model == ContactModel::Hertz) {
+      const HertzParameters hp{m_eff,
+                               effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
+                                                b.fixed ? kInf : w.templates[b.shape].curvature_radius),
+                               effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
+                               damping_for(w, restitution)};
+      magnitude = hertz_normal_force(hp, r.depth, approach);
+    } else {
+      magnitude = linear_normal_force(w.linear_stiffness, linear_damping(damping_for(w, restitution), w.linear_stiffness, m_eff),
+                                      r.depth, approach);
+    }
+    apply(b, r.normal * magnitude, p);
+    apply(a, r.normal * -magnitude, p);
+  }
+  w.forces_current = true;
+}
+
+void kick(World& w, Real h) {
+  for (Body& b : w.bodies) {
+    if (b.fixed) continue;
+    b.velocity += b.force * (h / mass_of(w, b));
+    b.angular_momentum += b.torque * h;
+  }
+}
+
+}  // namespace
+
+ShapeTemplate make_template(const Shape& shape) {
+  ShapeTemplate t;
+  t.shape = shape;
+  t.unit_mass = mass_properties(shape);
+  t.principal = principal_axes(t.unit_mass.inertia);
+  if (std::holds_alternative<Point>(shape.core) || std::holds_alternative<Segment>(shape.core)) t.curvature_radius = shape.margin;
+  else t.curvature_radius = std::cbrt(3 * t.unit_mass.volume / (4 * kPi));
+  return t;
+}
+
+Transform shape_pose(const World& w, const Body& b) noexcept {
+  const ShapeTemplate& t = w.templates[b.shape];
+  const Quat world_from_local = b.orientation * conjugate(t.principal.rotation);
+  return Transform::from(b.position - rotate(world_from_local, t.unit_mass.centroid), world_from_local);
+}
+
+Real mass_of(const World& w, const Body& b) noexcept {
+  return w.materials[b.material].density * w.templates[b.shape].unit_mass.volume;
+}
+
+void step(World& w, Real dt) {
+  if (!w.forces_current) compute_forces(w);
+  kick(w, dt / 2);
+  for (Body& b : w.bodies) {
+    if (b.fixed) continue;
+    b.position += b.velocity * dt;
+    rotate_free(b.orientation, b.angular_momentum, principal_moments(w, b), dt);
+  }
+  compute_forces(w);
+  kick(w, dt / 2);
+  w.time += dt;
+}
+
+Real kinetic_energy(const World& w) noexcept {
+  Real e = 0;
+  for (const Body& b : w.bodies) {
+    if (b.fixed) continue;
+    e += 0.5 * mass_of(w, b) * dot(b.velocity, b.velocity);
+    e += rotational_energy(b.orientation, b.angular_momentum, principal_moments(w, b));
+  }
+  return e;
+}
+
+}  // namespace gjkdem::dem
