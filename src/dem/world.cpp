@@ -40,7 +40,17 @@ void apply(Body& b, const Vec3& force, const Vec3& point) {
   b.torque += cross(point - b.position, force);
 }
 
-void compute_forces(World& w) {
+ContactHistory& history_of(Body& owner, std::uint64_t other) {
+  for (ContactHistory& h : owner.history)
+    if (h.other == other) return h;
+  owner.history.push_back({other, {}, false});
+  return owner.history.back();
+}
+
+// dt: time since the last evaluation, for the tangential springs (0 at the start).
+void compute_forces(World& w, Real dt) {
+  for (Body& b : w.bodies)
+    for (ContactHistory& h : b.history) h.touched = false;
   for (Body& b : w.bodies) {
     b.force = b.fixed ? Vec3{} : w.gravity * mass_of(w, b);
     b.torque = {};
@@ -90,9 +100,51 @@ void compute_forces(World& w) {
       magnitude = linear_normal_force(w.linear_stiffness, linear_damping(damping_for(w, restitution), w.linear_stiffness, m_eff),
                                       r.depth, approach);
     }
+    // Tangential spring: advance by the relative tangential motion, keep it in
+    // the tangent plane, cap it at mu F_n.
+    Body& owner = a.id < b.id ? a : b;
+    ContactHistory& hist = history_of(owner, a.id < b.id ? b.id : a.id);
+    hist.touched = true;
+    const Real mu = std::sqrt(ma.friction * mb.friction);
+    Vec3 ft;
+    if (mu > 0 && magnitude > 0) {
+      const Vec3 v_rel = point_velocity(w, b, p) - point_velocity(w, a, p);  // B relative to A
+      const Vec3 v_t = v_rel - r.normal * dot(v_rel, r.normal);
+      const Real keep = length(hist.spring);
+      hist.spring -= r.normal * dot(hist.spring, r.normal);  // into the current tangent plane
+      if (length(hist.spring) > 0) hist.spring *= keep / length(hist.spring);
+      hist.spring += v_t * dt;
+      // Stiffness and dashpot of the tangential spring; the dashpot uses the
+      // normal law's calibrated damping, so sticking contacts do not ring.
+      Real k_t, c_t;
+      const Real damping = damping_for(w, restitution);
+      if (w.model == ContactModel::Hertz) {
+        const Real g_star = 1 / (2 * (2 - ma.poisson_ratio) * (1 + ma.poisson_ratio) / ma.youngs_modulus +
+                                 2 * (2 - mb.poisson_ratio) * (1 + mb.poisson_ratio) / mb.youngs_modulus);
+        const Real r_star = effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
+                                             b.fixed ? kInf : w.templates[b.shape].curvature_radius);
+        k_t = 8 * g_star * std::sqrt(r_star * r.depth);
+        c_t = 2 * damping * std::sqrt(k_t * m_eff);
+      } else {
+        k_t = 2.0 / 7 * w.linear_stiffness;
+        c_t = linear_damping(damping, k_t, m_eff);
+      }
+      ft = hist.spring * -k_t - v_t * c_t;  // on B, opposing its motion relative to A
+      const Real cap = mu * magnitude;
+      if (length(ft) > cap) {  // sliding: force at the Coulomb limit, the spring holds it
+        ft *= cap / length(ft);
+        hist.spring = ft / -k_t;
+      }
+    } else {
+      hist.spring = {};
+    }
+    apply(b, ft, p);
+    apply(a, -ft, p);
     apply(b, r.normal * magnitude, p);
     apply(a, r.normal * -magnitude, p);
   }
+  for (Body& b : w.bodies)  // contacts that ended forget their spring
+    std::erase_if(b.history, [](const ContactHistory& h) { return !h.touched; });
   w.forces_current = true;
 }
 
@@ -127,14 +179,14 @@ Real mass_of(const World& w, const Body& b) noexcept {
 }
 
 void step(World& w, Real dt) {
-  if (!w.forces_current) compute_forces(w);
+  if (!w.forces_current) compute_forces(w, 0);
   kick(w, dt / 2);
   for (Body& b : w.bodies) {
     if (b.fixed) continue;
     b.position += b.velocity * dt;
     rotate_free(b.orientation, b.angular_momentum, principal_moments(w, b), dt);
   }
-  compute_forces(w);
+  compute_forces(w, dt);
   kick(w, dt / 2);
   w.time += dt;
 }

@@ -4,6 +4,7 @@
 // overlap, peak force and duration against Hertz theory, within 2%) and
 // test 2 (restitution out = in for e = 0.2 to 1, within 2%).
 #include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/rigid_rotation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,6 +75,46 @@ TEST(World, ChungOoiTest2RestitutionOutEqualsIn) {
     EXPECT_NEAR(drop_on_wall(e, 3.9).rebound, e, 0.02 * e) << "Hertz, e = " << e;
     EXPECT_NEAR(drop_on_wall(e, 0.1, ContactModel::Linear).rebound, e, 0.02 * e) << "linear, e = " << e;
   }
+}
+
+// A sphere launched sliding on a floor: friction slows the slip and spins the
+// sphere up until it rolls, at 5/7 of the launch speed (solid sphere: the
+// contact-point angular momentum m v R + I w is kept, I = 2/5 m R^2),
+// whatever mu is; the slip lasts 2 v0 / (7 mu g).
+TEST(World, SlidingSphereEndsRollingAtFiveSevenths) {
+  World w;
+  w.model = ContactModel::Hertz;
+  w.materials.push_back({"soft", 2500, 1e7, 0.25, 0.5, 0.3});
+  w.templates.push_back(make_template(make_sphere(0.01)));
+  w.templates.push_back(make_template(Shape{Box{{1, 1, 0.01}}}));
+  Body floor;
+  floor.id = 1;
+  floor.shape = 1;
+  floor.fixed = true;
+  floor.position = {0, 0, -0.01};
+  Body ball;
+  ball.id = 2;
+  ball.shape = 0;
+  ball.position = {0, 0, 0.01 - 2.7e-5};  // about the static overlap under gravity
+  ball.velocity = {1, 0, 0};
+  w.bodies = {floor, ball};
+  const double dt = 1e-5;
+  double slip_end = -1;
+  for (int k = 0; k < 30000; ++k) {
+    step(w, dt);
+    const Body& b = w.bodies[1];
+    const Vec3 omega = angular_velocity(b.orientation, b.angular_momentum,
+                                        w.templates[0].principal.moments * w.materials[0].density);
+    const double slip = b.velocity.x - omega.y * 0.01;
+    if (slip_end < 0 && slip < 1e-3) slip_end = w.time;
+  }
+  const Body& b = w.bodies[1];
+  const Vec3 omega = angular_velocity(b.orientation, b.angular_momentum, w.templates[0].principal.moments * w.materials[0].density);
+  EXPECT_NEAR(b.velocity.x, 5.0 / 7, 0.01 * 5 / 7);
+  EXPECT_NEAR(omega.y * 0.01, b.velocity.x, 1e-3);
+  EXPECT_NEAR(slip_end, 2 / (7 * 0.3 * 9.81), 0.03 * 2 / (7 * 0.3 * 9.81));
+  EXPECT_NEAR(b.position.z, 0.01, 1e-4);  // still on the floor
+  EXPECT_EQ(w.bodies[0].history.size(), 1u);  // the persistent contact keeps its spring
 }
 
 }  // namespace

@@ -4,6 +4,11 @@
 // explicit time step. Plain data, free functions, no global state: a domain of
 // an MPI decomposition is a World holding its own bodies.
 //
+// Friction: an incremental tangential spring per persistent contact (Mindlin's
+// stiffness 8 G* sqrt(R* delta) for Hertz, 2/7 of the normal stiffness for the
+// linear law), turned into the current tangent plane each step and capped by
+// Coulomb's mu F_n (sliding). The volume law has no friction yet.
+//
 // One step (dt): broad phase on boxes from support functions, narrow phase per
 // candidate pair (penetration by GJK/EPA for the Hertz and linear laws; the
 // overlap region for the volume law), forces and moments, then a
@@ -46,6 +51,14 @@ struct ShapeTemplate {
 
 ShapeTemplate make_template(const Shape& shape);
 
+/// Tangential spring of a persistent contact, kept by the body with the
+/// smaller id of the pair, so it travels with that particle between domains.
+struct ContactHistory {
+  std::uint64_t other = 0;  ///< id of the other body
+  Vec3 spring;              ///< accumulated tangential displacement (m), world frame
+  bool touched = false;     ///< seen in the current evaluation (stale entries are dropped)
+};
+
 struct Body {
   std::uint64_t id = 0;          ///< global id, stable across domains and restarts
   std::uint32_t shape = 0;       ///< index into World::templates
@@ -56,6 +69,7 @@ struct Body {
   Vec3 velocity;                 ///< m/s
   Vec3 angular_momentum;         ///< world frame, about the centre of mass (kg m^2/s)
   Vec3 force, torque;            ///< accumulated in the current evaluation
+  std::vector<ContactHistory> history;  ///< tangential springs of this body's contacts with larger ids
 };
 
 struct World {
