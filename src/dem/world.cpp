@@ -69,36 +69,51 @@ void compute_forces(World& w, Real dt) {
     const Transform pa = shape_pose(w, a), pb = shape_pose(w, b);
     const Material& ma = w.materials[a.material];
     const Material& mb = w.materials[b.material];
+    const Real m_eff = effective_mass(a.fixed ? kInf : mass_of(w, a), b.fixed ? kInf : mass_of(w, b));
+    const Real restitution = std::sqrt(ma.restitution * mb.restitution);
+    Vec3 normal, p;       // unit A -> B; where friction and damping act
+    Real magnitude = 0;   // normal force on B along the normal (N)
+    Real depth = 0;       // penetration depth, or for the volume law V / |S_A|
+    Real k_normal = 0;    // dF/d(depth): the normal stiffness the dashpots scale with
     if (w.model == ContactModel::Volume) {
-      // F = k V along S_A, acting on the line through Feng's point, with the
-      // twisting couple: the moment about the origin is (k V / |S_A|) M_A.
+      // F = k V along S_A, acting on the line through Feng's point with the
+      // twisting couple: the moment about the origin is (F / |S_A|) M_A. The
+      // dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat contacts (V linear
+      // in the approach) and an approximation otherwise.
       const OverlapResult o = overlap(sa, pa, sb, pb, work);
       if (o.status != OverlapStatus::Overlapping || !o.has_normal) continue;
-      const Real scale = w.volume_stiffness * o.volume / length(o.area_a);
-      const Vec3 f = o.area_a * scale, moment = o.moment_a * scale;  // on B, about the world origin
+      const Real area = length(o.area_a);
+      normal = o.area_a / area;
+      p = o.application_point + normal * dot(o.centroid - o.application_point, normal);  // on the line, level with the centroid
+      k_normal = w.volume_stiffness * area;
+      depth = o.volume / area;
+      const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), normal);
+      magnitude = linear_normal_force(k_normal, linear_damping(damping_for(w, restitution), k_normal, m_eff), depth, approach);
+      const Vec3 f = normal * magnitude, moment = o.moment_a * (magnitude / area);  // on B, about the world origin
       b.force += f;
       b.torque += moment - cross(b.position, f);
       a.force -= f;
       a.torque -= moment - cross(a.position, f);
-      continue;
-    }
-    const PenetrationResult r = penetration(sa, pa, sb, pb);
-    if (!r.intersect || !(r.depth > 0)) continue;
-    const Vec3 p = (r.witness_a + r.witness_b) * 0.5;
-    const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), r.normal);
-    const Real m_eff = effective_mass(a.fixed ? kInf : mass_of(w, a), b.fixed ? kInf : mass_of(w, b));
-    const Real restitution = std::sqrt(ma.restitution * mb.restitution);
-    Real magnitude;
-    if (w.model == ContactModel::Hertz) {
-      const HertzParameters hp{m_eff,
-                               effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
-                                                b.fixed ? kInf : w.templates[b.shape].curvature_radius),
-                               effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
-                               damping_for(w, restitution)};
-      magnitude = hertz_normal_force(hp, r.depth, approach);
     } else {
-      magnitude = linear_normal_force(w.linear_stiffness, linear_damping(damping_for(w, restitution), w.linear_stiffness, m_eff),
-                                      r.depth, approach);
+      const PenetrationResult r = penetration(sa, pa, sb, pb);
+      if (!r.intersect || !(r.depth > 0)) continue;
+      normal = r.normal;
+      depth = r.depth;
+      p = (r.witness_a + r.witness_b) * 0.5;
+      const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), normal);
+      if (w.model == ContactModel::Hertz) {
+        const HertzParameters hp{m_eff,
+                                 effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
+                                                  b.fixed ? kInf : w.templates[b.shape].curvature_radius),
+                                 effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
+                                 damping_for(w, restitution)};
+        magnitude = hertz_normal_force(hp, depth, approach);
+      } else {
+        k_normal = w.linear_stiffness;
+        magnitude = linear_normal_force(k_normal, linear_damping(damping_for(w, restitution), k_normal, m_eff), depth, approach);
+      }
+      apply(b, normal * magnitude, p);
+      apply(a, normal * -magnitude, p);
     }
     // Tangential spring: advance by the relative tangential motion, keep it in
     // the tangent plane, cap it at mu F_n.
@@ -109,9 +124,9 @@ void compute_forces(World& w, Real dt) {
     Vec3 ft;
     if (mu > 0 && magnitude > 0) {
       const Vec3 v_rel = point_velocity(w, b, p) - point_velocity(w, a, p);  // B relative to A
-      const Vec3 v_t = v_rel - r.normal * dot(v_rel, r.normal);
+      const Vec3 v_t = v_rel - normal * dot(v_rel, normal);
       const Real keep = length(hist.spring);
-      hist.spring -= r.normal * dot(hist.spring, r.normal);  // into the current tangent plane
+      hist.spring -= normal * dot(hist.spring, normal);  // into the current tangent plane
       if (length(hist.spring) > 0) hist.spring *= keep / length(hist.spring);
       hist.spring += v_t * dt;
       // Stiffness and dashpot of the tangential spring; the dashpot uses the
@@ -123,10 +138,10 @@ void compute_forces(World& w, Real dt) {
                                  2 * (2 - mb.poisson_ratio) * (1 + mb.poisson_ratio) / mb.youngs_modulus);
         const Real r_star = effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
                                              b.fixed ? kInf : w.templates[b.shape].curvature_radius);
-        k_t = 8 * g_star * std::sqrt(r_star * r.depth);
+        k_t = 8 * g_star * std::sqrt(r_star * depth);
         c_t = 2 * damping * std::sqrt(k_t * m_eff);
-      } else {
-        k_t = 2.0 / 7 * w.linear_stiffness;
+      } else {  // linear and volume laws: 2/7 of the normal stiffness
+        k_t = 2.0 / 7 * k_normal;
         c_t = linear_damping(damping, k_t, m_eff);
       }
       ft = hist.spring * -k_t - v_t * c_t;  // on B, opposing its motion relative to A
@@ -140,8 +155,6 @@ void compute_forces(World& w, Real dt) {
     }
     apply(b, ft, p);
     apply(a, -ft, p);
-    apply(b, r.normal * magnitude, p);
-    apply(a, r.normal * -magnitude, p);
   }
   for (Body& b : w.bodies)  // contacts that ended forget their spring
     std::erase_if(b.history, [](const ContactHistory& h) { return !h.touched; });

@@ -197,6 +197,57 @@ TEST(World, VolumeLawCubeLandingOnAVertex) {
   EXPECT_NEAR(w.bodies[1].velocity.z, v, 0.01 * v);
 }
 
+World cube_on_floor(double restitution, double friction, const Vec3& gravity) {
+  World w;
+  w.model = ContactModel::Volume;
+  w.gravity = gravity;
+  w.volume_stiffness = 1e9;
+  w.materials.push_back({"rock", 2500, 1e7, 0.25, restitution, friction});
+  w.templates.push_back(make_template(Shape{Box{{0.01, 0.01, 0.01}}}));
+  w.templates.push_back(make_template(Shape{Box{{1, 1, 0.01}}}));
+  Body floor;
+  floor.id = 1;
+  floor.shape = 1;
+  floor.fixed = true;
+  floor.position = {0, 0, -0.01};
+  Body cube;
+  cube.id = 2;
+  cube.shape = 0;
+  cube.position = {0, 0, 0.01 - 2500 * 8e-6 * -gravity.z / (1e9 * 4e-4)};  // resting overlap
+  w.bodies = {floor, cube};
+  return w;
+}
+
+TEST(World, VolumeLawDampingGivesTheRestitution) {
+  for (double e : {0.3, 0.7}) {
+    World w = cube_on_floor(e, 0, {});
+    w.bodies[1].position.z = 0.01 + 1e-9;
+    w.bodies[1].velocity = {0, 0, -0.5};
+    for (int i = 0; i < 20000 && !(w.bodies[1].position.z > 0.01 + 1e-6); ++i) step(w, 1e-6);
+    EXPECT_NEAR(w.bodies[1].velocity.z / 0.5, e, 0.02 * e) << "e = " << e;
+  }
+}
+
+// A cube on a floor tilted by theta (gravity tilted instead): it stays put
+// when tan(theta) < mu and slides with g (sin theta - mu cos theta) otherwise.
+TEST(World, CubeOnInclineSticksOrSlides) {
+  const double g = 9.81, theta = 20 * 3.14159265358979323846 / 180;
+  const Vec3 gravity{g * std::sin(theta), 0, -g * std::cos(theta)};
+  World stick = cube_on_floor(0.3, 0.5, gravity);
+  for (int i = 0; i < 50000; ++i) step(stick, 2e-5);  // 1 s
+  EXPECT_LT(std::fabs(stick.bodies[1].position.x), 1e-3 * 0.02);
+  EXPECT_NEAR(stick.bodies[1].position.z, 0.01, 1e-5);  // resting on its face, not sunk or tipped
+  EXPECT_NEAR(rotate(stick.bodies[1].orientation, {0, 0, 1}).z, 1.0, 1e-6);
+  World slide = cube_on_floor(0.3, 0.2, gravity);
+  for (int i = 0; i < 10000; ++i) step(slide, 2e-5);  // 0.2 s to settle into sliding
+  const double x0 = slide.bodies[1].position.x, v0 = slide.bodies[1].velocity.x;
+  for (int i = 0; i < 25000; ++i) step(slide, 2e-5);  // 0.5 s measured
+  const double t = 0.5, a = 2 * (slide.bodies[1].position.x - x0 - v0 * t) / (t * t);
+  EXPECT_NEAR(a / (g * (std::sin(theta) - 0.2 * std::cos(theta))), 1.0, 0.03);
+  EXPECT_GT(slide.bodies[1].position.x, 0.1);  // it really slid (about 0.25 m)
+  EXPECT_NEAR(slide.bodies[1].position.z, 0.01, 1e-5);
+}
+
 // A sphere launched sliding on a floor: friction slows the slip and spins the
 // sphere up until it rolls, at 5/7 of the launch speed (solid sphere: the
 // contact-point angular momentum m v R + I w is kept, I = 2/5 m R^2),
