@@ -265,9 +265,30 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     planes_of(b, relative(pose_a, pose_b), w.planes);
     // Keep only the planes that cut A at all (A's support value passes them): on
     // large hulls most of B's faces are far from the overlap.
-    std::erase_if(w.planes, [&](const Plane& pl) { return dot(pl.n, support(a, pl.n)) <= pl.d + tol; });
+    // Planes that merely touch A (a face of A lies in them) cut nothing but mark
+    // the faces on both boundaries (aligned, stacked bodies).
+    w.touching.clear();
+    std::erase_if(w.planes, [&](const Plane& pl) {
+      const Real excess = dot(pl.n, support(a, pl.n)) - pl.d;
+      if (std::fabs(excess) <= tol) w.touching.push_back(pl);
+      return excess <= tol;
+    });
     const int res = clip(w, w.planes, tol);
     if (res < 0) return r;
+    // A face of A lying in a touching plane of B, facing the same way, is on
+    // both boundaries: tagged 2, it counts in the volume but in neither area
+    // vector nor in Feng's moment.
+    for (std::size_t f = 0; f < w.face_begin[res].size(); ++f) {
+      if (w.face_body[res][f] != 0) continue;
+      const int b0 = w.face_begin[res][f];
+      const int b1 = f + 1 < w.face_begin[res].size() ? w.face_begin[res][f + 1] : static_cast<int>(w.points[res].size());
+      for (const Plane& pl : w.touching) {
+        if (!(dot(pl.n, w.face_normal[res][f]) > 1 - 1e-9)) continue;
+        bool on = true;
+        for (int i = b0; i < b1 && on; ++i) on = std::fabs(dot(pl.n, w.points[res][i]) - pl.d) <= tol;
+        if (on) { w.face_body[res][f] = 2; break; }
+      }
+    }
     w.result = res;
     w.frame = pose_a;
     const auto& pts = w.points[res];
@@ -286,7 +307,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       }
       const Vec3 area = polygon_area_vector(p, n);
       total_area += length(area);
-      (w.face_body[res][f] == 0 ? sa : sb) += area;
+      if (w.face_body[res][f] < 2) (w.face_body[res][f] == 0 ? sa : sb) += area;
       if (w.face_body[res][f] == 0) {  // Feng's moment: face centroid x area vector
         Vec3 c;
         Real weight = 0;

@@ -88,13 +88,13 @@ TEST(Overlap, NormalIsMinusVolumeGradient) {
 
 TEST(Overlap, SurfaceAndIntersectionLine) {
   OverlapWorkspace work;
-  // Unit cubes, B shifted by (0.5, 0.25, 0): the overlap is a 0.5 x 0.75 x 1 box.
-  // Only B's faces x = 0 and y = -0.25 cut A: the intersection line runs where
-  // they meet A's faces x = 0.5, y = 0.5 and z = +-0.5.
+  // Unit cubes, B shifted by (0.5, 0.25, 0.1): the overlap is a 0.5 x 0.75 x 0.9
+  // box. B's faces x = 0, y = -0.25 and z = -0.4 cut A and meet at a corner;
+  // the intersection line is the rim of that corner.
   const Shape cube{Box{{0.5, 0.5, 0.5}}};
-  const OverlapResult r = overlap(cube, Transform::identity(), cube, Transform::from({0.5, 0.25, 0}, {}), work);
+  const OverlapResult r = overlap(cube, Transform::identity(), cube, Transform::from({0.5, 0.25, 0.1}, {}), work);
   ASSERT_EQ(r.status, OverlapStatus::Overlapping);
-  double area[2] = {0, 0};
+  double area[3] = {0, 0, 0};
   Vec3 closed;
   for (const OverlapTriangle& t : overlap_surface(work)) {
     const Vec3 a = cross(t.v[1] - t.v[0], t.v[2] - t.v[0]) * 0.5;
@@ -102,19 +102,28 @@ TEST(Overlap, SurfaceAndIntersectionLine) {
     closed += a;
   }
   EXPECT_NEAR(length(closed), 0.0, 1e-14);  // a closed surface
-  EXPECT_NEAR(area[1], 0.75 + 0.5, 1e-14);  // B's two cut faces
-  EXPECT_NEAR(area[0] + area[1], 2 * (0.5 * 0.75 + 0.5 + 0.75), 1e-14);
+  EXPECT_NEAR(area[1], 0.675 + 0.45 + 0.375, 1e-14);  // B's three cut faces
+  EXPECT_NEAR(area[0] + area[1], 2 * (0.375 + 0.45 + 0.675), 1e-14);
+  EXPECT_EQ(area[2], 0.0);  // no face lies on both boundaries
   double length_sum = 0;
   Vec3 vector_area;
   for (const auto& [p, q] : intersection_line(work, 1e-12)) {
     length_sum += length(q - p);
     vector_area += cross(p, q) * 0.5;
   }
-  // The two B faces' boundaries minus their shared edge: 2 * (0.75 + 0.5) + 2 * 1.
-  EXPECT_NEAR(length_sum, 2 * (0.75 + 0.5) + 2, 1e-14);
+  EXPECT_NEAR(length_sum, 0.9 + 0.75 + 0.9 + 0.5 + 0.75 + 0.5, 1e-14);
   // The loop's vector area is S_A, whose length is the contact area.
   EXPECT_NEAR(length(vector_area - r.area_a), 0.0, 1e-14);
   EXPECT_NEAR(r.contact_area, length(r.area_a), 1e-15);
+  // Aligned bodies: faces in a plane of both boundaries are tagged 2 and left
+  // out of the area vectors, so a stacked cube gets a vertical normal and a
+  // line of action through the face centre.
+  const OverlapResult stacked = overlap(cube, Transform::identity(), cube, Transform::from({0, 0, 0.99}, {}), work);
+  int shared = 0;
+  for (const OverlapTriangle& t : overlap_surface(work)) shared += t.body == 2;
+  EXPECT_EQ(shared, 8);  // four side faces, two triangles each
+  EXPECT_NEAR(length(stacked.area_a - Vec3{0, 0, 1}), 0.0, 1e-14);
+  EXPECT_NEAR(length(cross(stacked.application_point - Vec3{0, 0, 0.5}, Vec3{0, 0, 1})), 0.0, 1e-14);
 }
 
 TEST(Overlap, ClosedForms) {

@@ -60,12 +60,14 @@ struct OverlapWorkspace {
     Real d;  ///< n . x on the plane
   };
   std::vector<Plane> planes;
+  std::vector<Plane> touching;  ///< planes of B that a face of A lies in
   int result = -1;       ///< buffer holding the last clipped polyhedron; -1: none
   Transform frame;       ///< its frame (A's pose) for mapping to the world
 };
 
 /// One triangle of the overlap polyhedron's surface, world frame, tagged by
-/// the body whose boundary it lies on (0: A, 1: B); counter-clockwise from outside.
+/// the body whose boundary it lies on (0: A, 1: B, 2: both, for coplanar faces
+/// of aligned bodies); counter-clockwise from outside.
 struct OverlapTriangle {
   Vec3 v[3];
   int body;
@@ -76,7 +78,7 @@ struct OverlapTriangle {
 std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
 
 /// The intersection line of the last clipped overlap: the edges where a face on
-/// A's boundary meets a face on B's, world frame, each as (start, end) oriented
+/// A's boundary meets a face on B's (faces on both are on neither side), world frame, each as (start, end) oriented
 /// along A's face. They form closed loops; `tol` matches end points (length).
 std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& work, Real tol);
 
