@@ -59,7 +59,6 @@ void compute_forces(World& w, Real dt) {
   for (std::size_t i = 0; i < w.bodies.size(); ++i)
     w.boxes[i] = aabb(w.templates[w.bodies[i].shape].shape, shape_pose(w, w.bodies[i]));
   overlapping_pairs(w.boxes, w.sweep_order, w.candidates);
-  OverlapWorkspace work;
   for (const auto& [i, j] : w.candidates) {
     Body& a = w.bodies[i];
     Body& b = w.bodies[j];
@@ -80,7 +79,7 @@ void compute_forces(World& w, Real dt) {
       // twisting couple: the moment about the origin is (F / |S_A|) M_A. The
       // dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat contacts (V linear
       // in the approach) and an approximation otherwise.
-      const OverlapResult o = overlap(sa, pa, sb, pb, work);
+      const OverlapResult o = overlap(sa, pa, sb, pb, w.overlap_work);
       if (o.status != OverlapStatus::Overlapping || !o.has_normal) continue;
       const Real area = length(o.area_a);
       normal = o.area_a / area;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/mass_properties.hpp"
 
@@ -86,6 +87,7 @@ struct World {
   std::vector<std::uint32_t> sweep_order;
   std::vector<Aabb> boxes;
   std::vector<BodyPair> candidates;
+  OverlapWorkspace overlap_work;       ///< clipping buffers, reused every step
   bool forces_current = false;         ///< body forces belong to the current state
   std::map<Real, Real> damping_cache;  ///< calibrated damping: +e Hertz beta, -e linear zeta
 };
