@@ -50,6 +50,32 @@ inline constexpr int kMaxPolishIterations = 30;
 /// one facet. Raising it merges gently curved surfaces into flat faces.
 inline constexpr Real kHullParallelTol = 1e-9;
 
+/// A face of A counts as lying on B's boundary (a shared face of aligned
+/// bodies) when its normal and B's face normal agree to within this cosine
+/// (and its vertices are kOverlapRelTol-close to B's plane).
+inline constexpr Real kSharedFaceCos = 1 - 1e-9;
+
+/// Manifolds: A's face stays the reference unless B's face is better aligned
+/// with the contact normal by more than this (a cosine difference): no
+/// flip-flop between nearly equal faces from one step to the next.
+inline constexpr Real kManifoldReferenceBias = 1e-3;
+
+/// Newton polish: finite-difference step (radians) for the Hessian of the
+/// support function on the sphere. Smaller is more round-off, larger more bias.
+inline constexpr Real kPolishStep = 1e-5;
+
+/// A mesh is convex when its enclosed volume matches its hull's to this
+/// (relative); above it the mesh is replaced by its hull with a warning.
+inline constexpr Real kMeshConvexRelTol = 1e-9;
+
+/// Input quaternions may be off unit length by this (printed rounding); the
+/// reader normalises them, and refuses anything further off.
+inline constexpr Real kUnitQuaternionTol = 1e-6;
+
+/// Restitution calibration of the damped laws: bisection stops when the
+/// damping parameter is bracketed to this (dimensionless).
+inline constexpr Real kDampingCalibrationTol = 1e-9;
+
 /// Overlap clipping: a vertex within kOverlapRelTol * size of a clipping plane
 /// counts as on it (relative). Keeps slivers of round-off from becoming faces.
 inline constexpr Real kOverlapRelTol = 1e-12;

@@ -40,7 +40,7 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
   f = dot(sp.w, u);
   const Real f_start = f;
   Real radius = 0.05;  // trust radius, radians
-  constexpr Real eta = 1e-5;
+  constexpr Real eta = kPolishStep;
   for (int it = 0; it < kMaxPolishIterations; ++it) {
     ++iterations;
     Vec3 e1, e2;

@@ -107,7 +107,7 @@ ContactManifold contact_manifold(const Shape& a, const Transform& pose_a, const 
   const Real align_a = dot(fa.normal, c.normal), align_b = -dot(fb.normal, c.normal);
   if (std::fmax(align_a, align_b) < kManifoldFaceCos) return single_point(c);  // edge-edge or vertex contact
   // The better aligned face is the reference (A wins near-ties: no flip-flop).
-  const bool ref_is_a = align_a >= align_b - 1e-3;
+  const bool ref_is_a = align_a >= align_b - kManifoldReferenceBias;
   const Face& ref = ref_is_a ? fa : fb;
   const Face& inc = ref_is_a ? fb : fa;
   // Clip the incident polygon by the side planes of the reference face.
@@ -131,10 +131,11 @@ ContactManifold contact_manifold(const Shape& a, const Transform& pose_a, const 
   ContactPoint pts[2 * kMaxFaceVertices + 8];
   int count = 0;
   const Real gap = c.intersect ? 0 : c.distance;
+  const Real slack = kOverlapRelTol * 2 * std::fmax(bounding_radius(a), bounding_radius(b));
   for (int k = 0; k < n; ++k) {
     const Vec3 p = buf[cur][k];
     const Real s = dot(ref.normal, p - ref.v[0]);  // < 0: inside the reference body
-    if (s > gap + 1e-9 * (length(ref.v[0] - inc.v[0]) + 1)) continue;
+    if (s > gap + slack) continue;
     pts[count++] = {p - ref.normal * (s / 2), c.normal, -s};
   }
   if (count == 0) return single_point(c);

@@ -283,7 +283,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       const int b0 = w.face_begin[res][f];
       const int b1 = f + 1 < w.face_begin[res].size() ? w.face_begin[res][f + 1] : static_cast<int>(w.points[res].size());
       for (const Plane& pl : w.touching) {
-        if (!(dot(pl.n, w.face_normal[res][f]) > 1 - 1e-9)) continue;
+        if (!(dot(pl.n, w.face_normal[res][f]) > kSharedFaceCos)) continue;
         bool on = true;
         for (int i = b0; i < b1 && on; ++i) on = std::fabs(dot(pl.n, w.points[res][i]) - pl.d) <= tol;
         if (on) { w.face_body[res][f] = 2; break; }

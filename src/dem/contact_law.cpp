@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "gjkdem/tolerances.hpp"
+
 namespace gjkdem {
 namespace {
 
@@ -49,7 +51,7 @@ Real calibrate(Real e, Restitution restitution_of) {
   if (e == 1) return 0;
   Real lo = 0, hi = 2;
   while (restitution_of(hi) > e) hi *= 2;
-  for (int it = 0; it < 60 && hi - lo > 1e-9; ++it) {
+  for (int it = 0; it < 60 && hi - lo > kDampingCalibrationTol; ++it) {
     const Real mid = 0.5 * (lo + hi);
     (restitution_of(mid) > e ? lo : hi) = mid;
   }

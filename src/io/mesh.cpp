@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "gjkdem/shape/convex_hull.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::io {
 namespace {
@@ -181,7 +182,7 @@ ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
     mesh_volume += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]])) / 6;
   out.polytope = make_polytope(mesh.vertices);
   const Real hull_volume = out.polytope.data->volume;
-  out.convex = out.watertight && std::fabs(std::fabs(mesh_volume) - hull_volume) <= 1e-9 * hull_volume;
+  out.convex = out.watertight && std::fabs(std::fabs(mesh_volume) - hull_volume) <= kMeshConvexRelTol * hull_volume;
   if (!out.watertight)
     out.warnings.push_back(name + ": the mesh is not watertight (open or non-manifold edges): using its convex hull");
   else if (!out.convex)

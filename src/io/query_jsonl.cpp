@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+
+#include "gjkdem/tolerances.hpp"
 #include <vector>
 
 namespace gjkdem::io {
@@ -60,7 +62,7 @@ Quat rotation(const Json& obj, const std::string& where) {
   Quat q{number((*it)[0], what), number((*it)[1], what), number((*it)[2], what), number((*it)[3], what)};
   const Real n = norm(q);
   // Accept rounding in printed quaternions; refuse anything that is not a rotation.
-  if (!(std::fabs(n - 1) <= 1e-6)) fail(what + " must be a unit quaternion (norm " + Json(n).dump() + ")");
+  if (!(std::fabs(n - 1) <= kUnitQuaternionTol)) fail(what + " must be a unit quaternion (norm " + Json(n).dump() + ")");
   return normalized(q);
 }
 
