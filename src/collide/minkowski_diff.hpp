@@ -9,6 +9,8 @@ namespace gjkdem::detail {
 
 template <class CoreA, class CoreB>
 struct MinkowskiDiff {
+  using TypeA = CoreA;
+  using TypeB = CoreB;
   const CoreA& a;
   const CoreB& b;
   Transform b_in_a;  ///< B's local frame as seen from A's

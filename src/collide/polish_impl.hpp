@@ -92,8 +92,10 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
 /// Refines an unconverged EPA answer on pairs with a unique-support core: the
 /// normal is polished, the depth becomes f at the polished normal, and the
 /// witness on the unique-support side is its support point.
-template <class MD, class CoreA, class CoreB>
+template <class MD>
 void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
+  using CoreA = typename MD::TypeA;
+  using CoreB = typename MD::TypeB;
   if constexpr (kUniqueSupport<CoreA> || kUniqueSupport<CoreB>) {
     if (e.status != EpaStatus::OutOfMemory && e.status != EpaStatus::MaxIterations) return;
     Vec3 u = e.normal;

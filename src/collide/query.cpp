@@ -20,13 +20,31 @@ Vec3 cold_start(const Transform& b_in_a) noexcept { return -b_in_a.translation; 
 int warm_size(const GjkCache* cache) noexcept { return cache ? cache->size : 0; }
 const Vec3* warm_dirs(const GjkCache* cache) noexcept { return cache ? cache->dirs : nullptr; }
 
+// The warm start for next time: the given search directions and support hints.
 template <class MD>
-void save_cache(GjkCache* cache, const MD& md, const Simplex& s) noexcept {
+void save_cache(GjkCache* cache, const MD& md, const Vec3* dirs, int size) noexcept {
   if (!cache) return;
-  for (int k = 0; k < s.size; ++k) cache->dirs[k] = s.p[k].d;
-  cache->size = s.size;
+  for (int k = 0; k < size; ++k) cache->dirs[k] = dirs[k];
+  cache->size = size;
   cache->hint_a = md.hint_a;
   cache->hint_b = md.hint_b;
+}
+
+template <class MD>
+void save_cache(GjkCache* cache, const MD& md, const Simplex& s) noexcept {
+  Vec3 dirs[4];
+  for (int k = 0; k < s.size; ++k) dirs[k] = s.p[k].d;
+  save_cache(cache, md, dirs, s.size);
+}
+
+// Core results (frame A, normal n from A to B) to world witnesses with the
+// margins: A's witness moves along n by its margin, B's against it.
+template <class Result>
+void place_witnesses(Result& r, const Transform& pose_a, const Vec3& n, const Vec3& wa, const Vec3& wb, Real margin_a,
+                     Real margin_b) noexcept {
+  r.normal = apply_rotation(pose_a, n);
+  r.witness_a = apply(pose_a, wa + n * margin_a);
+  r.witness_b = apply(pose_a, wb - n * margin_b);
 }
 
 template <class F>
@@ -53,12 +71,7 @@ bool intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Tr
       const Vec3 d0 = warm_size(cache) > 0 ? cache->dirs[0] : -v0;
       const auto o = detail::gjk_boolean(md, d0, st.max_gjk_iterations, iterations, last_d);
       if (o != detail::Overlap::Undecided) {
-        if (cache) {  // a separating direction, or the last search direction
-          cache->dirs[0] = last_d;
-          cache->size = 1;
-          cache->hint_a = md.hint_a;
-          cache->hint_b = md.hint_b;
-        }
+        save_cache(cache, md, &last_d, 1);  // a separating direction, or the last search direction
         return o == detail::Overlap::Intersecting;
       }
     }
@@ -91,9 +104,7 @@ DistanceResult distance(const Shape& a, const Transform& pose_a, const Shape& b,
     Vec3 wa, wb;
     simplex_witnesses(g.simplex, wa, wb);
     r.distance = core_dist - margin;
-    r.normal = apply_rotation(pose_a, n);
-    r.witness_a = apply(pose_a, wa + n * a.margin);
-    r.witness_b = apply(pose_a, wb - n * b.margin);
+    place_witnesses(r, pose_a, n, wa, wb, a.margin, b.margin);
     return r;
   });
 }
@@ -120,8 +131,7 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
     } else {
       detail::EpaPolytope poly;
       auto e = detail::epa(md, g.simplex, size, st, poly);
-      using MDType = std::decay_t<decltype(md)>;
-      detail::polish_penetration<MDType, std::decay_t<decltype(md.a)>, std::decay_t<decltype(md.b)>>(md, e, size);
+      detail::polish_penetration(md, e, size);
       r.epa_status = e.status;
       r.epa_iterations = e.iterations;
       n = e.normal;
@@ -131,9 +141,7 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
       r.depth = e.depth + margin;
     }
     save_cache(cache, md, g.simplex);
-    r.normal = apply_rotation(pose_a, n);
-    r.witness_a = apply(pose_a, wa + n * a.margin);
-    r.witness_b = apply(pose_a, wb - n * b.margin);
+    place_witnesses(r, pose_a, n, wa, wb, a.margin, b.margin);
     return r;
   });
 }
