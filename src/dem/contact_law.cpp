@@ -72,6 +72,10 @@ Real effective_modulus(Real e1, Real nu1, Real e2, Real nu2) noexcept {
   return 1 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
 }
 
+Real effective_shear_modulus(Real e1, Real nu1, Real e2, Real nu2) noexcept {
+  return 1 / (2 * (2 - nu1) * (1 + nu1) / e1 + 2 * (2 - nu2) * (1 + nu2) / e2);
+}
+
 Real linear_damping_ratio_for_restitution(Real e) { return calibrate(e, linear_restitution); }
 
 Real linear_damping(Real zeta, Real k, Real m) noexcept { return 2 * zeta * std::sqrt(k * m); }

@@ -26,13 +26,14 @@ Vec3 point_velocity(const World& w, const Body& b, const Vec3& p) {
   return b.fixed ? Vec3{} : b.velocity + cross(angular_velocity_of(w, b), p - b.position);
 }
 
-// Calibrated damping per (law, restitution), computed once.
+// Calibrated damping per (law, restitution), computed once: beta for Hertz,
+// zeta for the linear and volume laws (both dashpots are 2 x damping x sqrt(k m*)).
 Real damping_for(World& w, Real restitution) {
-  const Real key = w.model == ContactModel::Hertz ? restitution : -restitution;
-  const auto it = w.damping_cache.find(key);
-  if (it != w.damping_cache.end()) return it->second;
-  return w.damping_cache[key] = w.model == ContactModel::Hertz ? hertz_damping_for_restitution(restitution)
-                                                               : linear_damping_ratio_for_restitution(restitution);
+  const bool hertz = w.model == ContactModel::Hertz;
+  const auto [it, inserted] = w.damping_cache.try_emplace({hertz, restitution}, 0);
+  if (inserted)
+    it->second = hertz ? hertz_damping_for_restitution(restitution) : linear_damping_ratio_for_restitution(restitution);
+  return it->second;
 }
 
 void apply(Body& b, const Vec3& force, const Vec3& point) {
@@ -69,48 +70,53 @@ void compute_forces(World& w, Real dt) {
     const Material& ma = w.materials[a.material];
     const Material& mb = w.materials[b.material];
     const Real m_eff = effective_mass(a.fixed ? kInf : mass_of(w, a), b.fixed ? kInf : mass_of(w, b));
-    const Real restitution = std::sqrt(ma.restitution * mb.restitution);
-    Vec3 normal, p;       // unit A -> B; where friction and damping act
-    Real magnitude = 0;   // normal force on B along the normal (N)
-    Real depth = 0;       // penetration depth, or for the volume law V / |S_A|
-    Real k_normal = 0;    // dF/d(depth): the normal stiffness the dashpots scale with
+    // Per pair: restitution and friction from both materials, the damping
+    // calibrated for the law once per restitution value.
+    const Real damping = damping_for(w, std::sqrt(ma.restitution * mb.restitution));
+    const Real r_star = effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
+                                         b.fixed ? kInf : w.templates[b.shape].curvature_radius);
+    Vec3 normal, p;      // unit A -> B; where friction and damping act
+    Real depth = 0;      // penetration depth, or for the volume law V / |S_A|
+    Real k_normal = 0;   // linear and volume laws: dF/d(depth), which the dashpots scale with
+    OverlapResult o;  // volume law only
     if (w.model == ContactModel::Volume) {
-      // F = k V along S_A, acting on the line through Feng's point with the
-      // twisting couple: the moment about the origin is (F / |S_A|) M_A. The
-      // dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat contacts (V linear
-      // in the approach) and an approximation otherwise.
-      const OverlapResult o = overlap(sa, pa, sb, pb, w.overlap_work);
+      o = overlap(sa, pa, sb, pb, w.overlap_work);
       if (o.status != OverlapStatus::Overlapping || !o.has_normal) continue;
       const Real area = length(o.area_a);
       normal = o.area_a / area;
       p = o.application_point + normal * dot(o.centroid - o.application_point, normal);  // on the line, level with the centroid
       k_normal = w.volume_stiffness * area;
       depth = o.volume / area;
-      const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), normal);
-      magnitude = linear_normal_force(k_normal, linear_damping(damping_for(w, restitution), k_normal, m_eff), depth, approach);
-      const Vec3 f = normal * magnitude, moment = o.moment_a * (magnitude / area);  // on B, about the world origin
-      b.force += f;
-      b.torque += moment - cross(b.position, f);
-      a.force -= f;
-      a.torque -= moment - cross(a.position, f);
     } else {
       const PenetrationResult r = penetration(sa, pa, sb, pb);
       if (!r.intersect || !(r.depth > 0)) continue;
       normal = r.normal;
       depth = r.depth;
       p = (r.witness_a + r.witness_b) * 0.5;
-      const Real approach = -dot(point_velocity(w, b, p) - point_velocity(w, a, p), normal);
-      if (w.model == ContactModel::Hertz) {
-        const HertzParameters hp{m_eff,
-                                 effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
-                                                  b.fixed ? kInf : w.templates[b.shape].curvature_radius),
-                                 effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
-                                 damping_for(w, restitution)};
-        magnitude = hertz_normal_force(hp, depth, approach);
-      } else {
-        k_normal = w.linear_stiffness;
-        magnitude = linear_normal_force(k_normal, linear_damping(damping_for(w, restitution), k_normal, m_eff), depth, approach);
-      }
+      k_normal = w.linear_stiffness;
+    }
+    const Vec3 v_rel = point_velocity(w, b, p) - point_velocity(w, a, p);  // B relative to A at the contact
+    const Real approach = -dot(v_rel, normal);
+    Real magnitude;  // normal force on B along the normal (N)
+    if (w.model == ContactModel::Hertz) {
+      const HertzParameters hp{m_eff, r_star,
+                               effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
+                               damping};
+      magnitude = hertz_normal_force(hp, depth, approach);
+    } else {
+      magnitude = linear_normal_force(k_normal, linear_damping(damping, k_normal, m_eff), depth, approach);
+    }
+    if (w.model == ContactModel::Volume) {
+      // F = k V along S_A, acting on the line through Feng's point with the
+      // twisting couple: the moment about the origin is (F / |S_A|) M_A. The
+      // dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat contacts (V linear
+      // in the approach) and an approximation otherwise.
+      const Vec3 f = normal * magnitude, moment = o.moment_a * (magnitude / length(o.area_a));
+      b.force += f;
+      b.torque += moment - cross(b.position, f);
+      a.force -= f;
+      a.torque -= moment - cross(a.position, f);
+    } else {
       apply(b, normal * magnitude, p);
       apply(a, normal * -magnitude, p);
     }
@@ -122,27 +128,19 @@ void compute_forces(World& w, Real dt) {
     const Real mu = std::sqrt(ma.friction * mb.friction);
     Vec3 ft;
     if (mu > 0 && magnitude > 0) {
-      const Vec3 v_rel = point_velocity(w, b, p) - point_velocity(w, a, p);  // B relative to A
       const Vec3 v_t = v_rel - normal * dot(v_rel, normal);
       const Real keep = length(hist.spring);
       hist.spring -= normal * dot(hist.spring, normal);  // into the current tangent plane
       if (length(hist.spring) > 0) hist.spring *= keep / length(hist.spring);
       hist.spring += v_t * dt;
-      // Stiffness and dashpot of the tangential spring; the dashpot uses the
-      // normal law's calibrated damping, so sticking contacts do not ring.
-      Real k_t, c_t;
-      const Real damping = damping_for(w, restitution);
-      if (w.model == ContactModel::Hertz) {
-        const Real g_star = 1 / (2 * (2 - ma.poisson_ratio) * (1 + ma.poisson_ratio) / ma.youngs_modulus +
-                                 2 * (2 - mb.poisson_ratio) * (1 + mb.poisson_ratio) / mb.youngs_modulus);
-        const Real r_star = effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
-                                             b.fixed ? kInf : w.templates[b.shape].curvature_radius);
-        k_t = 8 * g_star * std::sqrt(r_star * depth);
-        c_t = 2 * damping * std::sqrt(k_t * m_eff);
-      } else {  // linear and volume laws: 2/7 of the normal stiffness
-        k_t = 2.0 / 7 * k_normal;
-        c_t = linear_damping(damping, k_t, m_eff);
-      }
+      // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
+      // the dashpot uses the normal law's calibrated damping, so sticking
+      // contacts do not ring.
+      const Real k_t = w.model == ContactModel::Hertz
+                           ? 8 * effective_shear_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                                                         mb.poisson_ratio) * std::sqrt(r_star * depth)
+                           : 2.0 / 7 * k_normal;
+      const Real c_t = 2 * damping * std::sqrt(k_t * m_eff);
       ft = hist.spring * -k_t - v_t * c_t;  // on B, opposing its motion relative to A
       const Real cap = mu * magnitude;
       if (length(ft) > cap) {  // sliding: force at the Coulomb limit, the spring holds it

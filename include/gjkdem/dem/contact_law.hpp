@@ -27,6 +27,8 @@ namespace gjkdem {
 Real effective_mass(Real m1, Real m2) noexcept;
 Real effective_radius(Real r1, Real r2) noexcept;
 Real effective_modulus(Real e1, Real nu1, Real e2, Real nu2) noexcept;
+/// Mindlin's 1/G* = 2 (2 - nu1)(1 + nu1)/E1 + 2 (2 - nu2)(1 + nu2)/E2.
+Real effective_shear_modulus(Real e1, Real nu1, Real e2, Real nu2) noexcept;
 
 /// Damping ratio zeta giving restitution e in (0, 1] with the clamped linear
 /// law (bisection on the integrated impact, e to about 1e-6).

@@ -89,7 +89,7 @@ struct World {
   std::vector<BodyPair> candidates;
   OverlapWorkspace overlap_work;       ///< clipping buffers, reused every step
   bool forces_current = false;         ///< body forces belong to the current state
-  std::map<Real, Real> damping_cache;  ///< calibrated damping: +e Hertz beta, -e linear zeta
+  std::map<std::pair<bool, Real>, Real> damping_cache;  ///< (Hertz?, restitution) -> calibrated damping
 };
 
 /// Pose of a body's shape: its principal frame placed in the world, composed
