@@ -214,19 +214,20 @@ Real distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 }
 
 /// Is `inner` entirely inside `outer`? -1 when this cannot be decided exactly.
-int contains(const Shape& outer, const Transform& po, const Shape& inner, const Transform& pi, Real tol) {
+/// Uses the workspace's plane and point buffers (free outside clipping).
+int contains(const Shape& outer, const Transform& po, const Shape& inner, const Transform& pi, Real tol,
+             OverlapWorkspace& w) {
   if (clippable(outer)) {
     // Inside every face plane: the inner shape's support value stays below it.
-    std::vector<Plane> planes;
-    planes_of(outer, po, planes);
-    for (const auto& pl : planes) {
+    planes_of(outer, po, w.planes);
+    for (const auto& pl : w.planes) {
       const Vec3 s = apply(pi, support(inner, apply_inverse_rotation(pi, pl.n)));
       if (dot(pl.n, s) - pl.d > tol) return 0;
     }
     return 1;
   }
   const bool point_core = std::holds_alternative<Point>(outer.core), seg_core = std::holds_alternative<Segment>(outer.core);
-  std::vector<Vec3> pts;
+  std::vector<Vec3>& pts = w.cap;
   if ((point_core || seg_core) && core_points(inner, pi, pts)) {
     // Distance to a convex core is convex: its maximum over the inner core is at a corner.
     Real worst = 0;
@@ -371,7 +372,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     const Transform& pi = k ? pose_b : pose_a;
     Real vol;
     Vec3 c;
-    if (contains(outer, po, inner, pi, tol) == 1 && volume_of(inner, pi, vol, c)) {
+    if (contains(outer, po, inner, pi, tol, w) == 1 && volume_of(inner, pi, vol, c)) {
       r.status = vol > 0 ? OverlapStatus::Overlapping : OverlapStatus::Empty;
       r.volume = vol;
       r.centroid = c;
