@@ -27,17 +27,9 @@ Face best_face(const Shape& s, const Transform& pose, const Vec3& dir) {
     for (int k = 1; k < 3; ++k)
       if (std::fabs(local[k]) > std::fabs(local[axis])) axis = k;
     const Real sign = local[axis] >= 0 ? 1 : -1;
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    const Real cu[4] = {-1, 1, 1, -1}, cw[4] = {-1, -1, 1, 1};
-    for (int k = 0; k < 4; ++k) {
-      Vec3 p;
-      p[axis] = sign * b->half_extents[axis];
-      // Counter-clockwise seen from outside: flip the winding on the negative side.
-      const int j = sign > 0 ? k : 3 - k;
-      p[u] = cu[j] * b->half_extents[u];
-      p[w] = cw[j] * b->half_extents[w];
-      f.v[f.n++] = apply(pose, p);
-    }
+    Vec3 corners[4];
+    box_face(*b, axis, sign, corners);
+    for (const Vec3& c : corners) f.v[f.n++] = apply(pose, c);
     Vec3 n;
     n[axis] = sign;
     f.normal = apply_rotation(pose, n);

@@ -48,14 +48,12 @@ void append_faces(const Shape& s, const Transform& to, std::vector<Vec3>& pts, s
     const auto& v = p->data->vertices;
     for (const auto& t : p->data->triangles) add({v[t[0]], v[t[1]], v[t[2]]});
   } else if (const auto* bx = std::get_if<Box>(&s.core)) {
-    const Vec3 h = bx->half_extents;
-    auto c = [&](int sx, int sy, int sz) { return Vec3{sx * h.x, sy * h.y, sz * h.z}; };
-    add({c(1, -1, -1), c(1, 1, -1), c(1, 1, 1), c(1, -1, 1)});
-    add({c(-1, -1, -1), c(-1, -1, 1), c(-1, 1, 1), c(-1, 1, -1)});
-    add({c(-1, 1, -1), c(-1, 1, 1), c(1, 1, 1), c(1, 1, -1)});
-    add({c(-1, -1, -1), c(1, -1, -1), c(1, -1, 1), c(-1, -1, 1)});
-    add({c(-1, -1, 1), c(1, -1, 1), c(1, 1, 1), c(-1, 1, 1)});
-    add({c(-1, -1, -1), c(-1, 1, -1), c(1, 1, -1), c(1, -1, -1)});
+    for (int axis = 0; axis < 3; ++axis)
+      for (Real sign : {Real(1), Real(-1)}) {
+        Vec3 c[4];
+        box_face(*bx, axis, sign, c);
+        add({c[0], c[1], c[2], c[3]});
+      }
   }
 }
 
