@@ -77,126 +77,8 @@ TEST(World, ChungOoiTest2RestitutionOutEqualsIn) {
   }
 }
 
-// The volume law with a cube landing flat: V = A delta, so F = k A delta is a
-// linear spring: contact time pi sqrt(m / (k A)), peak overlap v sqrt(m / (k A)),
-// and the undamped law gives it back all its speed.
-TEST(World, VolumeLawCubeLandingFlat) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.gravity = {};
-  w.volume_stiffness = 1e9;  // N/m^3
-  w.materials.push_back({"rock", 2500, 1e7, 0.25, 1.0, 0});
-  w.templates.push_back(make_template(Shape{Box{{0.01, 0.01, 0.01}}}));
-  w.templates.push_back(make_template(Shape{Box{{0.1, 0.1, 0.01}}}));
-  Body floor;
-  floor.id = 1;
-  floor.shape = 1;
-  floor.fixed = true;
-  floor.position = {0, 0, -0.01};
-  Body cube;
-  cube.id = 2;
-  cube.shape = 0;
-  cube.position = {0.003, -0.002, 0.01 + 1e-9};
-  cube.velocity = {0, 0, -0.5};
-  w.bodies = {floor, cube};
-  const double m = 2500 * 8e-6, area = 4e-4, k = 1e9 * area;
-  const double t_c = 3.14159265358979323846 * std::sqrt(m / k), d_max = 0.5 * std::sqrt(m / k);
-  double peak = 0, t_start = -1, duration = 0;
-  for (int i = 0; i < 200000 && duration == 0; ++i) {
-    step(w, t_c / 2000);
-    const double overlap = 0.01 - w.bodies[1].position.z;
-    if (overlap > 0 && t_start < 0) t_start = w.time;
-    if (t_start >= 0 && overlap <= 0) duration = w.time - t_start;
-    peak = std::fmax(peak, overlap);
-  }
-  EXPECT_NEAR(duration / t_c, 1.0, 0.02);
-  EXPECT_NEAR(peak / d_max, 1.0, 0.02);
-  EXPECT_NEAR(w.bodies[1].velocity.z, 0.5, 0.005);
-  // Landing flat, the force acts through the face centre: no spin.
-  EXPECT_LT(length(w.bodies[1].angular_momentum), 1e-12);
-}
-
-// Landing on an edge (the cube turned 45 degrees about x): the overlap is a
-// prism of cross-section delta^2, V = L delta^2, so m x'' = -k L x^2. Energy
-// gives delta_max = (3 m v^2 / (2 k L))^(1/3) and the contact lasts
-// 2 delta_max / v * B(1/3, 1/2) / 3 = 2.80436 delta_max / v.
-TEST(World, VolumeLawCubeLandingOnAnEdge) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.gravity = {};
-  w.volume_stiffness = 1e9;
-  w.materials.push_back({"rock", 2500, 1e7, 0.25, 1.0, 0});
-  w.templates.push_back(make_template(Shape{Box{{0.01, 0.01, 0.01}}}));
-  w.templates.push_back(make_template(Shape{Box{{0.1, 0.1, 0.01}}}));
-  Body floor;
-  floor.id = 1;
-  floor.shape = 1;
-  floor.fixed = true;
-  floor.position = {0, 0, -0.01};
-  Body cube;
-  cube.id = 2;
-  cube.shape = 0;
-  const double half_diag = 0.01 * std::sqrt(2.0);
-  cube.orientation = quat_from_axis_angle({1, 0, 0}, 3.14159265358979323846 / 4);
-  cube.position = {0, 0, half_diag + 1e-9};
-  cube.velocity = {0, 0, -0.5};
-  w.bodies = {floor, cube};
-  const double m = 2500 * 8e-6, kl = 1e9 * 0.02, v = 0.5;
-  const double d_max = std::cbrt(3 * m * v * v / (2 * kl)), t_c = 2.80436 * d_max / v;
-  double peak = 0, t_start = -1, duration = 0;
-  for (int i = 0; i < 200000 && duration == 0; ++i) {
-    step(w, t_c / 4000);
-    const double overlap = half_diag - w.bodies[1].position.z;
-    if (overlap > 0 && t_start < 0) t_start = w.time;
-    if (t_start >= 0 && overlap <= 0) duration = w.time - t_start;
-    peak = std::fmax(peak, overlap);
-  }
-  EXPECT_NEAR(duration / t_c, 1.0, 0.02);
-  EXPECT_NEAR(peak / d_max, 1.0, 0.02);
-  EXPECT_NEAR(w.bodies[1].velocity.z, v, 0.01 * v);
-}
-
-// Landing on a vertex (the body diagonal vertical): the overlap is a corner
-// tetrahedron with edges sqrt(3) delta, V = (sqrt(3)/2) delta^3, so
-// m x'' = -c x^3 with c = k sqrt(3)/2: delta_max = (2 m v^2 / c)^(1/4) and the
-// contact lasts 2 delta_max / v * 1.311029 (the integral of (1 - u^4)^(-1/2)).
-TEST(World, VolumeLawCubeLandingOnAVertex) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.gravity = {};
-  w.volume_stiffness = 1e11;
-  w.materials.push_back({"rock", 2500, 1e7, 0.25, 1.0, 0});
-  w.templates.push_back(make_template(Shape{Box{{0.01, 0.01, 0.01}}}));
-  w.templates.push_back(make_template(Shape{Box{{0.1, 0.1, 0.01}}}));
-  Body floor;
-  floor.id = 1;
-  floor.shape = 1;
-  floor.fixed = true;
-  floor.position = {0, 0, -0.01};
-  Body cube;
-  cube.id = 2;
-  cube.shape = 0;
-  const Vec3 diag = normalized(Vec3{-1, -1, -1});  // the corner (-1,-1,-1) points down
-  cube.orientation = quat_from_axis_angle(normalized(cross(diag, {0, 0, -1})), std::acos(dot(diag, {0, 0, -1})));
-  const double half_diag = 0.01 * std::sqrt(3.0);
-  cube.position = {0, 0, half_diag + 1e-9};
-  cube.velocity = {0, 0, -0.5};
-  w.bodies = {floor, cube};
-  const double m = 2500 * 8e-6, c = 1e11 * std::sqrt(3.0) / 2, v = 0.5;
-  const double d_max = std::pow(2 * m * v * v / c, 0.25), t_c = 2 * 1.311029 * d_max / v;
-  double peak = 0, t_start = -1, duration = 0;
-  for (int i = 0; i < 200000 && duration == 0; ++i) {
-    step(w, t_c / 4000);
-    const double overlap = half_diag - w.bodies[1].position.z;
-    if (overlap > 0 && t_start < 0) t_start = w.time;
-    if (t_start >= 0 && overlap <= 0) duration = w.time - t_start;
-    peak = std::fmax(peak, overlap);
-  }
-  EXPECT_NEAR(duration / t_c, 1.0, 0.02);
-  EXPECT_NEAR(peak / d_max, 1.0, 0.02);
-  EXPECT_NEAR(w.bodies[1].velocity.z, v, 0.01 * v);
-}
-
+// A cube of half-size 0.01 m on a large fixed floor under the volume law
+// (k = 1e9 N/m^3 unless changed), resting at its static overlap.
 World cube_on_floor(double restitution, double friction, const Vec3& gravity) {
   World w;
   w.model = ContactModel::Volume;
@@ -216,6 +98,78 @@ World cube_on_floor(double restitution, double friction, const Vec3& gravity) {
   cube.position = {0, 0, 0.01 - 2500 * 8e-6 * -gravity.z / (1e9 * 4e-4)};  // resting overlap
   w.bodies = {floor, cube};
   return w;
+}
+
+struct Landing {
+  double peak = 0, duration = 0, rebound_speed = 0, spin = 0;
+};
+
+// Drops the cube of `w` (no gravity, undamped) at 0.5 m/s with the given
+// orientation, its lowest point 1e-9 m above the floor (`height` = centre
+// height at first touch), and records the first contact.
+Landing land(World w, const Quat& orientation, const Vec3& offset, double height, double dt) {
+  w.gravity = {};
+  Body& cube = w.bodies[1];
+  cube.orientation = orientation;
+  cube.position = offset + Vec3{0, 0, height + 1e-9};
+  cube.velocity = {0, 0, -0.5};
+  Landing r;
+  double t_start = -1;
+  for (int i = 0; i < 200000 && r.duration == 0; ++i) {
+    step(w, dt);
+    const double overlap = height - w.bodies[1].position.z;
+    if (overlap > 0 && t_start < 0) t_start = w.time;
+    if (t_start >= 0 && overlap <= 0) r.duration = w.time - t_start;
+    r.peak = std::fmax(r.peak, overlap);
+  }
+  r.rebound_speed = w.bodies[1].velocity.z;
+  r.spin = length(w.bodies[1].angular_momentum);
+  return r;
+}
+
+// The volume law with a cube landing flat: V = A delta, so F = k A delta is a
+// linear spring: contact time pi sqrt(m / (k A)), peak overlap v sqrt(m / (k A)),
+// and the undamped law gives it back all its speed.
+TEST(World, VolumeLawCubeLandingFlat) {
+  const double m = 2500 * 8e-6, area = 4e-4, k = 1e9 * area;
+  const double t_c = 3.14159265358979323846 * std::sqrt(m / k), d_max = 0.5 * std::sqrt(m / k);
+  const Landing r = land(cube_on_floor(1.0, 0, {}), {}, {0.003, -0.002, 0}, 0.01, t_c / 2000);
+  EXPECT_NEAR(r.duration / t_c, 1.0, 0.02);
+  EXPECT_NEAR(r.peak / d_max, 1.0, 0.02);
+  EXPECT_NEAR(r.rebound_speed, 0.5, 0.005);
+  // Landing flat, the force acts through the face centre: no spin.
+  EXPECT_LT(r.spin, 1e-12);
+}
+
+// Landing on an edge (the cube turned 45 degrees about x): the overlap is a
+// prism of cross-section delta^2, V = L delta^2, so m x'' = -k L x^2. Energy
+// gives delta_max = (3 m v^2 / (2 k L))^(1/3) and the contact lasts
+// 2 delta_max / v * B(1/3, 1/2) / 3 = 2.80436 delta_max / v.
+TEST(World, VolumeLawCubeLandingOnAnEdge) {
+  const double m = 2500 * 8e-6, kl = 1e9 * 0.02, v = 0.5;
+  const double d_max = std::cbrt(3 * m * v * v / (2 * kl)), t_c = 2.80436 * d_max / v;
+  const Landing r = land(cube_on_floor(1.0, 0, {}), quat_from_axis_angle({1, 0, 0}, 3.14159265358979323846 / 4), {},
+                         0.01 * std::sqrt(2.0), t_c / 4000);
+  EXPECT_NEAR(r.duration / t_c, 1.0, 0.02);
+  EXPECT_NEAR(r.peak / d_max, 1.0, 0.02);
+  EXPECT_NEAR(r.rebound_speed, v, 0.01 * v);
+}
+
+// Landing on a vertex (the body diagonal vertical): the overlap is a corner
+// tetrahedron with edges sqrt(3) delta, V = (sqrt(3)/2) delta^3, so
+// m x'' = -c x^3 with c = k sqrt(3)/2: delta_max = (2 m v^2 / c)^(1/4) and the
+// contact lasts 2 delta_max / v * 1.311029 (the integral of (1 - u^4)^(-1/2)).
+TEST(World, VolumeLawCubeLandingOnAVertex) {
+  World w = cube_on_floor(1.0, 0, {});
+  w.volume_stiffness = 1e11;
+  const double m = 2500 * 8e-6, c = 1e11 * std::sqrt(3.0) / 2, v = 0.5;
+  const double d_max = std::pow(2 * m * v * v / c, 0.25), t_c = 2 * 1.311029 * d_max / v;
+  const Vec3 diag = normalized(Vec3{-1, -1, -1});  // the corner (-1,-1,-1) points down
+  const Quat corner_down = quat_from_axis_angle(normalized(cross(diag, {0, 0, -1})), std::acos(dot(diag, {0, 0, -1})));
+  const Landing r = land(w, corner_down, {}, 0.01 * std::sqrt(3.0), t_c / 4000);
+  EXPECT_NEAR(r.duration / t_c, 1.0, 0.02);
+  EXPECT_NEAR(r.peak / d_max, 1.0, 0.02);
+  EXPECT_NEAR(r.rebound_speed, v, 0.01 * v);
 }
 
 TEST(World, VolumeLawDampingGivesTheRestitution) {
