@@ -96,6 +96,12 @@ inline constexpr Real kManifoldFaceCos = 0.95;
 inline constexpr Real kContactMergeRelDist = 1e-3;
 inline constexpr Real kContactMergeCos = 0.999;
 
+/// DEM wall meshes: contacts of one body with pieces of one wall whose normals
+/// agree within this cosine (about 25 degrees) and lie within the body's
+/// radius are one contact. Looser than kContactMergeCos because the normals of
+/// a body straddling two coplanar triangles tilt near the shared edge.
+inline constexpr Real kWallMergeCos = 0.9;
+
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;

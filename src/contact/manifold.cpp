@@ -137,7 +137,8 @@ ContactManifold contact_manifold(const Shape& a, const Transform& pose_a, const 
   return m;
 }
 
-std::vector<ContactPoint> cluster_contacts(std::span<const ContactPoint> contacts, Real merge_distance, Real merge_cos) {
+std::vector<ContactPoint> cluster_contacts(std::span<const ContactPoint> contacts, Real merge_distance, Real merge_cos,
+                                           std::vector<int>* cluster_of) {
   struct Cluster {
     ContactPoint deepest;  // normal and depth of the cluster
     Vec3 anchor;           // first point: the merge test is against it
@@ -146,6 +147,7 @@ std::vector<ContactPoint> cluster_contacts(std::span<const ContactPoint> contact
     int count = 0;
   };
   std::vector<Cluster> clusters;
+  if (cluster_of) cluster_of->clear();
   for (const ContactPoint& c : contacts) {
     Cluster* hit = nullptr;
     for (Cluster& k : clusters)
@@ -161,6 +163,7 @@ std::vector<ContactPoint> cluster_contacts(std::span<const ContactPoint> contact
     hit->sum_w += w;
     hit->sum_p += c.point;
     ++hit->count;
+    if (cluster_of) cluster_of->push_back(static_cast<int>(hit - clusters.data()));
   }
   std::vector<ContactPoint> out;
   for (const Cluster& k : clusters) {

@@ -1,18 +1,47 @@
 #include "gjkdem/dem/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/contact/manifold.hpp"
 #include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/dem/contact_law.hpp"
+#include "gjkdem/dem/half_space.hpp"
 #include "gjkdem/dem/rigid_rotation.hpp"
+#include "gjkdem/tolerances.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace gjkdem::dem {
 namespace {
 
 constexpr Real kPi = 3.14159265358979323846;
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+// One candidate contact: a pair of bodies (a, b) or a plane wall a and body b.
+// The narrow phase fills the geometry, the force law the rest; each slot is
+// written by one thread only.
+struct Contact {
+  std::uint32_t a = 0, b = 0;
+  bool a_is_plane = false;
+  int cache = -1;          // index into World::pair_caches, -1: none
+  bool active = false;     // touching, after merging
+  // Geometry.
+  Vec3 normal;             // unit, a -> b
+  Vec3 point;              // where friction and damping act
+  Real depth = 0;          // penetration depth, or V / |S_A| for the volume law
+  Real area = 0;           // |S_A| (volume law)
+  Vec3 moment;             // moment about the world origin of a unit normal force on b
+  // Force law.
+  Vec3 force;              // on b
+  Vec3 torque;             // on b, about the world origin
+  Vec3 spring;             // new tangential spring
+  Real elastic = 0;        // energy stored in the contact (J)
+};
 
 Vec3 principal_moments(const World& w, const Body& b) {
   return w.templates[b.shape].principal.moments * w.materials[b.material].density;
@@ -26,8 +55,9 @@ Vec3 point_velocity(const World& w, const Body& b, const Vec3& p) {
   return b.fixed ? Vec3{} : b.velocity + cross(angular_velocity_of(w, b), p - b.position);
 }
 
-// Calibrated damping per (law, restitution), computed once: beta for Hertz,
-// zeta for the linear and volume laws (both dashpots are 2 x damping x sqrt(k m*)).
+// Calibrated damping per (law, restitution): beta for Hertz, zeta for the
+// linear and volume laws (both dashpots are 2 x damping x sqrt(k m*)).
+// Filled before the parallel part, read-only inside it.
 Real damping_for(World& w, Real restitution) {
   const bool hertz = w.model == ContactModel::Hertz;
   const auto [it, inserted] = w.damping_cache.try_emplace({hertz, restitution}, 0);
@@ -36,122 +66,304 @@ Real damping_for(World& w, Real restitution) {
   return it->second;
 }
 
-void apply(Body& b, const Vec3& force, const Vec3& point) {
-  b.force += force;
-  b.torque += cross(point - b.position, force);
+Real pair_restitution(const Material& ma, const Material& mb) { return std::sqrt(ma.restitution * mb.restitution); }
+
+int thread_count(const World& w) {
+#ifdef _OPENMP
+  return w.threads > 0 ? w.threads : omp_get_max_threads();
+#else
+  (void)w;
+  return 1;
+#endif
 }
 
-ContactHistory& history_of(Body& owner, std::uint64_t other) {
-  for (ContactHistory& h : owner.history)
-    if (h.other == other) return h;
-  owner.history.push_back({other, {}, false});
-  return owner.history.back();
+int thread_id() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+const Material& material_a(const World& w, const Contact& c) {
+  return w.materials[c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material];
+}
+
+// The pair caches follow the sorted candidate list: entries of pairs that are
+// still candidates are kept, new pairs start cold.
+void align_pair_caches(World& w) {
+  std::vector<PairCache> next(w.candidates.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < w.candidates.size(); ++i) {
+    while (k < w.pair_caches.size() && w.pair_caches[k].pair < w.candidates[i]) ++k;
+    next[i] = k < w.pair_caches.size() && w.pair_caches[k].pair == w.candidates[i] ? w.pair_caches[k]
+                                                                                  : PairCache{w.candidates[i], {}};
+  }
+  w.pair_caches.swap(next);
+}
+
+void narrow_phase(World& w, Contact& c) {
+  const Body& b = w.bodies[c.b];
+  const Shape& sb = w.templates[b.shape].shape;
+  const Transform pb = shape_pose(w, b);
+  if (c.a_is_plane) {
+    const PlaneWall& wall = w.planes[c.a];
+    const HalfSpaceContact h = half_space_contact(sb, pb, wall.point, wall.normal);
+    if (!h.touching) return;
+    c.normal = wall.normal;
+    if (w.model == ContactModel::Volume) {
+      if (!h.has_volume || !(h.area > 0) || !(h.volume > 0)) return;
+      c.area = h.area;
+      c.depth = h.volume / h.area;
+      c.point = h.face_centroid;
+    } else {
+      if (!(h.depth > 0)) return;
+      c.depth = h.depth;
+      // A flat face on the wall pushes at its middle, not at one corner.
+      c.point = h.has_volume && h.area > 0 ? h.face_centroid : h.deepest + wall.normal * (h.depth / 2);
+    }
+    c.moment = cross(c.point, c.normal);
+    c.active = true;
+    return;
+  }
+  const Body& a = w.bodies[c.a];
+  const Shape& sa = w.templates[a.shape].shape;
+  const Transform pa = shape_pose(w, a);
+  GjkCache* cache = c.cache >= 0 ? &w.pair_caches[c.cache].gjk : nullptr;
+  if (w.model == ContactModel::Volume) {
+    if (!intersect(sa, pa, sb, pb, cache)) return;
+    const OverlapResult o = overlap(sa, pa, sb, pb, w.overlap_work[thread_id()]);
+    if (o.status != OverlapStatus::Overlapping || !o.has_normal) return;
+    c.area = length(o.area_a);
+    if (!(c.area > 0)) return;
+    c.normal = o.area_a / c.area;
+    // Feng's line of action, level with the centroid; the moment carries the
+    // twisting couple: about the origin it is (F / |S_A|) M_A.
+    c.point = o.application_point + c.normal * dot(o.centroid - o.application_point, c.normal);
+    c.depth = o.volume / c.area;
+    c.moment = o.moment_a / c.area;
+  } else {
+    const PenetrationResult r = penetration(sa, pa, sb, pb, cache);
+    if (!r.intersect || !(r.depth > 0)) return;
+    c.normal = r.normal;
+    c.depth = r.depth;
+    c.point = (r.witness_a + r.witness_b) * 0.5;
+    c.moment = cross(c.point, c.normal);
+  }
+  c.active = true;
+}
+
+// Under the penetration laws a body touching several pieces of one wall (the
+// triangles of a mesh, the slabs of a box) gets one contact per cluster of
+// nearby, like-facing contacts: the deepest piece carries it.
+void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
+  struct Key {
+    std::uint32_t body, group;
+    std::size_t index;
+  };
+  std::vector<Key> keys;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (!c.active || c.a_is_plane) continue;
+    const Body& a = w.bodies[c.a];
+    const Body& b = w.bodies[c.b];
+    if (a.group > 0 && !b.fixed) keys.push_back({c.b, a.group, k});
+    else if (b.group > 0 && !a.fixed) keys.push_back({c.a, b.group, k});
+  }
+  std::stable_sort(keys.begin(), keys.end(),
+                   [](const Key& x, const Key& y) { return std::pair(x.body, x.group) < std::pair(y.body, y.group); });
+  std::vector<ContactPoint> points;
+  std::vector<int> cluster_of;
+  for (std::size_t begin = 0; begin < keys.size();) {
+    std::size_t end = begin + 1;
+    while (end < keys.size() && keys[end].body == keys[begin].body && keys[end].group == keys[begin].group) ++end;
+    if (end - begin > 1) {
+      points.clear();
+      for (std::size_t k = begin; k < end; ++k) {
+        const Contact& c = contacts[keys[k].index];
+        const bool wall_is_a = c.b == keys[k].body;
+        points.push_back({c.point, wall_is_a ? c.normal : -c.normal, c.depth});  // normals wall -> body
+      }
+      const Real size = w.templates[w.bodies[keys[begin].body].shape].curvature_radius;
+      const std::vector<ContactPoint> merged = cluster_contacts(points, size, kWallMergeCos, &cluster_of);
+      for (std::size_t m = 0; m < merged.size(); ++m) {
+        std::size_t carrier = 0;  // the deepest member carries the cluster (and its history)
+        Real deepest = -kInf;
+        for (std::size_t k = begin; k < end; ++k)
+          if (cluster_of[k - begin] == static_cast<int>(m) && contacts[keys[k].index].depth > deepest) {
+            deepest = contacts[keys[k].index].depth;
+            carrier = keys[k].index;
+          }
+        for (std::size_t k = begin; k < end; ++k)
+          if (cluster_of[k - begin] == static_cast<int>(m) && keys[k].index != carrier) contacts[keys[k].index].active = false;
+        Contact& c = contacts[carrier];
+        const bool wall_is_a = c.b == keys[begin].body;
+        c.point = merged[m].point;
+        c.depth = merged[m].depth;
+        c.normal = wall_is_a ? merged[m].normal : -merged[m].normal;
+        c.moment = cross(c.point, c.normal);
+      }
+    }
+    begin = end;
+  }
+}
+
+Vec3 find_spring(const World& w, const Contact& c) {
+  const Body& b = w.bodies[c.b];
+  const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
+  const Body* owner = &b;
+  std::uint64_t other = id_a;
+  if (!c.a_is_plane && id_a < b.id) {
+    owner = &w.bodies[c.a];
+    other = b.id;
+  }
+  for (const ContactHistory& h : owner->history)
+    if (h.other == other) return h.spring;
+  return {};
+}
+
+void force_law(const World& w, Contact& c, Real dt) {
+  const Body& b = w.bodies[c.b];
+  const Body* a = c.a_is_plane ? nullptr : &w.bodies[c.a];
+  const Material& ma = material_a(w, c);
+  const Material& mb = w.materials[b.material];
+  const bool a_fixed = !a || a->fixed;
+  const Real m_eff = effective_mass(a_fixed ? kInf : mass_of(w, *a), b.fixed ? kInf : mass_of(w, b));
+  const Real damping = w.damping_cache.at({w.model == ContactModel::Hertz, pair_restitution(ma, mb)});
+  const Real r_star = effective_radius(a_fixed ? kInf : w.templates[a->shape].curvature_radius,
+                                       b.fixed ? kInf : w.templates[b.shape].curvature_radius);
+  const Real e_star = effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio);
+  const Vec3 v_rel = point_velocity(w, b, c.point) - (a ? point_velocity(w, *a, c.point) : Vec3{});  // b relative to a
+  const Real approach = -dot(v_rel, c.normal);
+  Real magnitude, k_normal = 0;  // normal force on b; dF/d(depth) for the linear and volume laws
+  if (w.model == ContactModel::Hertz) {
+    magnitude = hertz_normal_force({m_eff, r_star, e_star, damping}, c.depth, approach);
+    c.elastic = 8.0 / 15 * e_star * std::sqrt(r_star) * std::pow(c.depth, 2.5);
+  } else {
+    if (w.model == ContactModel::Volume)
+      k_normal = (w.volume_stiffness > 0 ? w.volume_stiffness : e_star / r_star) * c.area;
+    else
+      k_normal = w.linear_stiffness > 0 ? w.linear_stiffness : e_star * r_star;
+    // The volume law's dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat
+    // contacts (V linear in the approach) and an approximation otherwise.
+    magnitude = linear_normal_force(k_normal, linear_damping(damping, k_normal, m_eff), c.depth, approach);
+    c.elastic = 0.5 * k_normal * c.depth * c.depth;
+  }
+  // Tangential spring: advance by the relative tangential motion, keep it in
+  // the tangent plane, cap it at mu F_n.
+  const Real mu = std::sqrt(ma.friction * mb.friction);
+  Vec3 ft;
+  c.spring = {};
+  if (mu > 0 && magnitude > 0) {
+    const Vec3 v_t = v_rel - c.normal * dot(v_rel, c.normal);
+    Vec3 spring = find_spring(w, c);
+    const Real keep = length(spring);
+    spring -= c.normal * dot(spring, c.normal);  // into the current tangent plane
+    if (length(spring) > 0) spring *= keep / length(spring);
+    spring += v_t * dt;
+    // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
+    // the dashpot uses the normal law's calibrated damping, so sticking
+    // contacts do not ring.
+    const Real k_t = w.model == ContactModel::Hertz
+                         ? 8 * effective_shear_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
+                                                       mb.poisson_ratio) * std::sqrt(r_star * c.depth)
+                         : 2.0 / 7 * k_normal;
+    const Real c_t = 2 * damping * std::sqrt(k_t * m_eff);
+    ft = spring * -k_t - v_t * c_t;  // on b, opposing its motion relative to a
+    const Real cap = mu * magnitude;
+    if (length(ft) > cap) {  // sliding: force at the Coulomb limit, the spring holds it
+      ft *= cap / length(ft);
+      spring = ft / -k_t;
+    }
+    c.spring = spring;
+    c.elastic += 0.5 * k_t * dot(spring, spring);
+  }
+  c.force = c.normal * magnitude + ft;
+  c.torque = c.moment * magnitude + cross(c.point, ft);
+}
+
+void store_spring(World& w, const Contact& c) {
+  Body& b = w.bodies[c.b];
+  const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
+  Body* owner = &b;
+  std::uint64_t other = id_a;
+  if (!c.a_is_plane && id_a < b.id) {
+    owner = &w.bodies[c.a];
+    other = b.id;
+  }
+  for (ContactHistory& h : owner->history)
+    if (h.other == other) {
+      h.spring = c.spring;
+      h.touched = true;
+      return;
+    }
+  owner->history.push_back({other, c.spring, true});
 }
 
 // dt: time since the last evaluation, for the tangential springs (0 at the start).
 void compute_forces(World& w, Real dt) {
-  for (Body& b : w.bodies)
-    for (ContactHistory& h : b.history) h.touched = false;
-  for (Body& b : w.bodies) {
+  const int threads = thread_count(w);
+  if (static_cast<int>(w.overlap_work.size()) < threads) w.overlap_work.resize(threads);
+  const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
+  w.boxes.resize(w.bodies.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Body& b = w.bodies[i];
     b.force = b.fixed ? Vec3{} : w.gravity * mass_of(w, b);
     b.torque = {};
+    for (ContactHistory& h : b.history) h.touched = false;
+    w.boxes[i] = aabb(w.templates[b.shape].shape, shape_pose(w, b));
   }
-  w.boxes.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    w.boxes[i] = aabb(w.templates[w.bodies[i].shape].shape, shape_pose(w, w.bodies[i]));
   overlapping_pairs(w.boxes, w.sweep_order, w.candidates);
-  for (const auto& [i, j] : w.candidates) {
-    Body& a = w.bodies[i];
-    Body& b = w.bodies[j];
-    if (a.fixed && b.fixed) continue;
-    const Shape& sa = w.templates[a.shape].shape;
-    const Shape& sb = w.templates[b.shape].shape;
-    const Transform pa = shape_pose(w, a), pb = shape_pose(w, b);
-    const Material& ma = w.materials[a.material];
-    const Material& mb = w.materials[b.material];
-    const Real m_eff = effective_mass(a.fixed ? kInf : mass_of(w, a), b.fixed ? kInf : mass_of(w, b));
-    // Per pair: restitution and friction from both materials, the damping
-    // calibrated for the law once per restitution value.
-    const Real damping = damping_for(w, std::sqrt(ma.restitution * mb.restitution));
-    const Real r_star = effective_radius(a.fixed ? kInf : w.templates[a.shape].curvature_radius,
-                                         b.fixed ? kInf : w.templates[b.shape].curvature_radius);
-    Vec3 normal, p;      // unit A -> B; where friction and damping act
-    Real depth = 0;      // penetration depth, or for the volume law V / |S_A|
-    Real k_normal = 0;   // linear and volume laws: dF/d(depth), which the dashpots scale with
-    OverlapResult o;  // volume law only
-    if (w.model == ContactModel::Volume) {
-      o = overlap(sa, pa, sb, pb, w.overlap_work);
-      if (o.status != OverlapStatus::Overlapping || !o.has_normal) continue;
-      const Real area = length(o.area_a);
-      normal = o.area_a / area;
-      p = o.application_point + normal * dot(o.centroid - o.application_point, normal);  // on the line, level with the centroid
-      k_normal = w.volume_stiffness * area;
-      depth = o.volume / area;
-    } else {
-      const PenetrationResult r = penetration(sa, pa, sb, pb);
-      if (!r.intersect || !(r.depth > 0)) continue;
-      normal = r.normal;
-      depth = r.depth;
-      p = (r.witness_a + r.witness_b) * 0.5;
-      k_normal = w.linear_stiffness;
-    }
-    const Vec3 v_rel = point_velocity(w, b, p) - point_velocity(w, a, p);  // B relative to A at the contact
-    const Real approach = -dot(v_rel, normal);
-    Real magnitude;  // normal force on B along the normal (N)
-    if (w.model == ContactModel::Hertz) {
-      const HertzParameters hp{m_eff, r_star,
-                               effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio),
-                               damping};
-      magnitude = hertz_normal_force(hp, depth, approach);
-    } else {
-      magnitude = linear_normal_force(k_normal, linear_damping(damping, k_normal, m_eff), depth, approach);
-    }
-    if (w.model == ContactModel::Volume) {
-      // F = k V along S_A, acting on the line through Feng's point with the
-      // twisting couple: the moment about the origin is (F / |S_A|) M_A. The
-      // dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat contacts (V linear
-      // in the approach) and an approximation otherwise.
-      const Vec3 f = normal * magnitude, moment = o.moment_a * (magnitude / length(o.area_a));
-      b.force += f;
-      b.torque += moment - cross(b.position, f);
-      a.force -= f;
-      a.torque -= moment - cross(a.position, f);
-    } else {
-      apply(b, normal * magnitude, p);
-      apply(a, normal * -magnitude, p);
-    }
-    // Tangential spring: advance by the relative tangential motion, keep it in
-    // the tangent plane, cap it at mu F_n.
-    Body& owner = a.id < b.id ? a : b;
-    ContactHistory& hist = history_of(owner, a.id < b.id ? b.id : a.id);
-    hist.touched = true;
-    const Real mu = std::sqrt(ma.friction * mb.friction);
-    Vec3 ft;
-    if (mu > 0 && magnitude > 0) {
-      const Vec3 v_t = v_rel - normal * dot(v_rel, normal);
-      const Real keep = length(hist.spring);
-      hist.spring -= normal * dot(hist.spring, normal);  // into the current tangent plane
-      if (length(hist.spring) > 0) hist.spring *= keep / length(hist.spring);
-      hist.spring += v_t * dt;
-      // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
-      // the dashpot uses the normal law's calibrated damping, so sticking
-      // contacts do not ring.
-      const Real k_t = w.model == ContactModel::Hertz
-                           ? 8 * effective_shear_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus,
-                                                         mb.poisson_ratio) * std::sqrt(r_star * depth)
-                           : 2.0 / 7 * k_normal;
-      const Real c_t = 2 * damping * std::sqrt(k_t * m_eff);
-      ft = hist.spring * -k_t - v_t * c_t;  // on B, opposing its motion relative to A
-      const Real cap = mu * magnitude;
-      if (length(ft) > cap) {  // sliding: force at the Coulomb limit, the spring holds it
-        ft *= cap / length(ft);
-        hist.spring = ft / -k_t;
+  align_pair_caches(w);
+
+  std::vector<Contact> contacts;
+  contacts.reserve(w.candidates.size() + w.planes.size() * w.bodies.size());
+  for (std::size_t k = 0; k < w.candidates.size(); ++k) {
+    const auto [i, j] = w.candidates[k];
+    if (w.bodies[i].fixed && w.bodies[j].fixed) continue;
+    Contact c;
+    c.a = i;
+    c.b = j;
+    c.cache = static_cast<int>(k);
+    contacts.push_back(c);
+  }
+  for (std::uint32_t p = 0; p < w.planes.size(); ++p)
+    for (std::uint32_t i = 0; i < w.bodies.size(); ++i)
+      if (!w.bodies[i].fixed) {
+        Contact c;
+        c.a = p;
+        c.b = i;
+        c.a_is_plane = true;
+        contacts.push_back(c);
       }
-    } else {
-      hist.spring = {};
+  for (const Contact& c : contacts)  // calibrations happen here, outside the threads
+    damping_for(w, pair_restitution(material_a(w, c), w.materials[w.bodies[c.b].material]));
+
+  const std::int64_t m = static_cast<std::int64_t>(contacts.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32)
+  for (std::int64_t k = 0; k < m; ++k) narrow_phase(w, contacts[k]);
+  if (w.model != ContactModel::Volume) merge_wall_contacts(w, contacts);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32)
+  for (std::int64_t k = 0; k < m; ++k)
+    if (contacts[k].active) force_law(w, contacts[k], dt);
+
+  // Sums in the fixed order of the contact list: the same bits for any thread count.
+  w.elastic_energy = 0;
+  w.last_contacts = 0;
+  for (const Contact& c : contacts) {
+    if (!c.active) continue;
+    Body& b = w.bodies[c.b];
+    b.force += c.force;
+    b.torque += c.torque - cross(b.position, c.force);
+    if (!c.a_is_plane) {
+      Body& a = w.bodies[c.a];
+      a.force -= c.force;
+      a.torque -= c.torque - cross(a.position, c.force);
     }
-    apply(b, ft, p);
-    apply(a, -ft, p);
+    store_spring(w, c);
+    w.elastic_energy += c.elastic;
+    ++w.last_contacts;
   }
   for (Body& b : w.bodies)  // contacts that ended forget their spring
     std::erase_if(b.history, [](const ContactHistory& h) { return !h.touched; });
@@ -191,7 +403,11 @@ Real mass_of(const World& w, const Body& b) noexcept {
 void step(World& w, Real dt) {
   if (!w.forces_current) compute_forces(w, 0);
   kick(w, dt / 2);
-  for (Body& b : w.bodies) {
+  const int threads = thread_count(w);
+  const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Body& b = w.bodies[i];
     if (b.fixed) continue;
     b.position += b.velocity * dt;
     rotate_free(b.orientation, b.angular_momentum, principal_moments(w, b), dt);
@@ -209,6 +425,47 @@ Real kinetic_energy(const World& w) noexcept {
     e += rotational_energy(b.orientation, b.angular_momentum, principal_moments(w, b));
   }
   return e;
+}
+
+Real potential_energy(const World& w) noexcept {
+  Real e = 0;
+  for (const Body& b : w.bodies)
+    if (!b.fixed) e -= mass_of(w, b) * dot(w.gravity, b.position);
+  return e;
+}
+
+Real critical_time_step(const World& w) {
+  Real best = kInf;
+  // Every pair of materials and moving templates in use, against each other
+  // and against a rigid wall (the stiffest case): a linear contact of
+  // stiffness k between masses m lasts pi sqrt(m* / k).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> kinds;
+  for (const Body& b : w.bodies)
+    if (!b.fixed) kinds.emplace_back(b.shape, b.material);
+  std::sort(kinds.begin(), kinds.end());
+  kinds.erase(std::unique(kinds.begin(), kinds.end()), kinds.end());
+  for (const auto& [shape, material] : kinds) {
+    const ShapeTemplate& t = w.templates[shape];
+    const Material& mat = w.materials[material];
+    const Real m = mat.density * t.unit_mass.volume, r = t.curvature_radius;
+    Real stiffest = 0;  // E* against the stiffest material in the world
+    for (const Material& other : w.materials)
+      stiffest = std::fmax(stiffest, effective_modulus(mat.youngs_modulus, mat.poisson_ratio, other.youngs_modulus,
+                                                       other.poisson_ratio));
+    Real dt;
+    if (w.model == ContactModel::Hertz) {
+      // Rayleigh wave time step pi R sqrt(rho / G) / (0.1631 nu + 0.8766), a fifth of it.
+      const Real shear = mat.youngs_modulus / (2 * (1 + mat.poisson_ratio));
+      dt = 0.2 * kPi * r * std::sqrt(mat.density / shear) / (0.1631 * mat.poisson_ratio + 0.8766);
+    } else {
+      const Real k = w.model == ContactModel::Linear
+                         ? (w.linear_stiffness > 0 ? w.linear_stiffness : stiffest * r)
+                         : (w.volume_stiffness > 0 ? w.volume_stiffness : stiffest / r) * kPi * r * r;
+      dt = kPi * std::sqrt(m / k) / 20;
+    }
+    best = std::fmin(best, dt);
+  }
+  return best;
 }
 
 }  // namespace gjkdem::dem

@@ -39,8 +39,9 @@ ContactManifold contact_manifold(const Shape& a, const Transform& pose_a, const 
 /// and whose normals agree with the cluster's within `merge_cos`. A cluster
 /// keeps its deepest contact's normal and depth; its point is the mean of its
 /// points weighted by depth (the plain mean when none penetrates). Clusters come
-/// out in the order of their first contacts.
+/// out in the order of their first contacts. When `cluster_of` is given it
+/// receives, for each input contact, the index of the cluster it joined.
 std::vector<ContactPoint> cluster_contacts(std::span<const ContactPoint> contacts, Real merge_distance,
-                                           Real merge_cos = kContactMergeCos);
+                                           Real merge_cos = kContactMergeCos, std::vector<int>* cluster_of = nullptr);
 
 }  // namespace gjkdem

@@ -1,13 +1,13 @@
 #pragma once
 // The DEM world: shape templates shared by many bodies, materials, bodies with
-// global ids, the contact history that travels with the pair of ids, and one
-// explicit time step. Plain data, free functions, no global state: a domain of
-// an MPI decomposition is a World holding its own bodies.
+// global ids, plane walls, the contact history that travels with the pair of
+// ids, and one explicit time step. Plain data, free functions, no global
+// state: a domain of an MPI decomposition is a World holding its own bodies.
 //
 // Friction: an incremental tangential spring per persistent contact (Mindlin's
 // stiffness 8 G* sqrt(R* delta) for Hertz, 2/7 of the normal stiffness for the
-// linear law), turned into the current tangent plane each step and capped by
-// Coulomb's mu F_n (sliding). The volume law has no friction yet.
+// linear and volume laws), turned into the current tangent plane each step and
+// capped by Coulomb's mu F_n (sliding).
 //
 // One step (dt): broad phase on boxes from support functions, narrow phase per
 // candidate pair (penetration by GJK/EPA for the Hertz and linear laws; the
@@ -16,11 +16,22 @@
 // step of force and torque, positions drift a full step and orientations
 // rotate by the symplectic free-rotation splitting (rigid_rotation.hpp),
 // forces are recomputed and the second half kick applied.
+//
+// Threads: boxes, narrow phase and force laws run in parallel (OpenMP), each
+// pair writing only its own slot; forces are then summed in the fixed order of
+// the sorted pair list, so a run gives the same bits for any thread count.
+//
+// Walls: planes are half-spaces (half_space.hpp). Box containers and triangle
+// meshes are fixed bodies; the pieces of one wall share a `group`, and under
+// the Hertz and linear laws the contacts of a body with one group are merged
+// by cluster_contacts (a body lying across two coplanar triangles feels one
+// contact, not two).
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "gjkdem/collide/gjk_cache.hpp"
 #include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/mass_properties.hpp"
@@ -55,7 +66,7 @@ ShapeTemplate make_template(const Shape& shape);
 /// Tangential spring of a persistent contact, kept by the body with the
 /// smaller id of the pair, so it travels with that particle between domains.
 struct ContactHistory {
-  std::uint64_t other = 0;  ///< id of the other body
+  std::uint64_t other = 0;  ///< id of the other body (or plane wall)
   Vec3 spring;              ///< accumulated tangential displacement (m), world frame
   bool touched = false;     ///< seen in the current evaluation (stale entries are dropped)
 };
@@ -64,6 +75,7 @@ struct Body {
   std::uint64_t id = 0;          ///< global id, stable across domains and restarts
   std::uint32_t shape = 0;       ///< index into World::templates
   std::uint32_t material = 0;    ///< index into World::materials
+  std::uint32_t group = 0;       ///< > 0: a piece of a wall (contacts with one group are merged)
   bool fixed = false;            ///< never moves (walls, obstacles)
   Vec3 position;                 ///< centre of mass, world (m)
   Quat orientation;              ///< principal frame -> world
@@ -73,22 +85,42 @@ struct Body {
   std::vector<ContactHistory> history;  ///< tangential springs of this body's contacts with larger ids
 };
 
+/// An infinite plane wall: material on the side opposite to `normal`.
+struct PlaneWall {
+  std::uint64_t id = 0;       ///< global id, distinct from every body's (it keys contact histories)
+  Vec3 point;
+  Vec3 normal;                ///< unit, pointing out of the wall
+  std::uint32_t material = 0;
+};
+
+/// Warm start of one candidate pair, kept while its boxes overlap.
+struct PairCache {
+  BodyPair pair;
+  GjkCache gjk;
+};
+
 struct World {
   std::vector<ShapeTemplate> templates;
   std::vector<Material> materials;
   std::vector<Body> bodies;
+  std::vector<PlaneWall> planes;
   ContactModel model = ContactModel::Hertz;
   Vec3 gravity{0, 0, -9.81};
   Real time = 0;
-  /// Stiffness of the linear law (N/m) and of the volume law (N/m^3).
-  Real linear_stiffness = 1e5;
-  Real volume_stiffness = 1e9;
+  /// Stiffness of the linear law (N/m) and of the volume law (N/m^3); 0 takes
+  /// them from the materials per pair: E* R* and E* / R* (docs/dem.md).
+  Real linear_stiffness = 0;
+  Real volume_stiffness = 0;
+  int threads = 1;                     ///< OpenMP threads for a step (0: all cores)
   // Working state kept between steps.
   std::vector<std::uint32_t> sweep_order;
   std::vector<Aabb> boxes;
   std::vector<BodyPair> candidates;
-  OverlapWorkspace overlap_work;       ///< clipping buffers, reused every step
+  std::vector<PairCache> pair_caches;  ///< sorted by pair, aligned with candidates after the broad phase
+  std::vector<OverlapWorkspace> overlap_work;  ///< clipping buffers, one per thread
   bool forces_current = false;         ///< body forces belong to the current state
+  Real elastic_energy = 0;             ///< in the contact springs at the last force evaluation (J)
+  int last_contacts = 0;               ///< contacts at the last force evaluation
   std::map<std::pair<bool, Real>, Real> damping_cache;  ///< (Hertz?, restitution) -> calibrated damping
 };
 
@@ -103,5 +135,13 @@ void step(World& world, Real dt);
 
 /// Kinetic energy (J) of all bodies.
 Real kinetic_energy(const World& world) noexcept;
+
+/// Potential energy of gravity (J), zero at the world origin.
+Real potential_energy(const World& world) noexcept;
+
+/// A critical time step estimate (s): the shortest contact duration between
+/// two of the world's bodies divided by 20, or the Rayleigh time step times
+/// 0.2 for the Hertz law (docs/dem.md). Needs at least one moving body.
+Real critical_time_step(const World& world);
 
 }  // namespace gjkdem::dem
