@@ -21,3 +21,19 @@ struct BenchOptions {
 int run_bench(const BenchOptions& opt);
 
 }  // namespace gjkdem::app
+
+namespace gjkdem::app {
+
+struct RunOptions {
+  std::string scene;        ///< scene file; empty: the built-in default scene
+  std::string out;          ///< output folder; empty: the scene's [output].dir
+  std::string resume;       ///< folder of a stopped run to continue
+  bool overwrite = false;   ///< replace a run already in the output folder
+  int threads = -1;         ///< -1: the scene's [simulation].threads
+  long long stop_after = -1;  ///< stop as if interrupted after this many steps (tests)
+  bool quiet = false;       ///< no progress output
+};
+/// 0 completed, 1 failed during the run, 2 refused (bad scene or options), 130 interrupted.
+int run_simulation(const RunOptions& opt);
+
+}  // namespace gjkdem::app

@@ -1,4 +1,5 @@
-// gjkdem: pair queries and benchmarks in the format of query-format.md.
+// gjkdem: pair queries and benchmarks in the format of query-format.md, and
+// DEM simulations from scene files (scene-format.md).
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -22,10 +23,23 @@ int main(int argc, char** argv) {
   b->add_option("--query", bench.query, "intersect | distance | penetration | contact")->capture_default_str();
   b->add_option("--repeat", bench.repeat, "timed passes over all pairs")->capture_default_str();
 
+  gjkdem::app::RunOptions run;
+  CLI::App* r = app.add_subcommand("run", "run a DEM simulation (no SCENE: the built-in default scene)");
+  r->add_option("scene", run.scene, "scene file (TOML, scene-format.md)")->check(CLI::ExistingFile);
+  r->add_option("--out", run.out, "output folder (default: the scene's [output].dir)");
+  r->add_option("--resume", run.resume, "continue the stopped run in this folder")->check(CLI::ExistingDirectory);
+  r->add_flag("--overwrite", run.overwrite, "replace a run already in the output folder");
+  r->add_option("--threads", run.threads, "threads (0: all cores; default: the scene's)")->check(CLI::Range(0, 4096));
+  r->add_option("--stop-after", run.stop_after, "stop as if interrupted after this many steps")
+      ->check(CLI::Range(0LL, 1LL << 60));
+  r->add_flag("--quiet", run.quiet, "no progress output");
+  r->get_option("--resume")->excludes(r->get_option("scene"));
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (q->parsed()) return gjkdem::app::run_query(query);
     if (b->parsed()) return gjkdem::app::run_bench(bench);
+    if (r->parsed()) return gjkdem::app::run_simulation(run);
   } catch (const std::exception& e) {
     std::cerr << "gjkdem: " << e.what() << "\n";
     return 2;

@@ -390,6 +390,13 @@ ShapeTemplate make_template(const Shape& shape) {
   return t;
 }
 
+ShapeTemplate make_wall_template(const Shape& shape) {
+  ShapeTemplate t;
+  t.shape = shape;
+  t.curvature_radius = kInf;
+  return t;
+}
+
 Transform shape_pose(const World& w, const Body& b) noexcept {
   const ShapeTemplate& t = w.templates[b.shape];
   const Quat world_from_local = b.orientation * conjugate(t.principal.rotation);

@@ -63,6 +63,10 @@ struct ShapeTemplate {
 
 ShapeTemplate make_template(const Shape& shape);
 
+/// A template for fixed wall pieces (flat triangles have no volume): no mass,
+/// and its principal frame is the shape's own frame.
+ShapeTemplate make_wall_template(const Shape& shape);
+
 /// Tangential spring of a persistent contact, kept by the body with the
 /// smaller id of the pair, so it travels with that particle between domains.
 struct ContactHistory {

@@ -33,5 +33,25 @@ constexpr Mat3 to_matrix(const Quat& q) noexcept {
            {2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)}}};
 }
 inline Vec3 rotate(const Quat& q, const Vec3& v) noexcept { return to_matrix(q) * v; }
+/// Unit quaternion of a rotation matrix (Shepperd: from the largest of the
+/// four diagonal combinations, so no division by a small number).
+inline Quat quat_from_matrix(const Mat3& m) noexcept {
+  const Real t = m.row[0].x + m.row[1].y + m.row[2].z;
+  Quat q;
+  if (t >= m.row[0].x && t >= m.row[1].y && t >= m.row[2].z) {
+    const Real s = std::sqrt(1 + t) * 2;
+    q = {s / 4, (m.row[2].y - m.row[1].z) / s, (m.row[0].z - m.row[2].x) / s, (m.row[1].x - m.row[0].y) / s};
+  } else if (m.row[0].x >= m.row[1].y && m.row[0].x >= m.row[2].z) {
+    const Real s = std::sqrt(1 + m.row[0].x - m.row[1].y - m.row[2].z) * 2;
+    q = {(m.row[2].y - m.row[1].z) / s, s / 4, (m.row[0].y + m.row[1].x) / s, (m.row[0].z + m.row[2].x) / s};
+  } else if (m.row[1].y >= m.row[2].z) {
+    const Real s = std::sqrt(1 + m.row[1].y - m.row[0].x - m.row[2].z) * 2;
+    q = {(m.row[0].z - m.row[2].x) / s, (m.row[0].y + m.row[1].x) / s, s / 4, (m.row[1].z + m.row[2].y) / s};
+  } else {
+    const Real s = std::sqrt(1 + m.row[2].z - m.row[0].x - m.row[1].y) * 2;
+    q = {(m.row[1].x - m.row[0].y) / s, (m.row[0].z + m.row[2].x) / s, (m.row[1].z + m.row[2].y) / s, s / 4};
+  }
+  return normalized(q);
+}
 
 }  // namespace gjkdem

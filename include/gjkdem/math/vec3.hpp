@@ -32,6 +32,8 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) noexcept {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 /// Component-wise product.
+inline Vec3 min(const Vec3& a, const Vec3& b) noexcept { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
+inline Vec3 max(const Vec3& a, const Vec3& b) noexcept { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
 constexpr Vec3 hadamard(const Vec3& a, const Vec3& b) noexcept { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 constexpr Real length_sq(const Vec3& a) noexcept { return dot(a, a); }
 inline Real length(const Vec3& a) noexcept { return std::sqrt(dot(a, a)); }

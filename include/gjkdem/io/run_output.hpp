@@ -1,0 +1,69 @@
+#pragma once
+// What a run writes (../shared/spec/scene-format.md): ParaView frames (legacy
+// VTK polydata, binary, one file per frame, and a frames.vtk.series index with
+// the simulated times), rows of trace.csv and energy.csv, and checkpoints from
+// which a stopped run continues bit for bit.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::io {
+
+/// Polygons drawn for one shape template, in the template's local frame.
+struct DisplayMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::uint32_t> polygon_begin;  ///< polygon k: indices[polygon_begin[k] .. polygon_begin[k+1])
+  std::vector<std::uint32_t> indices;
+};
+
+/// Facets of polytopes and boxes, the triangle of a triangle, and a
+/// tessellation (64 directions) of curved shapes.
+DisplayMesh display_mesh(const Shape& shape);
+
+/// One frame: every body's polygons placed in the world, with cell data body
+/// id, fixed flag, velocity and angular velocity. Throws std::runtime_error
+/// when the file cannot be written.
+void write_vtk_frame(const std::filesystem::path& file, const dem::World& world,
+                     std::span<const DisplayMesh> meshes);
+
+/// The index ParaView reads to give each frame its simulated time.
+void write_frame_series(const std::filesystem::path& file, std::span<const std::pair<std::string, Real>> frames);
+
+std::string trace_header();
+/// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
+std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);
+std::string energy_header();
+/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts.
+std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Real dissipated, int contacts);
+
+struct CheckpointError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Where a run stands, beside the world's state.
+struct RunProgress {
+  std::uint64_t step = 0;           ///< steps done
+  std::uint64_t frame = 0;          ///< frames written
+  Real initial_energy = 0;          ///< kinetic + potential + elastic at the start
+  std::uint64_t trace_bytes = 0;    ///< size of trace.csv when the checkpoint was taken
+  std::uint64_t energy_bytes = 0;   ///< size of energy.csv then
+  double wall_seconds = 0;          ///< run time before this point
+  std::vector<std::pair<std::string, Real>> frames;  ///< frame files and times so far
+};
+
+/// Everything that changes during a run (bodies' states, forces, contact
+/// histories, warm starts, clock), raw doubles in this machine's byte order;
+/// written to a temporary file and renamed, so a crash never leaves half a
+/// checkpoint.
+void save_checkpoint(const std::filesystem::path& file, const dem::World& world, const RunProgress& progress);
+
+/// Restores a checkpoint into a world rebuilt from the same scene. Throws
+/// CheckpointError when the file is unreadable or belongs to another scene.
+RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& world);
+
+}  // namespace gjkdem::io

@@ -1,0 +1,53 @@
+#pragma once
+// Scenes: the TOML files of ../shared/spec/scene-format.md (and the keys this
+// project adds, docs/scenes.md) turned into a World and the settings of a run.
+// An I/O boundary: everything is validated before a run starts, and every
+// problem is a SceneError naming the key or file and the line.
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::io {
+
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct TracedBody {
+  std::string name;
+  std::uint32_t body = 0;  ///< index into world.bodies
+};
+
+struct Scene {
+  dem::World world;
+  Real duration = 0;            ///< s of simulated time
+  Real dt = 0;                  ///< s (resolved when the scene said "auto")
+  bool dt_auto = true;
+  std::uint64_t seed = 1;
+  std::string output_dir = "out";
+  Real output_every = 0;        ///< s between frames
+  bool overwrite = false;
+  int checkpoint_every = 10;    ///< frames between checkpoints (0: none)
+  bool write_frames = true;
+  std::vector<TracedBody> traced;
+  std::string resolved_json;    ///< the scene with its defaults filled in (JSON object)
+  std::vector<std::string> warnings;  ///< meshes convexified and the like
+};
+
+/// Reads a scene from TOML text. `source` names it in messages; relative
+/// file names (meshes) are taken from `base_dir`.
+Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir);
+
+/// Reads a scene file (throws SceneError when it cannot be read).
+Scene load_scene_file(const std::filesystem::path& file);
+
+/// The built-in default scene: about 2,000 random polyhedra in a hopper,
+/// discharged onto a floor.
+std::string_view default_scene_toml();
+
+}  // namespace gjkdem::io

@@ -1,0 +1,108 @@
+#include "gjkdem/dem/generators.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/shape/polytope.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+Quat random_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  for (;;) {
+    const Quat q{g(rng), g(rng), g(rng), g(rng)};
+    const Real n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (n > 1e-6) return normalized(q);
+  }
+}
+
+Shape scaled_polytope(std::vector<Vec3> points, Real diameter) {
+  Real r = 0;
+  for (const Vec3& p : points) r = std::fmax(r, length(p));
+  for (Vec3& p : points) p *= diameter / (2 * r);
+  return Shape{make_polytope(points)};
+}
+
+}  // namespace
+
+Shape random_polyhedron(int vertices, Real diameter, std::mt19937_64& rng) {
+  if (vertices < 4) throw std::invalid_argument("a random polyhedron needs at least 4 vertices");
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> stretch(0.7, 1.0);
+  const Vec3 axis_scale{stretch(rng), stretch(rng), stretch(rng)};
+  std::vector<Vec3> points;
+  while (static_cast<int>(points.size()) < vertices) {
+    const Vec3 d{g(rng), g(rng), g(rng)};
+    if (length(d) < 1e-6) continue;
+    const Vec3 p = normalized(d);
+    points.push_back({p.x * axis_scale.x, p.y * axis_scale.y, p.z * axis_scale.z});
+  }
+  return scaled_polytope(points, diameter);
+}
+
+Shape platonic(const std::string& name, Real diameter) {
+  const Real phi = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> p;
+  if (name == "tetrahedron") {
+    p = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  } else if (name == "cube") {
+    for (int i = 0; i < 8; ++i) p.push_back({(i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0});
+  } else if (name == "octahedron") {
+    p = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  } else if (name == "icosahedron" || name == "dodecahedron") {
+    for (int s1 : {-1, 1})
+      for (int s2 : {-1, 1})
+        if (name == "icosahedron") {
+          p.push_back({0, Real(s1), s2 * phi});
+          p.push_back({Real(s1), s2 * phi, 0});
+          p.push_back({s2 * phi, 0, Real(s1)});
+        } else {
+          p.push_back({0, s1 / phi, s2 * phi});
+          p.push_back({s1 / phi, s2 * phi, 0});
+          p.push_back({s2 * phi, 0, s1 / phi});
+        }
+    if (name == "dodecahedron")
+      for (int i = 0; i < 8; ++i) p.push_back({(i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0});
+  } else {
+    throw std::invalid_argument("unknown platonic solid '" + name +
+                                "' (tetrahedron, cube, octahedron, dodecahedron or icosahedron)");
+  }
+  return scaled_polytope(p, diameter);
+}
+
+std::vector<Placement> place_in_region(const World& w, const Vec3& lo, const Vec3& hi, Real diameter,
+                                       std::size_t count, std::mt19937_64& rng) {
+  std::vector<Placement> out;
+  const Vec3 size = hi - lo;
+  const int nx = static_cast<int>(size.x / diameter), ny = static_cast<int>(size.y / diameter),
+            nz = static_cast<int>(size.z / diameter);
+  if (nx < 1 || ny < 1 || nz < 1) return out;
+  // Spread the slack evenly: cells of equal size filling the region.
+  const Vec3 cell{size.x / nx, size.y / ny, size.z / nz};
+  const Vec3 slack = (cell - Vec3{diameter, diameter, diameter}) * 0.5;
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Shape ball = make_sphere(diameter / 2);
+  for (int k = 0; k < nz && out.size() < count; ++k)
+    for (int j = 0; j < ny && out.size() < count; ++j)
+      for (int i = 0; i < nx && out.size() < count; ++i) {
+        const Vec3 centre = lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
+                            Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
+        const Quat q = random_rotation(rng);
+        bool free = true;
+        for (const PlaneWall& p : w.planes)
+          if (dot(centre - p.point, p.normal) < diameter / 2) free = false;
+        const Transform ball_pose = Transform::from(centre, Quat{});
+        for (std::size_t b = 0; free && b < w.bodies.size(); ++b) {
+          const Shape& s = w.templates[w.bodies[b].shape].shape;
+          const Transform pose = shape_pose(w, w.bodies[b]);
+          if (length(centre - pose.translation) > bounding_radius(s) + diameter / 2) continue;
+          if (intersect(s, pose, ball, ball_pose)) free = false;
+        }
+        if (free) out.push_back({centre, q});
+      }
+  return out;
+}
+
+}  // namespace gjkdem::dem

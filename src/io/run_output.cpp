@@ -1,0 +1,264 @@
+#include "gjkdem/io/run_output.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+
+#include "gjkdem/dem/rigid_rotation.hpp"
+#include "gjkdem/shape/polytope.hpp"
+#include "gjkdem/shape/tessellate.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+constexpr int kDisplayDirections = 64;
+constexpr char kCheckpointMagic[8] = {'g', 'j', 'k', 'd', 'c', 'k', 'p', '1'};
+
+void append(std::string& s, Real v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back to the same double
+  s.append(buf, r.ptr);
+}
+
+// Legacy VTK binary is big-endian.
+template <class T>
+void put_big_endian(std::string& out, T value) {
+  auto bits = std::bit_cast<std::array<char, sizeof(T)>>(value);
+  if constexpr (std::endian::native == std::endian::little) std::reverse(bits.begin(), bits.end());
+  out.append(bits.data(), bits.size());
+}
+
+void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
+  m.vertices = d.vertices;
+  if (d.facet_begin.empty()) {  // flat hull: one polygon through its vertices
+    m.polygon_begin = {0};
+    for (std::uint32_t k = 0; k < d.vertices.size(); ++k) m.indices.push_back(k);
+    m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
+    return;
+  }
+  m.polygon_begin = d.facet_begin;
+  m.indices = d.facet_vertices;
+}
+
+Vec3 spin_of(const dem::World& w, const dem::Body& b) {
+  if (b.fixed) return {};
+  const Vec3 moments = w.templates[b.shape].principal.moments * w.materials[b.material].density;
+  return angular_velocity(b.orientation, b.angular_momentum, moments);
+}
+
+// Raw binary I/O of the checkpoint.
+struct Writer {
+  std::ofstream out;
+  template <class T>
+  void put(const T& v) { out.write(reinterpret_cast<const char*>(&v), sizeof v); }
+  void put(const Vec3& v) { put(v.x), put(v.y), put(v.z); }
+  void put(const Quat& q) { put(q.w), put(q.x), put(q.y), put(q.z); }
+  void put(const std::string& s) {
+    put(static_cast<std::uint64_t>(s.size()));
+    out.write(s.data(), static_cast<std::streamsize>(s.size()));
+  }
+};
+
+struct Reader {
+  std::ifstream in;
+  std::string name;
+  template <class T>
+  void get(T& v) {
+    in.read(reinterpret_cast<char*>(&v), sizeof v);
+    if (!in) throw CheckpointError(name + ": truncated checkpoint");
+  }
+  void get(Vec3& v) { get(v.x), get(v.y), get(v.z); }
+  void get(Quat& q) { get(q.w), get(q.x), get(q.y), get(q.z); }
+  void get(std::string& s) {
+    std::uint64_t n = 0;
+    get(n);
+    if (n > (1u << 20)) throw CheckpointError(name + ": corrupt checkpoint");
+    s.resize(n);
+    in.read(s.data(), static_cast<std::streamsize>(n));
+    if (!in) throw CheckpointError(name + ": truncated checkpoint");
+  }
+  std::uint64_t count(std::uint64_t limit) {
+    std::uint64_t n = 0;
+    get(n);
+    if (n > limit) throw CheckpointError(name + ": corrupt checkpoint");
+    return n;
+  }
+};
+
+}  // namespace
+
+DisplayMesh display_mesh(const Shape& shape) {
+  DisplayMesh m;
+  if (shape.margin == 0) {
+    if (const auto* p = std::get_if<Polytope>(&shape.core)) {
+      polytope_mesh(*p->data, m);
+      return m;
+    }
+  }
+  if (const auto* t = std::get_if<Triangle>(&shape.core); t && shape.margin >= 0) {
+    m.vertices = {t->v[0], t->v[1], t->v[2]};
+    m.polygon_begin = {0, 3};
+    m.indices = {0, 1, 2};
+    return m;
+  }
+  polytope_mesh(*tessellate(shape, kDisplayDirections).polytope.data, m);
+  return m;
+}
+
+void write_vtk_frame(const std::filesystem::path& file, const dem::World& w, std::span<const DisplayMesh> meshes) {
+  std::size_t points = 0, polygons = 0, indices = 0;
+  for (const dem::Body& b : w.bodies) {
+    const DisplayMesh& m = meshes[b.shape];
+    points += m.vertices.size();
+    polygons += m.polygon_begin.empty() ? 0 : m.polygon_begin.size() - 1;
+    indices += m.indices.size();
+  }
+  std::string out = "# vtk DataFile Version 3.0\ngjkdem frame t=";
+  append(out, w.time);
+  out += "\nBINARY\nDATASET POLYDATA\nPOINTS " + std::to_string(points) + " double\n";
+  for (const dem::Body& b : w.bodies) {
+    const Transform pose = dem::shape_pose(w, b);
+    for (const Vec3& v : meshes[b.shape].vertices) {
+      const Vec3 p = apply(pose, v);
+      put_big_endian(out, p.x), put_big_endian(out, p.y), put_big_endian(out, p.z);
+    }
+  }
+  out += "\nPOLYGONS " + std::to_string(polygons) + " " + std::to_string(polygons + indices) + "\n";
+  std::int32_t base = 0;
+  for (const dem::Body& b : w.bodies) {
+    const DisplayMesh& m = meshes[b.shape];
+    for (std::size_t k = 0; k + 1 < m.polygon_begin.size(); ++k) {
+      put_big_endian(out, static_cast<std::int32_t>(m.polygon_begin[k + 1] - m.polygon_begin[k]));
+      for (std::uint32_t i = m.polygon_begin[k]; i < m.polygon_begin[k + 1]; ++i)
+        put_big_endian(out, static_cast<std::int32_t>(base + m.indices[i]));
+    }
+    base += static_cast<std::int32_t>(m.vertices.size());
+  }
+  out += "\nCELL_DATA " + std::to_string(polygons) + "\nSCALARS body_id int 1\nLOOKUP_TABLE default\n";
+  auto per_cell = [&](auto&& write) {
+    for (const dem::Body& b : w.bodies) {
+      const DisplayMesh& m = meshes[b.shape];
+      for (std::size_t k = 0; k + 1 < m.polygon_begin.size(); ++k) write(b);
+    }
+  };
+  per_cell([&](const dem::Body& b) { put_big_endian(out, static_cast<std::int32_t>(b.id)); });
+  out += "\nSCALARS fixed int 1\nLOOKUP_TABLE default\n";
+  per_cell([&](const dem::Body& b) { put_big_endian(out, static_cast<std::int32_t>(b.fixed)); });
+  out += "\nVECTORS velocity float\n";
+  per_cell([&](const dem::Body& b) {
+    put_big_endian(out, static_cast<float>(b.velocity.x)), put_big_endian(out, static_cast<float>(b.velocity.y)),
+        put_big_endian(out, static_cast<float>(b.velocity.z));
+  });
+  out += "\nVECTORS angular_velocity float\n";
+  per_cell([&](const dem::Body& b) {
+    const Vec3 s = spin_of(w, b);
+    put_big_endian(out, static_cast<float>(s.x)), put_big_endian(out, static_cast<float>(s.y)),
+        put_big_endian(out, static_cast<float>(s.z));
+  });
+  out += "\n";
+  std::ofstream f(file, std::ios::binary);
+  f.write(out.data(), static_cast<std::streamsize>(out.size()));
+  if (!f) throw std::runtime_error("cannot write frame " + file.string());
+}
+
+void write_frame_series(const std::filesystem::path& file, std::span<const std::pair<std::string, Real>> frames) {
+  std::string out = "{\n  \"file-series-version\": \"1.0\",\n  \"files\": [\n";
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    out += "    {\"name\": \"" + frames[k].first + "\", \"time\": ";
+    append(out, frames[k].second);
+    out += k + 1 < frames.size() ? "},\n" : "}\n";
+  }
+  out += "  ]\n}\n";
+  std::ofstream f(file, std::ios::binary);
+  f << out;
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+}
+
+std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"; }
+
+std::string trace_row(const dem::World& w, const std::string& name, const dem::Body& b) {
+  std::string s;
+  append(s, w.time);
+  s += "," + name;
+  // The orientation of the body frame the author gave: principal frame -> world
+  // composed with the template's shape frame.
+  const Quat q = b.orientation * conjugate(w.templates[b.shape].principal.rotation);
+  const Vec3 spin = spin_of(w, b);
+  for (Real v : {b.position.x, b.position.y, b.position.z, q.w, q.x, q.y, q.z, b.velocity.x, b.velocity.y,
+                 b.velocity.z, spin.x, spin.y, spin.z}) {
+    s += ',';
+    append(s, v);
+  }
+  s += '\n';
+  return s;
+}
+
+std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts\n"; }
+
+std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Real dissipated, int contacts) {
+  std::string s;
+  for (Real v : {time, kinetic, potential, elastic, dissipated}) {
+    append(s, v);
+    s += ',';
+  }
+  s += std::to_string(contacts) + "\n";
+  return s;
+}
+
+void save_checkpoint(const std::filesystem::path& file, const dem::World& w, const RunProgress& p) {
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    Writer o{std::ofstream(tmp, std::ios::binary)};
+    o.out.write(kCheckpointMagic, sizeof kCheckpointMagic);
+    o.put(p.step), o.put(p.frame), o.put(p.initial_energy), o.put(p.trace_bytes), o.put(p.energy_bytes);
+    o.put(p.wall_seconds);
+    o.put(static_cast<std::uint64_t>(p.frames.size()));
+    for (const auto& [name, time] : p.frames) o.put(name), o.put(time);
+    o.put(w.time), o.put(w.elastic_energy), o.put(w.last_contacts), o.put(w.forces_current);
+    o.put(static_cast<std::uint64_t>(w.bodies.size()));
+    for (const dem::Body& b : w.bodies) {
+      o.put(b.id), o.put(b.position), o.put(b.orientation), o.put(b.velocity), o.put(b.angular_momentum);
+      o.put(b.force), o.put(b.torque);
+      o.put(static_cast<std::uint64_t>(b.history.size()));
+      for (const dem::ContactHistory& h : b.history) o.put(h.other), o.put(h.spring);
+    }
+    o.put(static_cast<std::uint64_t>(w.pair_caches.size()));
+    for (const dem::PairCache& c : w.pair_caches) o.put(c);
+    if (!o.out) throw std::runtime_error("cannot write checkpoint " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& w) {
+  Reader in{std::ifstream(file, std::ios::binary), file.string()};
+  if (!in.in) throw CheckpointError("cannot read checkpoint " + file.string());
+  char magic[sizeof kCheckpointMagic];
+  in.in.read(magic, sizeof magic);
+  if (!in.in || std::memcmp(magic, kCheckpointMagic, sizeof magic) != 0)
+    throw CheckpointError(file.string() + " is not a gjkdem checkpoint");
+  RunProgress p;
+  in.get(p.step), in.get(p.frame), in.get(p.initial_energy), in.get(p.trace_bytes), in.get(p.energy_bytes);
+  in.get(p.wall_seconds);
+  p.frames.resize(in.count(1u << 30));
+  for (auto& [name, time] : p.frames) in.get(name), in.get(time);
+  in.get(w.time), in.get(w.elastic_energy), in.get(w.last_contacts), in.get(w.forces_current);
+  if (in.count(1ull << 40) != w.bodies.size())
+    throw CheckpointError(file.string() + ": the scene has a different number of bodies than the checkpoint");
+  for (dem::Body& b : w.bodies) {
+    std::uint64_t id = 0;
+    in.get(id);
+    if (id != b.id) throw CheckpointError(file.string() + ": body ids differ from the scene's");
+    in.get(b.position), in.get(b.orientation), in.get(b.velocity), in.get(b.angular_momentum);
+    in.get(b.force), in.get(b.torque);
+    b.history.resize(in.count(1u << 20));
+    for (dem::ContactHistory& h : b.history) in.get(h.other), in.get(h.spring), h.touched = true;
+  }
+  w.pair_caches.resize(in.count(1ull << 40));
+  for (dem::PairCache& c : w.pair_caches) in.get(c);
+  return p;
+}
+
+}  // namespace gjkdem::io
