@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # gjkdem set-up, build and run. Usage:
-#   ./build.sh run     install what is missing, build, run the main job (default example)
+#   ./build.sh run     install what is missing, build, run the main job: the built-in default
+#                      scene (2,000 polyhedra through a hopper; outputs in ./out, replaced each time)
 #   ./build.sh test    install what is missing, build, run every test
 #   ./build.sh bench   install the peer libraries too, build, run the benchmarks
 # Packages come from Debian's archive only (apt-get); nothing is downloaded elsewhere.
@@ -8,7 +9,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 mode="${1:-run}"
-base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev python3 python3-numpy python3-scipy)
+base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libtomlplusplus-dev
+           python3 python3-numpy python3-scipy)
+test_pkgs=(python3-vtk9)  # VTK's own reader checks the frames in tests/cli_run.sh
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev)
 
 install_missing() {
@@ -31,10 +34,10 @@ case "$mode" in
   run)
     install_missing "${base_pkgs[@]}"
     build
-    build/gjkdem query --in examples/pairs.jsonl
+    build/gjkdem run --out out --overwrite
     ;;
   test)
-    install_missing "${base_pkgs[@]}"
+    install_missing "${base_pkgs[@]}" "${test_pkgs[@]}"
     build
     ctest --test-dir build --output-on-failure -j"$(nproc)"
     ;;

@@ -284,6 +284,7 @@ int run_simulation(const RunOptions& opt) {
       text = read_text(opt.scene);
       source = scene_file = opt.scene;
       base = fs::path(opt.scene).parent_path();
+      if (base.empty()) base = ".";
     } else {
       text = io::default_scene_toml();
       source = "(built-in default scene)";

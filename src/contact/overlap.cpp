@@ -147,9 +147,17 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
       c /= static_cast<Real>(cap.size());
       Vec3 t1, t2;
       orthonormal_basis(pl.n, t1, t2);
-      std::sort(cap.begin(), cap.end(), [&](const Vec3& p, const Vec3& q) {
-        return std::atan2(dot(p - c, t2), dot(p - c, t1)) < std::atan2(dot(q - c, t2), dot(q - c, t1));
-      });
+      // Sort by a pseudo-angle (monotonic in the angle, no trigonometry):
+      // computed once per point, it was the clipper's costliest line as atan2.
+      auto& keyed = w.cap_keyed;
+      keyed.clear();
+      for (const Vec3& p : cap) {
+        const Real x = dot(p - c, t1), y = dot(p - c, t2), r = std::fabs(x) + std::fabs(y);
+        const Real q = r > 0 ? y / r : 0;  // in [-1, 1]
+        keyed.push_back({x >= 0 ? (y >= 0 ? q : 4 + q) : 2 - q, p});
+      }
+      std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t k = 0; k < cap.size(); ++k) cap[k] = keyed[k].second;
       db.push_back(static_cast<int>(dst.size()));
       dst.insert(dst.end(), cap.begin(), cap.end());
       dbody.push_back(1);

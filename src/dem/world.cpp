@@ -21,6 +21,9 @@ namespace {
 
 constexpr Real kPi = 3.14159265358979323846;
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
+// Below these sizes a loop runs on one thread: waking the team costs more.
+constexpr std::int64_t kMinParallelBodies = 512;
+constexpr std::int64_t kMinParallelContacts = 64;
 
 // One candidate contact: a pair of bodies (a, b) or a plane wall a and body b.
 // The narrow phase fills the geometry, the force law the rest; each slot is
@@ -306,7 +309,7 @@ void compute_forces(World& w, Real dt) {
   if (static_cast<int>(w.overlap_work.size()) < threads) w.overlap_work.resize(threads);
   const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
   w.boxes.resize(w.bodies.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
   for (std::int64_t i = 0; i < n; ++i) {
     Body& b = w.bodies[i];
     b.force = b.fixed ? Vec3{} : w.gravity * mass_of(w, b);
@@ -341,10 +344,10 @@ void compute_forces(World& w, Real dt) {
     damping_for(w, pair_restitution(material_a(w, c), w.materials[w.bodies[c.b].material]));
 
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 32)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) narrow_phase(w, contacts[k]);
   if (w.model != ContactModel::Volume) merge_wall_contacts(w, contacts);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 32)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k)
     if (contacts[k].active) force_law(w, contacts[k], dt);
 
@@ -412,7 +415,7 @@ void step(World& w, Real dt) {
   kick(w, dt / 2);
   const int threads = thread_count(w);
   const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
   for (std::int64_t i = 0; i < n; ++i) {
     Body& b = w.bodies[i];
     if (b.fixed) continue;

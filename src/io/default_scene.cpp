@@ -7,10 +7,10 @@ std::string_view default_scene_toml() {
   return R"toml(# gjkdem's built-in default scene: 2,000 random convex polyhedra (12
 # vertices, 12 to 18 mm across) poured into a square hopper whose 100 mm
 # outlet is open, discharged onto the floor 0.3 m below it. Soft particles
-# (E = 1 MPa) keep the time step large enough for a run of a few minutes.
+# (E = 0.3 MPa) keep the time step large enough for a run of a few minutes.
 
 [simulation]
-duration = 2.5
+duration = 2.0
 dt = "auto"
 gravity = [0.0, 0.0, -9.81]
 threads = 0
@@ -18,7 +18,7 @@ seed = 1
 
 [output]
 dir = "out"
-every = 0.025
+every = 0.04
 overwrite = false
 
 [contact]
@@ -27,7 +27,7 @@ model = "volume"
 [[material]]
 name = "rock"
 density = 2500.0
-youngs_modulus = 1.0e6
+youngs_modulus = 3.0e5
 poisson_ratio = 0.25
 restitution = 0.5
 friction = 0.5
@@ -35,7 +35,7 @@ friction = 0.5
 [[material]]
 name = "steel"
 density = 7800.0
-youngs_modulus = 1.0e6
+youngs_modulus = 3.0e5
 poisson_ratio = 0.3
 restitution = 0.5
 friction = 0.3

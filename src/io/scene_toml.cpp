@@ -677,7 +677,7 @@ Scene load_scene_file(const std::filesystem::path& file) {
   if (!in) throw SceneError("cannot read scene file " + file.string());
   std::stringstream text;
   text << in.rdbuf();
-  return load_scene(text.str(), file.string(), file.parent_path());
+  return load_scene(text.str(), file.string(), file.has_parent_path() ? file.parent_path() : ".");
 }
 
 }  // namespace gjkdem::io

@@ -12,6 +12,7 @@
 // exist are used: empty overlaps, sphere-sphere lenses, and one shape inside
 // the other. Everything else reports OverlapStatus::Unsupported (curved
 // overlaps need the tessellation of the contact-generation issue).
+#include <utility>
 #include <vector>
 
 #include "gjkdem/shape/shape.hpp"
@@ -55,6 +56,7 @@ struct OverlapWorkspace {
   std::vector<unsigned char> face_body[2];
   std::vector<Vec3> face_normal[2];
   std::vector<Vec3> cap;
+  std::vector<std::pair<Real, Vec3>> cap_keyed;  ///< cap points with their pseudo-angles, for sorting
   struct Plane {
     Vec3 n;  ///< unit, outward
     Real d;  ///< n . x on the plane

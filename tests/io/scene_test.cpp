@@ -1,0 +1,247 @@
+// Scenes: a scene using every key loads into the expected world, and a set of
+// bad scenes is refused with a message naming the problem (and its line).
+#include "gjkdem/io/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gjkdem/collide/query.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+const std::string kHead = R"(
+[simulation]
+duration = 0.1
+dt = 1e-5
+
+[[material]]
+name = "rock"
+density = 2000.0
+youngs_modulus = 1.0e7
+)";
+
+const std::string kCube = R"(
+[[body]]
+name = "c"
+shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+position = [0.0, 0.0, 0.05]
+)";
+
+std::string refusal(const std::string& toml) {
+  try {
+    load_scene(toml, "test.toml", std::filesystem::temp_directory_path());
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Scene, FullSceneLoads) {
+  const std::string toml = "[simulation]\nduration = 0.1\ndt = 1e-5\ngravity = [0.0, 0.0, -9.81]\n" +
+                           kHead.substr(kHead.find("[[material]]")) + R"(
+[output]
+dir = "somewhere"
+every = 0.01
+[contact]
+model = "hertz"
+[[wall]]
+type = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 2.0]
+material = "rock"
+[[wall]]
+type = "box"
+min = [-0.2, -0.2, 0.0]
+max = [0.2, 0.2, 0.3]
+open_top = true
+material = "rock"
+[[generator]]
+count = 40
+shape = { type = "random_polyhedron", vertices = 10, size = [0.01, 0.02] }
+material = "rock"
+region = { min = [-0.15, -0.15, 0.05], max = [0.15, 0.15, 0.25] }
+[[generator]]
+count = 10
+shape = { type = "platonic", name = "tetrahedron", size = 0.02 }
+material = "rock"
+region = { min = [-0.15, -0.15, 0.05], max = [0.15, 0.15, 0.25] }
+)" + kCube;
+  // The explicit cube sits at z = 0.05, so the generators fill around it.
+  const Scene s = load_scene(toml, "full.toml", ".");
+  EXPECT_EQ(s.output_dir, "somewhere");
+  EXPECT_DOUBLE_EQ(s.dt, 1e-5);
+  EXPECT_FALSE(s.dt_auto);
+  ASSERT_EQ(s.world.planes.size(), 1u);
+  EXPECT_NEAR(s.world.planes[0].normal.z, 1, 1e-15);  // normalised
+  int moving = 0, fixed = 0;
+  for (const dem::Body& b : s.world.bodies) (b.fixed ? fixed : moving)++;
+  EXPECT_EQ(moving, 51);
+  EXPECT_EQ(fixed, 5);  // open box: floor and four sides
+  ASSERT_EQ(s.traced.size(), 1u);
+  EXPECT_EQ(s.traced[0].name, "c");
+  // The cube's centre of mass is where the author put its centre.
+  EXPECT_NEAR(length(s.world.bodies[s.traced[0].body].position - Vec3{0, 0, 0.05}), 0, 1e-15);
+  // No two moving bodies overlap, none crosses the floor.
+  const auto& w = s.world;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    for (std::size_t j = i + 1; j < w.bodies.size(); ++j) {
+      if (w.bodies[i].fixed && w.bodies[j].fixed) continue;
+      EXPECT_FALSE(intersect(w.templates[w.bodies[i].shape].shape, dem::shape_pose(w, w.bodies[i]),
+                             w.templates[w.bodies[j].shape].shape, dem::shape_pose(w, w.bodies[j])))
+          << i << " " << j;
+    }
+  EXPECT_NE(s.resolved_json.find("\"model\": \"hertz\""), std::string::npos);
+}
+
+TEST(Scene, SameSeedSameBodies) {
+  const std::string toml = kHead + R"(
+[[generator]]
+count = 30
+shape = { type = "random_polyhedron", vertices = 8, size = [0.01, 0.02] }
+material = "rock"
+region = { min = [-0.1, -0.1, 0.0], max = [0.1, 0.1, 0.2] }
+)";
+  const Scene a = load_scene(toml, "a", "."), b = load_scene(toml, "b", ".");
+  ASSERT_EQ(a.world.bodies.size(), b.world.bodies.size());
+  for (std::size_t i = 0; i < a.world.bodies.size(); ++i) {
+    EXPECT_EQ(a.world.bodies[i].position, b.world.bodies[i].position);
+    EXPECT_EQ(a.world.bodies[i].orientation.w, b.world.bodies[i].orientation.w);
+  }
+  const Scene c = load_scene(toml + "\n", "c", ".");
+  EXPECT_EQ(c.world.bodies[3].position, a.world.bodies[3].position);
+}
+
+TEST(Scene, DefaultSceneLoads) {
+  const Scene s = load_scene(default_scene_toml(), "default", ".");
+  EXPECT_GT(s.world.bodies.size(), 1990u);
+  EXPECT_TRUE(s.dt_auto);
+  EXPECT_GT(s.dt, 0);
+  EXPECT_EQ(s.world.model, dem::ContactModel::Volume);
+}
+
+struct Bad {
+  std::string name, toml, expected;  // expected: a piece of the message
+};
+
+class BadScene : public ::testing::TestWithParam<Bad> {};
+
+TEST_P(BadScene, IsRefusedNamingTheProblem) {
+  const Bad& b = GetParam();
+  const std::string message = refusal(b.toml);
+  EXPECT_NE(message.find(b.expected), std::string::npos) << "message: " << message;
+}
+
+const std::string kNoSim = R"(
+[[material]]
+name = "rock"
+density = 2000.0
+youngs_modulus = 1.0e7
+)";
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, BadScene,
+    ::testing::Values(
+        Bad{"syntax", "[simulation\nduration = 1", "line 1"},
+        Bad{"no_simulation", kNoSim + kCube, "[simulation]"},
+        Bad{"no_duration", "[simulation]\ndt = 1e-5\n" + kNoSim + kCube, "'duration'"},
+        Bad{"unknown_top_key", kHead + kCube + "\n[extra]\nx = 1\n", "unknown key 'extra' (line"},
+        Bad{"unknown_body_key", kHead + kCube + "colour = \"red\"\n", "unknown key 'colour' (line 16)"},
+        Bad{"unknown_simulation_key", "[simulation]\nduration = 1.0\nsubsteps = 3\n" + kNoSim + kCube,
+            "simulation: unknown key 'substeps' (line 3)"},
+        Bad{"string_for_number", "[simulation]\nduration = \"long\"\n" + kNoSim + kCube,
+            "simulation.duration: must be a number (line 2)"},
+        Bad{"bad_dt", "[simulation]\nduration = 1.0\ndt = \"fast\"\n" + kNoSim + kCube, "\"auto\""},
+        Bad{"negative_dt", "[simulation]\nduration = 1.0\ndt = -1.0\n" + kNoSim + kCube, "dt: must be > 0"},
+        Bad{"negative_density", "[simulation]\nduration = 1.0\n[[material]]\nname = \"rock\"\ndensity = -5.0\n"
+                                "youngs_modulus = 1e7\n" + kCube,
+            "material[0].density: must be > 0 (line 5)"},
+        Bad{"restitution_zero", kHead + "restitution = 0.0\n" + kCube, "restitution: must lie in (0, 1]"},
+        Bad{"negative_friction", kHead + "friction = -0.1\n" + kCube, "friction: must be >= 0"},
+        Bad{"unknown_material", kHead + kCube + "\n" + R"([[body]]
+shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
+material = "wood"
+position = [1.0, 0.0, 0.05]
+)",
+            "no [[material]] is named 'wood'"},
+        Bad{"wrong_shape_type", kHead + R"([[body]]
+shape = { type = "blob", center = [0.0, 0.0, 0.0] }
+material = "rock"
+)",
+            "body[0].shape"},
+        Bad{"negative_radius", kHead + R"([[body]]
+shape = { type = "sphere", center = [0.0, 0.0, 0.0], radius = -1.0 }
+material = "rock"
+)",
+            "radius"},
+        Bad{"overlapping_bodies", kHead + kCube + R"(
+[[body]]
+shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+position = [0.0, 0.0, 0.055]
+)",
+            "body[0] overlaps body[1]"},
+        Bad{"body_in_plane", kHead + kCube + R"(
+[[wall]]
+type = "plane"
+point = [0.0, 0.0, 0.1]
+normal = [0.0, 0.0, 1.0]
+material = "rock"
+)",
+            "body[0] starts inside a plane wall"},
+        Bad{"missing_mesh_file", kHead + kCube + R"(
+[[wall]]
+type = "mesh"
+file = "no-such-hopper.stl"
+material = "rock"
+)",
+            "file not found"},
+        Bad{"bad_quaternion", kHead + R"([[body]]
+shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+rotation = [1.0, 1.0, 0.0, 0.0]
+)",
+            "rotation: must be a unit quaternion"},
+        Bad{"region_too_small", kHead + R"([[generator]]
+count = 1000
+shape = { type = "platonic", name = "cube", size = 0.02 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+)",
+            "the region holds only 125 of the 1000 bodies"},
+        Bad{"zero_count", kHead + R"([[generator]]
+count = 0
+shape = { type = "platonic", name = "cube", size = 0.02 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+)",
+            "count: must be a positive integer"},
+        Bad{"bad_platonic", kHead + R"([[generator]]
+count = 1
+shape = { type = "platonic", name = "sphere", size = 0.02 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+)",
+            "unknown platonic solid 'sphere'"},
+        Bad{"bad_model", kHead + "[contact]\nmodel = \"magic\"\n" + kCube, "contact.model: must be"},
+        Bad{"wall_type", kHead + kCube + "[[wall]]\ntype = \"cylinder\"\nmaterial = \"rock\"\n", "wall[0].type"},
+        Bad{"duplicate_material", kHead + "[[material]]\nname = \"rock\"\ndensity = 1.0\nyoungs_modulus = 1.0\n" + kCube,
+            "defined twice"},
+        Bad{"only_fixed", kHead + R"([[body]]
+shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+fixed = true
+)",
+            "no moving body"},
+        Bad{"gravity_length", "[simulation]\nduration = 1.0\ngravity = [0.0, -9.81]\n" + kNoSim + kCube,
+            "gravity: must have 3 numbers"},
+        Bad{"body_not_array", kHead + "[body]\nmaterial = \"rock\"\n", "write [[body]]"}),
+    [](const ::testing::TestParamInfo<Bad>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace gjkdem::io
