@@ -10,7 +10,7 @@ std::string_view default_scene_toml() {
 # (E = 0.3 MPa) keep the time step large enough for a run of a few minutes.
 
 [simulation]
-duration = 2.0
+duration = 1.4
 dt = "auto"
 gravity = [0.0, 0.0, -9.81]
 threads = 0
