@@ -50,10 +50,6 @@ Vec3 principal_moments(const World& w, const Body& b) {
   return w.templates[b.shape].principal.moments * w.materials[b.material].density;
 }
 
-Vec3 angular_velocity_of(const World& w, const Body& b) {
-  return b.fixed ? Vec3{} : angular_velocity(b.orientation, b.angular_momentum, principal_moments(w, b));
-}
-
 Vec3 point_velocity(const World& w, const Body& b, const Vec3& p) {
   return b.fixed ? Vec3{} : b.velocity + cross(angular_velocity_of(w, b), p - b.position);
 }
@@ -211,16 +207,18 @@ void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
   }
 }
 
-Vec3 find_spring(const World& w, const Contact& c) {
-  const Body& b = w.bodies[c.b];
+// The history of a contact lives with the body of smaller id (planes have the
+// largest ids, so a plane contact lives with its body).
+std::pair<std::uint32_t, std::uint64_t> history_owner(const World& w, const Contact& c) {
   const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
-  const Body* owner = &b;
-  std::uint64_t other = id_a;
-  if (!c.a_is_plane && id_a < b.id) {
-    owner = &w.bodies[c.a];
-    other = b.id;
-  }
-  for (const ContactHistory& h : owner->history)
+  const std::uint64_t id_b = w.bodies[c.b].id;
+  if (!c.a_is_plane && id_a < id_b) return {c.a, id_b};
+  return {c.b, id_a};
+}
+
+Vec3 find_spring(const World& w, const Contact& c) {
+  const auto [owner, other] = history_owner(w, c);
+  for (const ContactHistory& h : w.bodies[owner].history)
     if (h.other == other) return h.spring;
   return {};
 }
@@ -286,21 +284,14 @@ void force_law(const World& w, Contact& c, Real dt) {
 }
 
 void store_spring(World& w, const Contact& c) {
-  Body& b = w.bodies[c.b];
-  const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
-  Body* owner = &b;
-  std::uint64_t other = id_a;
-  if (!c.a_is_plane && id_a < b.id) {
-    owner = &w.bodies[c.a];
-    other = b.id;
-  }
-  for (ContactHistory& h : owner->history)
+  const auto [owner, other] = history_owner(w, c);
+  for (ContactHistory& h : w.bodies[owner].history)
     if (h.other == other) {
       h.spring = c.spring;
       h.touched = true;
       return;
     }
-  owner->history.push_back({other, c.spring, true});
+  w.bodies[owner].history.push_back({other, c.spring, true});
 }
 
 // dt: time since the last evaluation, for the tangential springs (0 at the start).
@@ -404,6 +395,10 @@ Transform shape_pose(const World& w, const Body& b) noexcept {
   const ShapeTemplate& t = w.templates[b.shape];
   const Quat world_from_local = b.orientation * conjugate(t.principal.rotation);
   return Transform::from(b.position - rotate(world_from_local, t.unit_mass.centroid), world_from_local);
+}
+
+Vec3 angular_velocity_of(const World& w, const Body& b) noexcept {
+  return b.fixed ? Vec3{} : angular_velocity(b.orientation, b.angular_momentum, principal_moments(w, b));
 }
 
 Real mass_of(const World& w, const Body& b) noexcept {

@@ -7,7 +7,6 @@
 #include <cstring>
 #include <fstream>
 
-#include "gjkdem/dem/rigid_rotation.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 
@@ -41,12 +40,6 @@ void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
   }
   m.polygon_begin = d.facet_begin;
   m.indices = d.facet_vertices;
-}
-
-Vec3 spin_of(const dem::World& w, const dem::Body& b) {
-  if (b.fixed) return {};
-  const Vec3 moments = w.templates[b.shape].principal.moments * w.materials[b.material].density;
-  return angular_velocity(b.orientation, b.angular_momentum, moments);
 }
 
 // Raw binary I/O of the checkpoint.
@@ -154,7 +147,7 @@ void write_vtk_frame(const std::filesystem::path& file, const dem::World& w, std
   });
   out += "\nVECTORS angular_velocity float\n";
   per_cell([&](const dem::Body& b) {
-    const Vec3 s = spin_of(w, b);
+    const Vec3 s = dem::angular_velocity_of(w, b);
     put_big_endian(out, static_cast<float>(s.x)), put_big_endian(out, static_cast<float>(s.y)),
         put_big_endian(out, static_cast<float>(s.z));
   });
@@ -186,7 +179,7 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   // The orientation of the body frame the author gave: principal frame -> world
   // composed with the template's shape frame.
   const Quat q = b.orientation * conjugate(w.templates[b.shape].principal.rotation);
-  const Vec3 spin = spin_of(w, b);
+  const Vec3 spin = dem::angular_velocity_of(w, b);
   for (Real v : {b.position.x, b.position.y, b.position.z, q.w, q.x, q.y, q.z, b.velocity.x, b.velocity.y,
                  b.velocity.z, spin.x, spin.y, spin.z}) {
     s += ',';

@@ -15,6 +15,7 @@
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/generators.hpp"
+#include "gjkdem/dem/half_space.hpp"
 #include "gjkdem/io/mesh.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
 #include "gjkdem/shape/polytope.hpp"
@@ -351,13 +352,12 @@ class SceneBuilder {
     return s;
   }
 
-  std::uint32_t add_template(const Shape& shape, TableReader& r, const std::string& key) {
+  dem::ShapeTemplate make_particle(const Shape& shape, TableReader& r) {
     try {
-      scene_.world.templates.push_back(dem::make_template(shape));
+      return dem::make_template(shape);
     } catch (const std::invalid_argument& e) {
-      r.fail(key, std::string("cannot be a particle: ") + e.what());
+      r.fail("shape", std::string("cannot be a particle: ") + e.what());
     }
-    return static_cast<std::uint32_t>(scene_.world.templates.size() - 1);
   }
 
   // A body whose author frame sits at (position, rotation), holding `s`.
@@ -390,16 +390,10 @@ class SceneBuilder {
     const Vec3 spin = r.vec3("angular_velocity").value_or(Vec3{});
     if (b.fixed && (length(velocity) > 0 || length(spin) > 0))
       r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0)");
-    if (b.fixed) {
-      scene_.world.templates.push_back(dem::make_wall_template(s.shape));
-      b.shape = static_cast<std::uint32_t>(scene_.world.templates.size() - 1);
-      const Transform pose = Transform::from(position, rotation);
-      b.orientation = normalized(rotation * quat_from_matrix(s.pose.rotation));
-      b.position = apply(pose, s.pose.translation);
-    } else {
-      b.shape = add_template(s.shape, r, "shape");
-      place_body(b, s, position, rotation, velocity, spin);
-    }
+    // Fixed bodies have no mass: their template's principal frame is the shape's.
+    scene_.world.templates.push_back(b.fixed ? dem::make_wall_template(s.shape) : make_particle(s.shape, r));
+    b.shape = static_cast<std::uint32_t>(scene_.world.templates.size() - 1);
+    place_body(b, s, position, rotation, velocity, spin);
     const std::uint32_t index = static_cast<std::uint32_t>(scene_.world.bodies.size());
     if (name) {
       if (names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
@@ -425,7 +419,7 @@ class SceneBuilder {
       const Transform pa = dem::shape_pose(w, a);
       const Real tol = 1e-9 * bounding_radius(sa);
       for (const dem::PlaneWall& p : w.planes)
-        if (!a.fixed && dot(p.normal, apply(pa, support(sa, apply_inverse_rotation(pa, -p.normal))) - p.point) < -tol)
+        if (!a.fixed && dem::half_space_contact(sa, pa, p.point, p.normal).depth > tol)
           throw SceneError(explicit_[i].second + " starts inside a plane wall");
       for (std::size_t j = 0; j < w.bodies.size(); ++j) {
         const Body& b = w.bodies[j];
@@ -499,7 +493,7 @@ class SceneBuilder {
     const std::uint32_t first_template = static_cast<std::uint32_t>(scene_.world.templates.size());
     Real diameter = 0;
     for (const ShapeSpec& s : shapes) {
-      add_template(s.shape, r, "shape");
+      scene_.world.templates.push_back(make_particle(s.shape, r));
       diameter = std::fmax(diameter, s.diameter);
     }
     const std::vector<dem::Placement> spots =

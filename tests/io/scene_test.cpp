@@ -241,7 +241,7 @@ fixed = true
         Bad{"gravity_length", "[simulation]\nduration = 1.0\ngravity = [0.0, -9.81]\n" + kNoSim + kCube,
             "gravity: must have 3 numbers"},
         Bad{"body_not_array", kHead + "[body]\nmaterial = \"rock\"\n", "write [[body]]"}),
-    [](const ::testing::TestParamInfo<Bad>& info) { return info.param.name; });
+    [](const ::testing::TestParamInfo<Bad>& param_info) { return param_info.param.name; });
 
 }  // namespace
 }  // namespace gjkdem::io

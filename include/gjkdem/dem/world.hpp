@@ -134,6 +134,9 @@ Transform shape_pose(const World& world, const Body& body) noexcept;
 
 Real mass_of(const World& world, const Body& body) noexcept;
 
+/// Angular velocity (rad/s, world frame) of a body; zero for fixed bodies.
+Vec3 angular_velocity_of(const World& world, const Body& body) noexcept;
+
 /// Advances the world by dt (s).
 void step(World& world, Real dt);
 
