@@ -50,6 +50,7 @@ void clip_below(const std::vector<std::array<Vec3, 3>>& tris, const Vec3& point,
   const Real on_plane = kHullRelTol * scale;
   std::vector<Vec3> cut;  // points of the cut face
   Real six_volume = 0;
+  Vec3 weighted_centre;  // sum of six times a tetrahedron's volume times four times its centroid
   for (const auto& t : tris) {
     Real s[3];
     for (int k = 0; k < 3; ++k) s[k] = dot(n, t[k] - point);
@@ -65,10 +66,16 @@ void clip_below(const std::vector<std::array<Vec3, 3>>& tris, const Vec3& point,
         cut.push_back(x);
       }
     }
-    for (int k = 1; k + 1 < m; ++k) six_volume += dot(poly[0] - ref, cross(poly[k] - ref, poly[k + 1] - ref));
+    for (int k = 1; k + 1 < m; ++k) {
+      const Real v6 = dot(poly[0] - ref, cross(poly[k] - ref, poly[k + 1] - ref));
+      six_volume += v6;
+      weighted_centre += (poly[0] + poly[k] + poly[k + 1] - ref * 3) * v6;
+    }
   }
   c.volume = std::fmax(six_volume / 6, Real(0));
   c.has_volume = true;
+  c.centroid = six_volume > 0 ? ref + weighted_centre / (4 * six_volume) : c.deepest;
+  c.depth_integral = c.volume * std::fmax(-dot(n, c.centroid - point), Real(0));
   c.face_centroid = c.deepest + n * c.depth;
   if (cut.size() < 3) return;
   Vec3 t1, t2;
@@ -108,6 +115,10 @@ HalfSpaceContact half_space_contact(const Shape& shape, const Transform& pose, c
     c.volume = kPi * h * h * (3 * r - h) / 3;
     c.area = std::fmax(kPi * (r * r - d * d), Real(0));
     c.face_centroid = centre - normal * d;
+    // The cap's centroid lies 3 (2r - h)^2 / (4 (3r - h)) from the centre.
+    const Real from_centre = 3 * (2 * r - h) * (2 * r - h) / (4 * (3 * r - h));
+    c.centroid = centre - normal * from_centre;
+    c.depth_integral = c.volume * std::fmax(from_centre - d, Real(0));
     return c;
   }
   thread_local std::vector<std::array<Vec3, 3>> tris;

@@ -38,11 +38,15 @@ struct Contact {
   Vec3 point;              // where friction and damping act
   Real depth = 0;          // penetration depth, or V / |S_A| for the volume law
   Real area = 0;           // |S_A| (volume law)
+  Real volume = 0;         // overlap volume (volume law)
+  Real depth_integral = 0; // plane walls, volume law: integral of the depth over the overlap (m^4)
   Vec3 moment;             // moment about the world origin of a unit normal force on b
   // Force law.
   Vec3 force;              // on b
   Vec3 torque;             // on b, about the world origin
   Vec3 spring;             // new tangential spring
+  Real twist = 0;          // new twisting spring (rad, volume law)
+  Vec3 roll;               // new rocking spring (rad, volume law between bodies)
   Real elastic = 0;        // energy stored in the contact (J)
 };
 
@@ -113,8 +117,11 @@ void narrow_phase(World& w, Contact& c) {
     if (w.model == ContactModel::Volume) {
       if (!h.has_volume || !(h.area > 0) || !(h.volume > 0)) return;
       c.area = h.area;
+      c.volume = h.volume;
       c.depth = h.volume / h.area;
-      c.point = h.face_centroid;
+      c.depth_integral = h.depth_integral;
+      // On the wall, below the centroid of the part under it (half_space.hpp).
+      c.point = h.centroid + wall.normal * dot(wall.point - h.centroid, wall.normal);
     } else {
       if (!(h.depth > 0)) return;
       c.depth = h.depth;
@@ -136,6 +143,7 @@ void narrow_phase(World& w, Contact& c) {
     c.area = length(o.area_a);
     if (!(c.area > 0)) return;
     c.normal = o.area_a / c.area;
+    c.volume = o.volume;
     // Feng's line of action, level with the centroid; the moment carries the
     // twisting couple: about the origin it is (F / |S_A|) M_A.
     c.point = o.application_point + c.normal * dot(o.centroid - o.application_point, c.normal);
@@ -216,10 +224,10 @@ std::pair<std::uint32_t, std::uint64_t> history_owner(const World& w, const Cont
   return {c.b, id_a};
 }
 
-Vec3 find_spring(const World& w, const Contact& c) {
+ContactHistory find_history(const World& w, const Contact& c) {
   const auto [owner, other] = history_owner(w, c);
   for (const ContactHistory& h : w.bodies[owner].history)
-    if (h.other == other) return h.spring;
+    if (h.other == other) return h;
   return {};
 }
 
@@ -236,28 +244,47 @@ void force_law(const World& w, Contact& c, Real dt) {
   const Real e_star = effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio);
   const Vec3 v_rel = point_velocity(w, b, c.point) - (a ? point_velocity(w, *a, c.point) : Vec3{});  // b relative to a
   const Real approach = -dot(v_rel, c.normal);
-  Real magnitude, k_normal = 0;  // normal force on b; dF/d(depth) for the linear and volume laws
+  Real magnitude, k_normal = 0, c_normal = 0;  // normal force on b; its stiffness and dashpot (linear and volume laws)
   if (w.model == ContactModel::Hertz) {
     magnitude = hertz_normal_force({m_eff, r_star, e_star, damping}, c.depth, approach);
     c.elastic = 8.0 / 15 * e_star * std::sqrt(r_star) * std::pow(c.depth, 2.5);
   } else {
-    if (w.model == ContactModel::Volume)
-      k_normal = (w.volume_stiffness > 0 ? w.volume_stiffness : e_star / r_star) * c.area;
-    else
+    if (w.model == ContactModel::Volume) {
+      // k |S_A| on depth V / |S_A| is k V; the potential form scales it by |S_A| / A_ref.
+      const Real k_volume = w.volume_stiffness > 0 ? w.volume_stiffness : e_star / r_star;
+      k_normal = k_volume * c.area;
+      if (c.a_is_plane) {
+        c.elastic = k_volume * c.depth_integral;
+      } else if (w.volume_form == VolumeForm::Potential) {
+        const Real a_ref = std::cbrt(std::fmin(a_fixed ? kInf : w.templates[a->shape].unit_mass.volume,
+                                               b.fixed ? kInf : w.templates[b.shape].unit_mass.volume));
+        k_normal *= c.area / (a_ref * a_ref);
+        c.elastic = 0.5 * k_volume * c.volume * c.volume / (a_ref * a_ref);
+      } else {
+        c.elastic = 0.5 * k_normal * c.depth * c.depth;  // exact for flat contacts only
+      }
+    } else {
       k_normal = w.linear_stiffness > 0 ? w.linear_stiffness : e_star * r_star;
+      c.elastic = 0.5 * k_normal * c.depth * c.depth;
+    }
     // The volume law's dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat
     // contacts (V linear in the approach) and an approximation otherwise.
-    magnitude = linear_normal_force(k_normal, linear_damping(damping, k_normal, m_eff), c.depth, approach);
-    c.elastic = 0.5 * k_normal * c.depth * c.depth;
+    c_normal = linear_damping(damping, k_normal, m_eff);
+    magnitude = linear_normal_force(k_normal, c_normal, c.depth, approach);
   }
+  const bool has_history = magnitude > 0 && (w.model == ContactModel::Volume || ma.friction * mb.friction > 0);
+  const ContactHistory history = has_history ? find_history(w, c) : ContactHistory{};
+  const Vec3 spin = (b.fixed ? Vec3{} : angular_velocity_of(w, b)) - (a_fixed ? Vec3{} : angular_velocity_of(w, *a));
+  const Real r2 = c.area / kPi;  // volume law: the contact seen as a disc of radius r
   // Tangential spring: advance by the relative tangential motion, keep it in
   // the tangent plane, cap it at mu F_n.
   const Real mu = std::sqrt(ma.friction * mb.friction);
-  Vec3 ft;
+  Vec3 ft, twisting;
   c.spring = {};
+  c.twist = 0;
   if (mu > 0 && magnitude > 0) {
     const Vec3 v_t = v_rel - c.normal * dot(v_rel, c.normal);
-    Vec3 spring = find_spring(w, c);
+    Vec3 spring = history.spring;
     const Real keep = length(spring);
     spring -= c.normal * dot(spring, c.normal);  // into the current tangent plane
     if (length(spring) > 0) spring *= keep / length(spring);
@@ -278,9 +305,55 @@ void force_law(const World& w, Contact& c, Real dt) {
     }
     c.spring = spring;
     c.elastic += 0.5 * k_t * dot(spring, spring);
+    if (w.model == ContactModel::Volume) {
+      // Twisting friction of the contact area, seen as a disc of radius r of
+      // tangential springs and dashpots: stiffness k_t r^2 / 2, slipping at
+      // Coulomb's 2/3 mu F_n r (uniform pressure). A single point of friction
+      // would let the bodies spin freely about the normal, and Feng's twisting
+      // couple of a tilted overlap did spin a stack of cubes apart.
+      const Real k_twist = k_t * r2 / 2, c_twist = c_t * r2 / 2;
+      const Real twist_rate = dot(spin, c.normal);
+      Real twist = history.twist + twist_rate * dt;
+      Real couple = -k_twist * twist - c_twist * twist_rate;
+      const Real twist_cap = 2.0 / 3 * mu * magnitude * std::sqrt(r2);
+      if (std::fabs(couple) > twist_cap) {
+        couple = std::copysign(twist_cap, couple);
+        twist = -couple / k_twist;
+      }
+      c.twist = twist;
+      c.elastic += 0.5 * k_twist * twist * twist;
+      twisting = c.normal * couple;
+    }
+  }
+  c.roll = {};
+  if (w.model == ContactModel::Volume && w.rocking_resistance && !c.a_is_plane && magnitude > 0) {
+    // Rocking stiffness of the contact area. Any potential of V alone leaves
+    // two flat faces free to rock about the middle of their contact (a wedge
+    // has the volume of the slab it tilts from), so a stack of cubes is an
+    // inverted pendulum. Seen as a disc of radius r of normal springs and
+    // dashpots, the area resists a relative rocking angle theta with
+    // k r^2 / 4 theta (k, c of the normal law), up to the moment F_n r at
+    // which all the pressure sits on the rim. (Plane walls need none: their
+    // force through the centroid of the part below the plane rocks back.)
+    const Vec3 roll_rate = spin - c.normal * dot(spin, c.normal);
+    Vec3 roll = history.roll;
+    const Real keep = length(roll);
+    roll -= c.normal * dot(roll, c.normal);
+    if (length(roll) > 0) roll *= keep / length(roll);
+    roll += roll_rate * dt;
+    const Real k_rock = k_normal * r2 / 4, c_rock = c_normal * r2 / 4;
+    Vec3 couple = roll * -k_rock - roll_rate * c_rock;
+    const Real rock_cap = magnitude * std::sqrt(r2);
+    if (length(couple) > rock_cap) {
+      couple *= rock_cap / length(couple);
+      roll = couple / -k_rock;
+    }
+    c.roll = roll;
+    c.elastic += 0.5 * k_rock * dot(roll, roll);
+    twisting += couple;
   }
   c.force = c.normal * magnitude + ft;
-  c.torque = c.moment * magnitude + cross(c.point, ft);
+  c.torque = c.moment * magnitude + cross(c.point, ft) + twisting;
 }
 
 void store_spring(World& w, const Contact& c) {
@@ -288,10 +361,12 @@ void store_spring(World& w, const Contact& c) {
   for (ContactHistory& h : w.bodies[owner].history)
     if (h.other == other) {
       h.spring = c.spring;
+      h.twist = c.twist;
+      h.roll = c.roll;
       h.touched = true;
       return;
     }
-  w.bodies[owner].history.push_back({other, c.spring, true});
+  w.bodies[owner].history.push_back({other, c.spring, c.twist, c.roll, true});
 }
 
 // dt: time since the last evaluation, for the tangential springs (0 at the start).

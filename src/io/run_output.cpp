@@ -14,7 +14,7 @@ namespace gjkdem::io {
 namespace {
 
 constexpr int kDisplayDirections = 64;
-constexpr char kCheckpointMagic[8] = {'g', 'j', 'k', 'd', 'c', 'k', 'p', '1'};
+constexpr char kCheckpointMagic[8] = {'g', 'j', 'k', 'd', 'c', 'k', 'p', '2'};
 
 void append(std::string& s, Real v) {
   char buf[32];
@@ -216,7 +216,7 @@ void save_checkpoint(const std::filesystem::path& file, const dem::World& w, con
       o.put(b.id), o.put(b.position), o.put(b.orientation), o.put(b.velocity), o.put(b.angular_momentum);
       o.put(b.force), o.put(b.torque);
       o.put(static_cast<std::uint64_t>(b.history.size()));
-      for (const dem::ContactHistory& h : b.history) o.put(h.other), o.put(h.spring);
+      for (const dem::ContactHistory& h : b.history) o.put(h.other), o.put(h.spring), o.put(h.twist), o.put(h.roll);
     }
     o.put(static_cast<std::uint64_t>(w.pair_caches.size()));
     for (const dem::PairCache& c : w.pair_caches) o.put(c);
@@ -247,7 +247,7 @@ RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& w) {
     in.get(b.position), in.get(b.orientation), in.get(b.velocity), in.get(b.angular_momentum);
     in.get(b.force), in.get(b.torque);
     b.history.resize(in.count(1u << 20));
-    for (dem::ContactHistory& h : b.history) in.get(h.other), in.get(h.spring), h.touched = true;
+    for (dem::ContactHistory& h : b.history) in.get(h.other), in.get(h.spring), in.get(h.twist), in.get(h.roll), h.touched = true;
   }
   w.pair_caches.resize(in.count(1ull << 40));
   for (dem::PairCache& c : w.pair_caches) in.get(c);

@@ -248,7 +248,7 @@ class SceneBuilder {
   }
 
   void read_contact(TableReader& top) {
-    std::string model = "volume";
+    std::string model = "volume", form = "normalized";
     World& w = scene_.world;
     if (const toml::table* t = sub_table(top, "contact")) {
       TableReader r(*t, "contact");
@@ -258,7 +258,12 @@ class SceneBuilder {
       else if (model == "linear") w.model = dem::ContactModel::Linear;
       else r.fail("model", "must be \"volume\", \"hertz\" or \"linear\", not \"" + model + "\"");
       w.volume_stiffness = r.positive("volume_stiffness", 0.0);
+      form = r.string("volume_form").value_or("normalized");
+      if (form == "normalized") w.volume_form = dem::VolumeForm::Normalized;
+      else if (form == "potential") w.volume_form = dem::VolumeForm::Potential;
+      else r.fail("volume_form", "must be \"normalized\" or \"potential\", not \"" + form + "\"");
       w.linear_stiffness = r.positive("linear_stiffness", 0.0);
+      w.rocking_resistance = r.boolean("rocking_resistance", true);
       const std::int64_t dirs = r.integer("tessellation").value_or(kDefaultTessellation);
       if (dirs < 8 || dirs > 100000) r.fail("tessellation", "must be between 8 and 100000 directions");
       tessellation_ = static_cast<int>(dirs);
@@ -266,7 +271,8 @@ class SceneBuilder {
     } else {
       w.model = dem::ContactModel::Volume;
     }
-    resolved_["contact"] = {{"model", model}, {"tessellation", tessellation_}};
+    resolved_["contact"] = {{"model", model}, {"volume_form", form},
+                            {"rocking_resistance", w.rocking_resistance}, {"tessellation", tessellation_}};
     if (w.volume_stiffness > 0) resolved_["contact"]["volume_stiffness"] = w.volume_stiffness;
     if (w.linear_stiffness > 0) resolved_["contact"]["linear_stiffness"] = w.linear_stiffness;
   }

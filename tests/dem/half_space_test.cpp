@@ -49,6 +49,33 @@ TEST(HalfSpace, PolytopeVolumeAndCutFaceMatchTheClipper) {
     // M = c x S for a flat face.
     EXPECT_NEAR(length(cross(h.face_centroid, o.area_a) - o.moment_a), 0, 1e-8) << trial;
     EXPECT_NEAR(dot(h.face_centroid - point, n), 0, 1e-12) << trial;
+    EXPECT_NEAR(length(h.centroid - o.centroid), 0, 1e-9) << trial;
+  }
+}
+
+// The integral of the depth over the part below the plane equals the integral
+// over s of the volume lying deeper than s (layer-cake), here by Simpson's
+// rule on the clipper's volumes of planes lowered by s.
+TEST(HalfSpace, DepthIntegralIsTheLayerCakeOfVolumes) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Vec3> pts(6 + trial);
+    for (Vec3& p : pts) p = {u(rng), u(rng), u(rng)};
+    const Shape body{make_polytope(pts)};
+    const Transform pose = Transform::from({0, 0, 0.2 * u(rng)}, random_rotation(rng));
+    const Vec3 n = normalized(Vec3{0.3 * u(rng), 0.3 * u(rng), 1});
+    const HalfSpaceContact h = half_space_contact(body, pose, {0, 0, 0}, n);
+    ASSERT_TRUE(h.has_volume) << trial;
+    const int steps = 2000;
+    const Real ds = h.depth / steps;
+    Real integral = 0;
+    for (int k = 0; k <= steps; ++k) {
+      const Real weight = k == 0 || k == steps ? 1 : (k % 2 ? 4 : 2);
+      integral += weight * half_space_contact(body, pose, n * -(k * ds), n).volume;
+    }
+    integral *= ds / 3;
+    EXPECT_NEAR(h.depth_integral, integral, 1e-6 * h.depth * h.volume + 1e-15) << trial;
   }
 }
 
@@ -61,6 +88,8 @@ TEST(HalfSpace, BoxBelowThePlaneIsClippedExactly) {
   EXPECT_NEAR(h.volume, 1 * 2 * 0.5, 1e-14);
   EXPECT_NEAR(h.area, 2, 1e-14);
   EXPECT_NEAR(length(h.face_centroid - Vec3{3, 4, 0}), 0, 1e-14);
+  EXPECT_NEAR(length(h.centroid - Vec3{3, 4, -0.25}), 0, 1e-14);
+  EXPECT_NEAR(h.depth_integral, 2 * 0.5 * 0.5 / 2, 1e-14);
 }
 
 TEST(HalfSpace, SphereCapMatchesClosedForm) {
@@ -72,6 +101,9 @@ TEST(HalfSpace, SphereCapMatchesClosedForm) {
     EXPECT_NEAR(c.depth, h, 1e-15);
     EXPECT_NEAR(c.volume, pi * h * h * (3 * r - h) / 3, 1e-15);
     EXPECT_NEAR(c.area, pi * (r * r - (r - h) * (r - h)), 1e-14);
+    // Layer cake: the integral over s in [0, h] of the cap of height u = h - s,
+    // pi u^2 (3r - u) / 3, is pi (r h^3 - h^4 / 4) / 3.
+    EXPECT_NEAR(c.depth_integral, pi * (r * h * h * h - h * h * h * h / 4) / 3, 1e-15);
   }
   EXPECT_FALSE(half_space_contact(make_sphere(r), Transform::from({0, 0, r + 1e-9}, Quat{}), {0, 0, 0}, {0, 0, 1}).touching);
 }

@@ -125,6 +125,15 @@ TEST(Scene, DefaultSceneLoads) {
   EXPECT_EQ(s.world.model, dem::ContactModel::Volume);
 }
 
+TEST(Scene, VolumeFormIsRead) {
+  EXPECT_EQ(load_scene(kHead + kCube, "x", ".").world.volume_form, dem::VolumeForm::Normalized);
+  const Scene s =
+      load_scene(kHead + "[contact]\nvolume_form = \"potential\"\nrocking_resistance = false\n" + kCube, "x", ".");
+  EXPECT_EQ(s.world.volume_form, dem::VolumeForm::Potential);
+  EXPECT_FALSE(s.world.rocking_resistance);
+  EXPECT_NE(s.resolved_json.find("\"volume_form\": \"potential\""), std::string::npos) << s.resolved_json;
+}
+
 struct Bad {
   std::string name, toml, expected;  // expected: a piece of the message
 };
@@ -229,6 +238,7 @@ region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
 )",
             "unknown platonic solid 'sphere'"},
         Bad{"bad_model", kHead + "[contact]\nmodel = \"magic\"\n" + kCube, "contact.model: must be"},
+        Bad{"bad_volume_form", kHead + "[contact]\nvolume_form = \"exact\"\n" + kCube, "contact.volume_form: must be"},
         Bad{"wall_type", kHead + kCube + "[[wall]]\ntype = \"cylinder\"\nmaterial = \"rock\"\n", "wall[0].type"},
         Bad{"duplicate_material", kHead + "[[material]]\nname = \"rock\"\ndensity = 1.0\nyoungs_modulus = 1.0\n" + kCube,
             "defined twice"},

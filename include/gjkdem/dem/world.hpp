@@ -7,7 +7,9 @@
 // Friction: an incremental tangential spring per persistent contact (Mindlin's
 // stiffness 8 G* sqrt(R* delta) for Hertz, 2/7 of the normal stiffness for the
 // linear and volume laws), turned into the current tangent plane each step and
-// capped by Coulomb's mu F_n (sliding).
+// capped by Coulomb's mu F_n (sliding). Under the volume law the contact area
+// also resists relative spin about the normal (a twisting spring capped by
+// 2/3 mu F_n r, r the radius of a disc of the contact's area).
 //
 // One step (dt): broad phase on boxes from support functions, narrow phase per
 // candidate pair (penetration by GJK/EPA for the Hertz and linear laws; the
@@ -49,6 +51,16 @@ struct Material {
 
 enum class ContactModel { Hertz, Linear, Volume };
 
+/// The volume law between two bodies (plane walls always use k V, which is
+/// conservative there, see half_space.hpp):
+/// - Normalized: F = k V along the unit normal S_A / |S_A| (issue 4's F = k V;
+///   a potential force only while |S_A| stays constant, as in flat contacts);
+/// - Potential: F = (k / A_ref) V S_A, the gradient of U = k V^2 / (2 A_ref),
+///   so collisions keep their energy exactly up to the integrator. A_ref is
+///   the smaller moving body's volume to the power 2/3 (a cube's face: a cube
+///   lying flat on a larger body feels k V under both forms).
+enum class VolumeForm { Normalized, Potential };
+
 /// A shape and its mass properties per unit density, computed once and
 /// shared by every body made from it.
 struct ShapeTemplate {
@@ -67,11 +79,13 @@ ShapeTemplate make_template(const Shape& shape);
 /// and its principal frame is the shape's own frame.
 ShapeTemplate make_wall_template(const Shape& shape);
 
-/// Tangential spring of a persistent contact, kept by the body with the
+/// Tangential and twisting springs of a persistent contact, kept by the body with the
 /// smaller id of the pair, so it travels with that particle between domains.
 struct ContactHistory {
   std::uint64_t other = 0;  ///< id of the other body (or plane wall)
   Vec3 spring;              ///< accumulated tangential displacement (m), world frame
+  Real twist = 0;           ///< accumulated relative spin about the normal (rad), volume law
+  Vec3 roll;                ///< accumulated relative rocking (rad), world frame, volume law between bodies
   bool touched = false;     ///< seen in the current evaluation (stale entries are dropped)
 };
 
@@ -115,6 +129,12 @@ struct World {
   /// them from the materials per pair: E* R* and E* / R* (docs/dem.md).
   Real linear_stiffness = 0;
   Real volume_stiffness = 0;
+  VolumeForm volume_form = VolumeForm::Normalized;
+  /// Volume law between bodies: the contact area resists relative rocking
+  /// (world.cpp); without it two flat faces rock freely about the middle of
+  /// their contact and stacks topple. Off, collisions under the potential
+  /// form keep their energy exactly.
+  bool rocking_resistance = true;
   int threads = 1;                     ///< OpenMP threads for a step (0: all cores)
   // Working state kept between steps.
   std::vector<std::uint32_t> sweep_order;
