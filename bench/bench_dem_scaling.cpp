@@ -72,8 +72,14 @@ World settled_block(bool cubes, int threads, const std::string& cache) {
     std::ifstream in(cache);
     Body b;
     while (in >> b.id >> b.shape >> b.position.x >> b.position.y >> b.position.z >> b.orientation.w >>
-           b.orientation.x >> b.orientation.y >> b.orientation.z)
+           b.orientation.x >> b.orientation.y >> b.orientation.z) {
+      if (b.shape >= w.templates.size()) {
+        std::fprintf(stderr, "%s: shape %u of body %llu does not exist; it was settled with other shapes\n",
+                     cache.c_str(), b.shape, static_cast<unsigned long long>(b.id));
+        std::exit(2);
+      }
       w.bodies.push_back(b);
+    }
     if (!w.bodies.empty()) return w;
   }
   const auto places = place_in_region(w, {0, 0, 0}, {kBlockSide, kBlockSide, 1.4 * kBlockSide}, kSize,

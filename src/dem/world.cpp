@@ -54,8 +54,27 @@ Vec3 principal_moments(const World& w, const Body& b) {
   return w.templates[b.shape].principal.moments * w.materials[b.material].density;
 }
 
-Vec3 point_velocity(const World& w, const Body& b, const Vec3& p) {
-  return b.fixed ? Vec3{} : b.velocity + cross(angular_velocity_of(w, b), p - b.position);
+// Velocity of the point p moving with body b, spinning at `spin` (zero for fixed bodies).
+Vec3 point_velocity(const Body& b, const Vec3& spin, const Vec3& p) {
+  return b.fixed ? Vec3{} : b.velocity + cross(spin, p - b.position);
+}
+
+// An incremental spring carried into the tangent plane of unit normal n,
+// keeping its length (the contact turned; the stretch did not change).
+Vec3 into_tangent_plane(Vec3 spring, const Vec3& n) {
+  const Real keep = length(spring);
+  spring -= n * dot(spring, n);
+  const Real now = length(spring);
+  return now > 0 ? spring * (keep / now) : spring;
+}
+
+// Caps a spring's load at `cap`: past it the contact slips, and the spring
+// keeps only the stretch that holds the capped load.
+void cap_spring(Vec3& load, Vec3& spring, Real stiffness, Real cap) {
+  if (length(load) > cap) {
+    load *= cap / length(load);
+    spring = load / -stiffness;
+  }
 }
 
 // Calibrated damping per (law, restitution): beta for Hertz, zeta for the
@@ -242,7 +261,10 @@ void force_law(const World& w, Contact& c, Real dt) {
   const Real r_star = effective_radius(a_fixed ? kInf : w.templates[a->shape].curvature_radius,
                                        b.fixed ? kInf : w.templates[b.shape].curvature_radius);
   const Real e_star = effective_modulus(ma.youngs_modulus, ma.poisson_ratio, mb.youngs_modulus, mb.poisson_ratio);
-  const Vec3 v_rel = point_velocity(w, b, c.point) - (a ? point_velocity(w, *a, c.point) : Vec3{});  // b relative to a
+  // Angular velocities once: for the relative velocity and, under the volume
+  // law, the relative spin that twists and rocks the contact.
+  const Vec3 spin_b = angular_velocity_of(w, b), spin_a = a ? angular_velocity_of(w, *a) : Vec3{};
+  const Vec3 v_rel = point_velocity(b, spin_b, c.point) - (a ? point_velocity(*a, spin_a, c.point) : Vec3{});  // b relative to a
   const Real approach = -dot(v_rel, c.normal);
   Real magnitude, k_normal = 0, c_normal = 0;  // normal force on b; its stiffness and dashpot (linear and volume laws)
   if (w.model == ContactModel::Hertz) {
@@ -274,7 +296,7 @@ void force_law(const World& w, Contact& c, Real dt) {
   }
   const bool has_history = magnitude > 0 && (w.model == ContactModel::Volume || ma.friction * mb.friction > 0);
   const ContactHistory history = has_history ? find_history(w, c) : ContactHistory{};
-  const Vec3 spin = (b.fixed ? Vec3{} : angular_velocity_of(w, b)) - (a_fixed ? Vec3{} : angular_velocity_of(w, *a));
+  const Vec3 spin = spin_b - spin_a;
   const Real r2 = c.area / kPi;  // volume law: the contact seen as a disc of radius r
   // Tangential spring: advance by the relative tangential motion, keep it in
   // the tangent plane, cap it at mu F_n.
@@ -284,11 +306,7 @@ void force_law(const World& w, Contact& c, Real dt) {
   c.twist = 0;
   if (mu > 0 && magnitude > 0) {
     const Vec3 v_t = v_rel - c.normal * dot(v_rel, c.normal);
-    Vec3 spring = history.spring;
-    const Real keep = length(spring);
-    spring -= c.normal * dot(spring, c.normal);  // into the current tangent plane
-    if (length(spring) > 0) spring *= keep / length(spring);
-    spring += v_t * dt;
+    Vec3 spring = into_tangent_plane(history.spring, c.normal) + v_t * dt;
     // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
     // the dashpot uses the normal law's calibrated damping, so sticking
     // contacts do not ring.
@@ -298,11 +316,7 @@ void force_law(const World& w, Contact& c, Real dt) {
                          : 2.0 / 7 * k_normal;
     const Real c_t = 2 * damping * std::sqrt(k_t * m_eff);
     ft = spring * -k_t - v_t * c_t;  // on b, opposing its motion relative to a
-    const Real cap = mu * magnitude;
-    if (length(ft) > cap) {  // sliding: force at the Coulomb limit, the spring holds it
-      ft *= cap / length(ft);
-      spring = ft / -k_t;
-    }
+    cap_spring(ft, spring, k_t, mu * magnitude);  // sliding: force at the Coulomb limit
     c.spring = spring;
     c.elastic += 0.5 * k_t * dot(spring, spring);
     if (w.model == ContactModel::Volume) {
@@ -336,18 +350,10 @@ void force_law(const World& w, Contact& c, Real dt) {
     // which all the pressure sits on the rim. (Plane walls need none: their
     // force through the centroid of the part below the plane rocks back.)
     const Vec3 roll_rate = spin - c.normal * dot(spin, c.normal);
-    Vec3 roll = history.roll;
-    const Real keep = length(roll);
-    roll -= c.normal * dot(roll, c.normal);
-    if (length(roll) > 0) roll *= keep / length(roll);
-    roll += roll_rate * dt;
+    Vec3 roll = into_tangent_plane(history.roll, c.normal) + roll_rate * dt;
     const Real k_rock = k_normal * r2 / 4, c_rock = c_normal * r2 / 4;
     Vec3 couple = roll * -k_rock - roll_rate * c_rock;
-    const Real rock_cap = magnitude * std::sqrt(r2);
-    if (length(couple) > rock_cap) {
-      couple *= rock_cap / length(couple);
-      roll = couple / -k_rock;
-    }
+    cap_spring(couple, roll, k_rock, magnitude * std::sqrt(r2));
     c.roll = roll;
     c.elastic += 0.5 * k_rock * dot(roll, roll);
     twisting += couple;

@@ -14,6 +14,7 @@ namespace gjkdem::io {
 namespace {
 
 constexpr int kDisplayDirections = 64;
+// The last byte is the format version: 2 added the twisting and rocking springs.
 constexpr char kCheckpointMagic[8] = {'g', 'j', 'k', 'd', 'c', 'k', 'p', '2'};
 
 void append(std::string& s, Real v) {
@@ -230,8 +231,13 @@ RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& w) {
   if (!in.in) throw CheckpointError("cannot read checkpoint " + file.string());
   char magic[sizeof kCheckpointMagic];
   in.in.read(magic, sizeof magic);
-  if (!in.in || std::memcmp(magic, kCheckpointMagic, sizeof magic) != 0)
+  constexpr std::size_t kVersionByte = sizeof kCheckpointMagic - 1;
+  if (!in.in || std::memcmp(magic, kCheckpointMagic, kVersionByte) != 0)
     throw CheckpointError(file.string() + " is not a gjkdem checkpoint");
+  if (magic[kVersionByte] != kCheckpointMagic[kVersionByte])
+    throw CheckpointError(file.string() + " has checkpoint format " + std::string(1, magic[kVersionByte]) +
+                          "; this gjkdem reads format " + std::string(1, kCheckpointMagic[kVersionByte]) +
+                          " (restart the run without --resume)");
   RunProgress p;
   in.get(p.step), in.get(p.frame), in.get(p.initial_energy), in.get(p.trace_bytes), in.get(p.energy_bytes);
   in.get(p.wall_seconds);
