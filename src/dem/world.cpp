@@ -25,30 +25,6 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 constexpr std::int64_t kMinParallelBodies = 512;
 constexpr std::int64_t kMinParallelContacts = 64;
 
-// One candidate contact: a pair of bodies (a, b) or a plane wall a and body b.
-// The narrow phase fills the geometry, the force law the rest; each slot is
-// written by one thread only.
-struct Contact {
-  std::uint32_t a = 0, b = 0;
-  bool a_is_plane = false;
-  int cache = -1;          // index into World::pair_caches, -1: none
-  bool active = false;     // touching, after merging
-  // Geometry.
-  Vec3 normal;             // unit, a -> b
-  Vec3 point;              // where friction and damping act
-  Real depth = 0;          // penetration depth, or V / |S_A| for the volume law
-  Real area = 0;           // |S_A| (volume law)
-  Real volume = 0;         // overlap volume (volume law)
-  Real depth_integral = 0; // plane walls, volume law: integral of the depth over the overlap (m^4)
-  Vec3 moment;             // moment about the world origin of a unit normal force on b
-  // Force law.
-  Vec3 force;              // on b
-  Vec3 torque;             // on b, about the world origin
-  Vec3 spring;             // new tangential spring
-  Real twist = 0;          // new twisting spring (rad, volume law)
-  Vec3 roll;               // new rocking spring (rad, volume law between bodies)
-  Real elastic = 0;        // energy stored in the contact (J)
-};
 
 Vec3 principal_moments(const World& w, const Body& b) {
   return w.templates[b.shape].principal.moments * w.materials[b.material].density;
@@ -107,14 +83,15 @@ int thread_id() {
 #endif
 }
 
-const Material& material_a(const World& w, const Contact& c) {
+const Material& material_a(const World& w, const StepContact& c) {
   return w.materials[c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material];
 }
 
 // The pair caches follow the sorted candidate list: entries of pairs that are
 // still candidates are kept, new pairs start cold.
 void align_pair_caches(World& w) {
-  std::vector<PairCache> next(w.candidates.size());
+  std::vector<PairCache>& next = w.next_pair_caches;
+  next.resize(w.candidates.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < w.candidates.size(); ++i) {
     while (k < w.pair_caches.size() && w.pair_caches[k].pair < w.candidates[i]) ++k;
@@ -124,7 +101,7 @@ void align_pair_caches(World& w) {
   w.pair_caches.swap(next);
 }
 
-void narrow_phase(World& w, Contact& c) {
+void narrow_phase(World& w, StepContact& c) {
   const Body& b = w.bodies[c.b];
   const Shape& sb = w.templates[b.shape].shape;
   const Transform pb = shape_pose(w, b);
@@ -182,14 +159,14 @@ void narrow_phase(World& w, Contact& c) {
 // Under the penetration laws a body touching several pieces of one wall (the
 // triangles of a mesh, the slabs of a box) gets one contact per cluster of
 // nearby, like-facing contacts: the deepest piece carries it.
-void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
+void merge_wall_contacts(const World& w, std::vector<StepContact>& contacts) {
   struct Key {
     std::uint32_t body, group;
     std::size_t index;
   };
   std::vector<Key> keys;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
+    const StepContact& c = contacts[k];
     if (!c.active || c.a_is_plane) continue;
     const Body& a = w.bodies[c.a];
     const Body& b = w.bodies[c.b];
@@ -206,7 +183,7 @@ void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
     if (end - begin > 1) {
       points.clear();
       for (std::size_t k = begin; k < end; ++k) {
-        const Contact& c = contacts[keys[k].index];
+        const StepContact& c = contacts[keys[k].index];
         const bool wall_is_a = c.b == keys[k].body;
         points.push_back({c.point, wall_is_a ? c.normal : -c.normal, c.depth});  // normals wall -> body
       }
@@ -222,7 +199,7 @@ void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
           }
         for (std::size_t k = begin; k < end; ++k)
           if (cluster_of[k - begin] == static_cast<int>(m) && keys[k].index != carrier) contacts[keys[k].index].active = false;
-        Contact& c = contacts[carrier];
+        StepContact& c = contacts[carrier];
         const bool wall_is_a = c.b == keys[begin].body;
         c.point = merged[m].point;
         c.depth = merged[m].depth;
@@ -236,21 +213,21 @@ void merge_wall_contacts(const World& w, std::vector<Contact>& contacts) {
 
 // The history of a contact lives with the body of smaller id (planes have the
 // largest ids, so a plane contact lives with its body).
-std::pair<std::uint32_t, std::uint64_t> history_owner(const World& w, const Contact& c) {
+std::pair<std::uint32_t, std::uint64_t> history_owner(const World& w, const StepContact& c) {
   const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
   const std::uint64_t id_b = w.bodies[c.b].id;
   if (!c.a_is_plane && id_a < id_b) return {c.a, id_b};
   return {c.b, id_a};
 }
 
-ContactHistory find_history(const World& w, const Contact& c) {
+ContactHistory find_history(const World& w, const StepContact& c) {
   const auto [owner, other] = history_owner(w, c);
   for (const ContactHistory& h : w.bodies[owner].history)
     if (h.other == other) return h;
   return {};
 }
 
-void force_law(const World& w, Contact& c, Real dt) {
+void force_law(const World& w, StepContact& c, Real dt) {
   const Body& b = w.bodies[c.b];
   const Body* a = c.a_is_plane ? nullptr : &w.bodies[c.a];
   const Material& ma = material_a(w, c);
@@ -362,7 +339,7 @@ void force_law(const World& w, Contact& c, Real dt) {
   c.torque = c.moment * magnitude + cross(c.point, ft) + twisting;
 }
 
-void store_spring(World& w, const Contact& c) {
+void store_spring(World& w, const StepContact& c) {
   const auto [owner, other] = history_owner(w, c);
   for (ContactHistory& h : w.bodies[owner].history)
     if (h.other == other) {
@@ -389,30 +366,37 @@ void compute_forces(World& w, Real dt) {
     for (ContactHistory& h : b.history) h.touched = false;
     w.boxes[i] = aabb(w.templates[b.shape].shape, shape_pose(w, b));
   }
-  overlapping_pairs(w.boxes, w.sweep_order, w.candidates);
+  overlapping_pairs(w.boxes, w.sweep, w.candidates, threads);
   align_pair_caches(w);
 
-  std::vector<Contact> contacts;
-  contacts.reserve(w.candidates.size() + w.planes.size() * w.bodies.size());
+  std::vector<StepContact>& contacts = w.contacts;
+  contacts.clear();
   for (std::size_t k = 0; k < w.candidates.size(); ++k) {
     const auto [i, j] = w.candidates[k];
     if (w.bodies[i].fixed && w.bodies[j].fixed) continue;
-    Contact c;
+    StepContact c;
     c.a = i;
     c.b = j;
     c.cache = static_cast<int>(k);
     contacts.push_back(c);
   }
-  for (std::uint32_t p = 0; p < w.planes.size(); ++p)
-    for (std::uint32_t i = 0; i < w.bodies.size(); ++i)
-      if (!w.bodies[i].fixed) {
-        Contact c;
-        c.a = p;
-        c.b = i;
-        c.a_is_plane = true;
-        contacts.push_back(c);
-      }
-  for (const Contact& c : contacts)  // calibrations happen here, outside the threads
+  // Plane walls: only bodies whose box reaches the plane can touch it (the
+  // box bounds the shape, so no contact is left out).
+  for (std::uint32_t p = 0; p < w.planes.size(); ++p) {
+    const PlaneWall& wall = w.planes[p];
+    for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+      const Aabb& box = w.boxes[i];
+      Real lowest = -dot(wall.normal, wall.point);  // of the box's corners above the plane
+      for (int k = 0; k < 3; ++k) lowest += wall.normal[k] * (wall.normal[k] > 0 ? box.lo[k] : box.hi[k]);
+      if (w.bodies[i].fixed || lowest > 0) continue;
+      StepContact c;
+      c.a = p;
+      c.b = i;
+      c.a_is_plane = true;
+      contacts.push_back(c);
+    }
+  }
+  for (const StepContact& c : contacts)  // calibrations happen here, outside the threads
     damping_for(w, pair_restitution(material_a(w, c), w.materials[w.bodies[c.b].material]));
 
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
@@ -426,7 +410,7 @@ void compute_forces(World& w, Real dt) {
   // Sums in the fixed order of the contact list: the same bits for any thread count.
   w.elastic_energy = 0;
   w.last_contacts = 0;
-  for (const Contact& c : contacts) {
+  for (const StepContact& c : contacts) {
     if (!c.active) continue;
     Body& b = w.bodies[c.b];
     b.force += c.force;

@@ -34,7 +34,7 @@ TEST(BroadPhase, AabbIsTight) {
 TEST(BroadPhase, SweepAndPruneMatchesBruteForce) {
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<std::uint32_t> order;
+  SweepWorkspace work;
   for (int round = 0; round < 5; ++round) {
     std::vector<Aabb> boxes;
     for (int i = 0; i < 800; ++i) {
@@ -44,7 +44,7 @@ TEST(BroadPhase, SweepAndPruneMatchesBruteForce) {
     }
     boxes.push_back({boxes[0].hi, boxes[0].hi + Vec3{1, 1, 1}});  // touching at a corner counts
     std::vector<BodyPair> pairs, brute;
-    overlapping_pairs(boxes, order, pairs);
+    overlapping_pairs(boxes, work, pairs);
     for (std::uint32_t i = 0; i < boxes.size(); ++i)
       for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
         bool hit = true;
@@ -53,6 +53,46 @@ TEST(BroadPhase, SweepAndPruneMatchesBruteForce) {
       }
     EXPECT_EQ(pairs, brute) << "round " << round;
     EXPECT_GT(brute.size(), 100u);
+  }
+}
+
+std::vector<BodyPair> brute_force_pairs(const std::vector<Aabb>& boxes) {
+  std::vector<BodyPair> brute;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
+      bool hit = true;
+      for (int a = 0; a < 3; ++a) hit &= boxes[i].lo[a] <= boxes[j].hi[a] && boxes[j].lo[a] <= boxes[i].hi[a];
+      if (hit) brute.emplace_back(i, j);
+    }
+  return brute;
+}
+
+// A bed much wider than deep, where the strips matter: boxes of many sizes,
+// one across the whole bed, flat ones, rows that touch exactly on the strip
+// axis (where strip boundaries may fall), all against brute force, on one
+// and two threads, with a workspace reused across different box counts.
+TEST(BroadPhase, StripsMatchBruteForceOnAWideBedForAnyThreadCount) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  SweepWorkspace one, two;
+  for (int round = 0; round < 3; ++round) {
+    std::vector<Aabb> boxes;
+    const int count = 4500 + 300 * round;
+    for (int i = 0; i < count; ++i) {
+      const Vec3 c{u(rng) * 60, u(rng) * 40, u(rng)};
+      const Vec3 h{0.1 + 0.4 * u(rng), 0.1 + 0.4 * u(rng), i % 17 == 0 ? 0.0 : 0.3 * u(rng)};
+      boxes.push_back({c - h, c + h});
+    }
+    boxes.push_back({{-1, -1, 0.2}, {61, 41, 0.3}});  // across every strip
+    for (int k = 0; k < 40; ++k)  // a row along y, each box touching the next
+      boxes.push_back({{30.0 + 0.01 * round, 0.5 * k, 0.5}, {30.5, 0.5 * (k + 1), 0.6}});
+    std::vector<BodyPair> serial, parallel;
+    overlapping_pairs(boxes, one, serial, 1);
+    overlapping_pairs(boxes, two, parallel, 2);
+    const std::vector<BodyPair> brute = brute_force_pairs(boxes);
+    EXPECT_EQ(serial, brute) << "round " << round;
+    EXPECT_EQ(parallel, brute) << "round " << round;
+    EXPECT_GT(brute.size(), 4000u);
   }
 }
 

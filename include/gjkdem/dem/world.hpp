@@ -111,6 +111,32 @@ struct PlaneWall {
   std::uint32_t material = 0;
 };
 
+/// One candidate contact of a force evaluation: a pair of bodies (a, b), or a
+/// plane wall a and body b. The narrow phase fills the geometry, the force
+/// law the rest; each slot is written by one thread only. `active`: touching
+/// (after merging the contacts of a wall).
+struct StepContact {
+  std::uint32_t a = 0, b = 0;
+  bool a_is_plane = false;
+  bool active = false;
+  int cache = -1;           ///< index into World::pair_caches, -1: none
+  // Geometry.
+  Vec3 normal;              ///< unit, a -> b
+  Vec3 point;               ///< where friction and damping act
+  Real depth = 0;           ///< penetration depth, or V / |S_A| for the volume law
+  Real area = 0;            ///< |S_A| (volume law)
+  Real volume = 0;          ///< overlap volume (volume law)
+  Real depth_integral = 0;  ///< plane walls, volume law: integral of the depth over the overlap (m^4)
+  Vec3 moment;              ///< moment about the world origin of a unit normal force on b
+  // Force law.
+  Vec3 force;               ///< on b
+  Vec3 torque;              ///< on b, about the world origin
+  Vec3 spring;              ///< new tangential spring
+  Real twist = 0;           ///< new twisting spring (rad, volume law)
+  Vec3 roll;                ///< new rocking spring (rad, volume law between bodies)
+  Real elastic = 0;         ///< energy stored in the contact (J)
+};
+
 /// Warm start of one candidate pair, kept while its boxes overlap.
 struct PairCache {
   BodyPair pair;
@@ -137,10 +163,12 @@ struct World {
   bool rocking_resistance = true;
   int threads = 1;                     ///< OpenMP threads for a step (0: all cores)
   // Working state kept between steps.
-  std::vector<std::uint32_t> sweep_order;
+  SweepWorkspace sweep;
   std::vector<Aabb> boxes;
   std::vector<BodyPair> candidates;
   std::vector<PairCache> pair_caches;  ///< sorted by pair, aligned with candidates after the broad phase
+  std::vector<PairCache> next_pair_caches;  ///< buffer for realigning them (kept to reuse its memory)
+  std::vector<StepContact> contacts;   ///< of the last force evaluation (kept to reuse its memory)
   std::vector<OverlapWorkspace> overlap_work;  ///< clipping buffers, one per thread
   bool forces_current = false;         ///< body forces belong to the current state
   Real elastic_energy = 0;             ///< in the contact springs at the last force evaluation (J)
