@@ -87,20 +87,6 @@ const Material& material_a(const World& w, const StepContact& c) {
   return w.materials[c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material];
 }
 
-// The pair caches follow the sorted candidate list: entries of pairs that are
-// still candidates are kept, new pairs start cold.
-void align_pair_caches(World& w) {
-  std::vector<PairCache>& next = w.next_pair_caches;
-  next.resize(w.candidates.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < w.candidates.size(); ++i) {
-    while (k < w.pair_caches.size() && w.pair_caches[k].pair < w.candidates[i]) ++k;
-    next[i] = k < w.pair_caches.size() && w.pair_caches[k].pair == w.candidates[i] ? w.pair_caches[k]
-                                                                                  : PairCache{w.candidates[i], {}};
-  }
-  w.pair_caches.swap(next);
-}
-
 void narrow_phase(World& w, StepContact& c) {
   const Body& b = w.bodies[c.b];
   const Shape& sb = w.templates[b.shape].shape;
@@ -367,7 +353,7 @@ void compute_forces(World& w, Real dt) {
     w.boxes[i] = aabb(w.templates[b.shape].shape, shape_pose(w, b));
   }
   overlapping_pairs(w.boxes, w.sweep, w.candidates, threads);
-  align_pair_caches(w);
+  align_pair_caches(w.candidates, w.pair_caches);
 
   std::vector<StepContact>& contacts = w.contacts;
   contacts.clear();
@@ -438,6 +424,20 @@ void kick(World& w, Real h) {
 }
 
 }  // namespace
+
+// In place (both lists are sorted): drop the stale entries moving left, then spread the kept ones to
+// their candidates' slots from the back, where each lands at or after its
+// current slot.
+void align_pair_caches(std::span<const BodyPair> candidates, std::vector<PairCache>& caches) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0, i = 0; k < caches.size(); ++k) {
+    while (i < candidates.size() && candidates[i] < caches[k].pair) ++i;
+    if (i < candidates.size() && candidates[i] == caches[k].pair) caches[kept++] = caches[k];
+  }
+  caches.resize(candidates.size());
+  for (std::size_t j = candidates.size(), from = kept; j-- > 0;)
+    caches[j] = from > 0 && caches[from - 1].pair == candidates[j] ? caches[--from] : PairCache{candidates[j], {}};
+}
 
 ShapeTemplate make_template(const Shape& shape) {
   ShapeTemplate t;

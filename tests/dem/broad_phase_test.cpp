@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <random>
+
+#include "gjkdem/dem/world.hpp"
 
 namespace gjkdem {
 namespace {
@@ -94,6 +98,44 @@ TEST(BroadPhase, StripsMatchBruteForceOnAWideBedForAnyThreadCount) {
     EXPECT_EQ(parallel, brute) << "round " << round;
     EXPECT_GT(brute.size(), 4000u);
   }
+}
+
+// The warm starts follow their pairs from one step's candidate list to the
+// next (random sorted lists against a map keyed by pair).
+TEST(BroadPhase, PairCachesFollowTheirPairs) {
+  std::mt19937_64 rng(6);
+  std::vector<dem::PairCache> caches;
+  std::map<BodyPair, int> expected;  // pair -> the tag its cache carries
+  int tag = 0;
+  for (int round = 0; round < 50; ++round) {
+    std::vector<BodyPair> candidates;
+    for (const auto& [pair, _] : expected)
+      if (rng() % 4 != 0) candidates.push_back(pair);  // a quarter of the pairs end
+    for (int k = static_cast<int>(rng() % 60); k > 0; --k) {  // new pairs
+      const std::uint32_t i = rng() % 40, j = i + 1 + rng() % 40;
+      candidates.emplace_back(i, j);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    dem::align_pair_caches(candidates, caches);
+    ASSERT_EQ(caches.size(), candidates.size());
+    std::map<BodyPair, int> next;
+    for (std::size_t k = 0; k < caches.size(); ++k) {
+      ASSERT_EQ(caches[k].pair, candidates[k]);
+      const auto old = expected.find(candidates[k]);
+      if (old != expected.end()) {
+        EXPECT_EQ(caches[k].gjk.size, 1);
+        EXPECT_EQ(caches[k].gjk.hint_a, old->second) << "round " << round;
+      } else {
+        EXPECT_EQ(caches[k].gjk.size, 0) << "a new pair starts cold";
+        caches[k].gjk.size = 1;  // what a step's narrow phase would leave
+        caches[k].gjk.hint_a = ++tag;
+      }
+      next[candidates[k]] = caches[k].gjk.hint_a;
+    }
+    expected.swap(next);
+  }
+  EXPECT_GT(tag, 500);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@
 // contact, not two).
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -167,7 +168,6 @@ struct World {
   std::vector<Aabb> boxes;
   std::vector<BodyPair> candidates;
   std::vector<PairCache> pair_caches;  ///< sorted by pair, aligned with candidates after the broad phase
-  std::vector<PairCache> next_pair_caches;  ///< buffer for realigning them (kept to reuse its memory)
   std::vector<StepContact> contacts;   ///< of the last force evaluation (kept to reuse its memory)
   std::vector<OverlapWorkspace> overlap_work;  ///< clipping buffers, one per thread
   bool forces_current = false;         ///< body forces belong to the current state
@@ -175,6 +175,11 @@ struct World {
   int last_contacts = 0;               ///< contacts at the last force evaluation
   std::map<std::pair<bool, Real>, Real> damping_cache;  ///< (Hertz?, restitution) -> calibrated damping
 };
+
+/// Makes `caches` follow the sorted `candidates`: entries of pairs that are
+/// still candidates keep their warm start, new pairs start cold, the rest are
+/// dropped. Needs `caches` sorted by pair; no allocation once capacity suffices.
+void align_pair_caches(std::span<const BodyPair> candidates, std::vector<PairCache>& caches);
 
 /// Pose of a body's shape: its principal frame placed in the world, composed
 /// with the shape's frame relative to its principal frame.
