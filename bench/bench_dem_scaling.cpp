@@ -15,7 +15,8 @@
 // when FILE exists, written after settling otherwise.
 //
 // Prints one line per N: contacts per particle, wall time per step,
-// microseconds per particle-step, bytes per particle. `--export PREFIX` writes
+// microseconds per particle-step, bytes per particle (growth of the resident
+// set), and the world's arrays split into bytes per body and per contact. `--export PREFIX` writes
 // each bed (PREFIX<N>.txt) for bench/yade_bed.py, which runs it in Yade.
 #include <chrono>
 #include <cmath>
@@ -142,6 +143,25 @@ void export_bed(const World& w, const std::string& file, Real side_x, Real side_
   }
 }
 
+// Bytes held by the world's arrays (capacities), split into what grows with
+// the bodies and what grows with the contacts.
+struct Footprint {
+  double per_body = 0, per_contact = 0;
+};
+
+Footprint footprint(const World& w) {
+  double bodies = static_cast<double>(w.bodies.capacity() * sizeof(Body) + w.boxes.capacity() * sizeof(Aabb) +
+                                      (w.sweep.order.capacity() + w.sweep.entries.capacity() +
+                                       w.sweep.strip_begin.capacity() + w.sweep.cursor.capacity()) *
+                                          sizeof(std::uint32_t));
+  double contacts = static_cast<double>(w.pair_caches.capacity() * sizeof(PairCache) +
+                                        w.candidates.capacity() * sizeof(BodyPair) +
+                                        w.contacts.capacity() * sizeof(StepContact));
+  for (const Body& b : w.bodies) contacts += static_cast<double>(b.history.capacity() * sizeof(ContactHistory));
+  for (const auto& found : w.sweep.found) contacts += static_cast<double>(found.capacity() * sizeof(BodyPair));
+  return {bodies / static_cast<double>(w.bodies.size()), contacts / std::max(1, w.last_contacts)};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -171,7 +191,8 @@ int main(int argc, char** argv) {
   const World block = settled_block(cubes, threads, block_cache);
   std::printf("block: %zu %s settled in %.1f s wall; %d contacts\n", block.bodies.size(), cubes ? "cubes" : "polyhedra",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t_block).count(), block.last_contacts);
-  std::printf("%-8s %9s %9s %12s %14s %12s\n", "N", "contacts", "per_part", "ms/step", "us/part-step", "bytes/part");
+  std::printf("%-8s %9s %9s %12s %14s %12s %12s %12s\n", "N", "contacts", "per_part", "ms/step", "us/part-step",
+              "bytes/part", "arrays/body", "arrays/cont");
   for (const int n : counts) {
     const int tiles = n / kBlockCount;
     int tiles_x = 1;
@@ -190,10 +211,12 @@ int main(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const long bytes = resident_bytes() - before;
     const std::size_t bodies = w.bodies.size();
-    // Pair contacts count for both bodies, wall contacts for one.
-    std::printf("%-8zu %9d %9.2f %12.3f %14.3f %12.0f\n", bodies, w.last_contacts,
-                2.0 * w.last_contacts / static_cast<double>(bodies), 1e3 * seconds / timed,
-                1e6 * seconds / timed / static_cast<double>(bodies), static_cast<double>(bytes) / bodies);
+    const Footprint arrays = footprint(w);
+    // Contacts per particle: pair contacts count for both bodies, wall contacts for one.
+    std::printf("%-8zu %9d %9.2f %12.3f %14.3f %12.0f %12.0f %12.0f\n", bodies, w.last_contacts,
+                (2.0 * w.last_contacts - w.last_wall_contacts) / static_cast<double>(bodies), 1e3 * seconds / timed,
+                1e6 * seconds / timed / static_cast<double>(bodies), static_cast<double>(bytes) / bodies,
+                arrays.per_body, arrays.per_contact);
     std::fflush(stdout);
   }
   return 0;

@@ -396,6 +396,7 @@ void compute_forces(World& w, Real dt) {
   // Sums in the fixed order of the contact list: the same bits for any thread count.
   w.elastic_energy = 0;
   w.last_contacts = 0;
+  w.last_wall_contacts = 0;
   for (const StepContact& c : contacts) {
     if (!c.active) continue;
     Body& b = w.bodies[c.b];
@@ -409,6 +410,7 @@ void compute_forces(World& w, Real dt) {
     store_spring(w, c);
     w.elastic_energy += c.elastic;
     ++w.last_contacts;
+    if (c.a_is_plane || w.bodies[c.a].fixed || w.bodies[c.b].fixed) ++w.last_wall_contacts;
   }
   for (Body& b : w.bodies)  // contacts that ended forget their spring
     std::erase_if(b.history, [](const ContactHistory& h) { return !h.touched; });

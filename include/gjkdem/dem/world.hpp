@@ -173,6 +173,7 @@ struct World {
   bool forces_current = false;         ///< body forces belong to the current state
   Real elastic_energy = 0;             ///< in the contact springs at the last force evaluation (J)
   int last_contacts = 0;               ///< contacts at the last force evaluation
+  int last_wall_contacts = 0;          ///< of which with a plane wall or a fixed body
   std::map<std::pair<bool, Real>, Real> damping_cache;  ///< (Hertz?, restitution) -> calibrated damping
 };
 
