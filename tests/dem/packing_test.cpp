@@ -157,8 +157,8 @@ TEST(Packing, ThousandTetrahedraSettleInBakerKudrolliRange) {
 // The solid fraction for other stiffnesses, frictions, batch counts and
 // seeds (docs/dem.md), from GJKDEM_PACKING_GRID = "E,mu,batches,seed;...";
 // 3 to 7 min per pour on one core, so not run by default:
-//   GJKDEM_PACKING_GRID="1e5,0.3,10,1;3e5,0.3,10,1" build/tests/gjkdem_tests \
-//     --gtest_also_run_disabled_tests --gtest_filter='Packing.DISABLED_SpreadOfCubes'
+//   export GJKDEM_PACKING_GRID="1e5,0.3,10,1;3e5,0.3,10,1"
+//   build/tests/gjkdem_tests --gtest_also_run_disabled_tests --gtest_filter='Packing.DISABLED_SpreadOfCubes'
 void print_spread(const std::string& solid, Real side) {
   const char* grid = std::getenv("GJKDEM_PACKING_GRID");  // "E,mu,batches,seed;..."
   const std::string text = grid ? grid : "1e5,0.3,10,1;3e5,0.3,10,1";
