@@ -25,7 +25,6 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 constexpr std::int64_t kMinParallelBodies = 512;
 constexpr std::int64_t kMinParallelContacts = 64;
 
-
 Vec3 principal_moments(const World& w, const Body& b) {
   return w.templates[b.shape].principal.moments * w.materials[b.material].density;
 }
@@ -434,8 +433,13 @@ void align_pair_caches(std::span<const BodyPair> candidates, std::vector<PairCac
   std::size_t kept = 0;
   for (std::size_t k = 0, i = 0; k < caches.size(); ++k) {
     while (i < candidates.size() && candidates[i] < caches[k].pair) ++i;
-    if (i < candidates.size() && candidates[i] == caches[k].pair) caches[kept++] = caches[k];
+    if (i < candidates.size() && candidates[i] == caches[k].pair) {
+      caches[kept++] = caches[k];
+      ++i;
+    }
   }
+  // Each candidate took at most one entry, so kept <= candidates.size() even
+  // for a list that is not sorted (a damaged checkpoint): memory stays safe.
   caches.resize(candidates.size());
   for (std::size_t j = candidates.size(), from = kept; j-- > 0;)
     caches[j] = from > 0 && caches[from - 1].pair == candidates[j] ? caches[--from] : PairCache{candidates[j], {}};

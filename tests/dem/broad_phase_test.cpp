@@ -136,6 +136,20 @@ TEST(BroadPhase, PairCachesFollowTheirPairs) {
     expected.swap(next);
   }
   EXPECT_GT(tag, 500);
+  // A damaged list (from a checkpoint): unsorted, with repeats. Every
+  // candidate still gets exactly one entry, of its own pair.
+  caches.assign(4, {});
+  caches[0].pair = caches[1].pair = caches[3].pair = {1, 2};
+  caches[2].pair = {0, 5};
+  const std::vector<BodyPair> few = {{0, 5}, {1, 2}, {3, 4}};
+  dem::align_pair_caches(few, caches);
+  ASSERT_EQ(caches.size(), few.size());
+  for (std::size_t k = 0; k < few.size(); ++k) EXPECT_EQ(caches[k].pair, few[k]);
+  caches.assign(5, {});  // more entries of one pair than there are candidates
+  for (dem::PairCache& c : caches) c.pair = {1, 2};
+  dem::align_pair_caches(std::vector<BodyPair>{{1, 2}}, caches);
+  ASSERT_EQ(caches.size(), 1u);
+  EXPECT_EQ(caches[0].pair, (BodyPair{1, 2}));
 }
 
 }  // namespace
