@@ -19,9 +19,10 @@
 // rotate by the symplectic free-rotation splitting (rigid_rotation.hpp),
 // forces are recomputed and the second half kick applied.
 //
-// Threads: boxes, narrow phase and force laws run in parallel (OpenMP), each
-// pair writing only its own slot; forces are then summed in the fixed order of
-// the sorted pair list, so a run gives the same bits for any thread count.
+// Threads: boxes, the broad phase's strips, narrow phase and force laws run
+// in parallel (OpenMP), each pair writing only its own slot; forces are then
+// summed in the fixed order of the sorted pair list, so a run gives the same
+// bits for any thread count.
 //
 // Walls: planes are half-spaces (half_space.hpp). Box containers and triangle
 // meshes are fixed bodies; the pieces of one wall share a `group`, and under
