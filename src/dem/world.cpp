@@ -381,8 +381,10 @@ void compute_forces(World& w, Real dt) {
       contacts.push_back(c);
     }
   }
-  for (const StepContact& c : contacts)  // calibrations happen here, outside the threads
-    damping_for(w, pair_restitution(material_a(w, c), w.materials[w.bodies[c.b].material]));
+  // Damping calibrations happen here, outside the threads: once per pair of
+  // materials (a handful), not per contact and step.
+  for (const Material& ma : w.materials)
+    for (const Material& mb : w.materials) damping_for(w, pair_restitution(ma, mb));
 
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
