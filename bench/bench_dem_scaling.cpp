@@ -28,8 +28,8 @@
 #include <string>
 #include <vector>
 
-#include "gjkdem/dem/generators.hpp"
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 
 using namespace gjkdem;
 using namespace gjkdem::dem;
@@ -47,83 +47,98 @@ long resident_bytes() {
   return resident * 4096;
 }
 
-void add_box_walls(World& w, Real x_side, Real y_side) {
-  const std::uint64_t id = std::uint64_t(1) << 62;
-  w.planes.clear();
-  w.planes.push_back({id, {0, 0, 0}, {0, 0, 1}, 0});
-  w.planes.push_back({id + 1, {0, 0, 0}, {1, 0, 0}, 0});
-  w.planes.push_back({id + 2, {x_side, 0, 0}, {-1, 0, 0}, 0});
-  w.planes.push_back({id + 3, {0, 0, 0}, {0, 1, 0}, 0});
-  w.planes.push_back({id + 4, {0, y_side, 0}, {0, -1, 0}, 0});
+void add_box_walls(WorldBuilder& b, std::uint32_t material, Real x_side, Real y_side) {
+  b.add_plane({0, 0, 0}, {0, 0, 1}, material, "floor");
+  b.add_plane({0, 0, 0}, {1, 0, 0}, material, "wall -x");
+  b.add_plane({x_side, 0, 0}, {-1, 0, 0}, material, "wall +x");
+  b.add_plane({0, 0, 0}, {0, 1, 0}, material, "wall -y");
+  b.add_plane({0, y_side, 0}, {0, -1, 0}, material, "wall +y");
+}
+
+struct BlockBody {
+  std::uint32_t shape = 0;  // index of the shared shape
+  Vec3 position;            // centre of mass
+  Quat orientation;         // principal frame
+};
+
+// A bed of bodies with the given states, all sharing the block's shapes, in a
+// box of plane walls: built with the bodies anywhere, then set to the states
+// (a settled bed overlaps, so the builder is told to accept that). Sides of
+// 0: no walls.
+World bed(bool cubes, int threads, const std::vector<BlockBody>& bodies, Real x_side, Real y_side) {
+  WorldSettings settings;
+  settings.model = ContactModel::Volume;
+  settings.threads = threads;
+  WorldBuilder b(settings);
+  b.accept_initial_overlaps();
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+  std::mt19937_64 rng(1);
+  const int shapes = cubes ? 1 : 50;
+  for (int t = 0; t < shapes; ++t)
+    b.add_shape({cubes ? platonic("cube", kSize) : random_polyhedron(12, kSize, rng), {}}, "shape");
+  if (x_side > 0) add_box_walls(b, rock, x_side, y_side);
+  for (const BlockBody& body : bodies)
+    b.add_body({.shared_shape = body.shape, .material = rock, .position = body.position});
+  World w = b.build();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    w.bodies[i].position = bodies[i].position;
+    w.bodies[i].orientation = bodies[i].orientation;
+  }
+  return w;
 }
 
 // 1,000 particles poured into a 10 x 10 cm box and settled under gravity
 // (0.5 s of simulated time): the block every bed is tiled from.
-World settled_block(bool cubes, int threads, const std::string& cache) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.threads = threads;
-  w.materials.push_back({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
-  std::mt19937_64 rng(1);
-  if (cubes) w.templates.push_back(make_template(platonic("cube", kSize)));
-  else
-    for (int t = 0; t < 50; ++t) w.templates.push_back(make_template(random_polyhedron(12, kSize, rng)));
-  add_box_walls(w, kBlockSide, kBlockSide);
-  if (!cache.empty()) {  // a block settled by an earlier run with the same templates
+std::vector<BlockBody> settled_block(bool cubes, int threads, const std::string& cache) {
+  std::vector<BlockBody> block;
+  const std::size_t shapes = cubes ? 1 : 50;
+  if (!cache.empty()) {  // a block settled by an earlier run with the same shapes
     std::ifstream in(cache);
-    Body b;
-    while (in >> b.id >> b.shape >> b.position.x >> b.position.y >> b.position.z >> b.orientation.w >>
-           b.orientation.x >> b.orientation.y >> b.orientation.z) {
-      if (b.shape >= w.templates.size()) {
-        std::fprintf(stderr, "%s: shape %u of body %llu does not exist; it was settled with other shapes\n",
-                     cache.c_str(), b.shape, static_cast<unsigned long long>(b.id));
+    BlockBody b;
+    std::uint64_t id = 0;  // the file's first column (the old engine's ids), unused
+    while (in >> id >> b.shape >> b.position.x >> b.position.y >> b.position.z >> b.orientation.w >> b.orientation.x >>
+           b.orientation.y >> b.orientation.z) {
+      if (b.shape >= shapes) {
+        std::fprintf(stderr, "%s: shape %u does not exist; it was settled with other shapes\n", cache.c_str(), b.shape);
         std::exit(2);
       }
-      w.bodies.push_back(b);
+      block.push_back(b);
     }
-    if (!w.bodies.empty()) return w;
+    if (!block.empty()) return block;
   }
-  const auto places = place_in_region(w, {0, 0, 0}, {kBlockSide, kBlockSide, 1.4 * kBlockSide}, kSize,
-                                      kBlockCount, rng);
-  for (std::size_t i = 0; i < places.size(); ++i) {
-    Body b;
-    b.id = i;
-    b.shape = static_cast<std::uint32_t>(i % w.templates.size());
-    b.position = places[i].position;
-    b.orientation = places[i].rotation;
-    w.bodies.push_back(b);
+  // Cells one size apart, filled from the bottom, random orientations.
+  std::mt19937_64 rng(7);
+  const int per_side = static_cast<int>(kBlockSide / kSize);
+  for (int i = 0; static_cast<int>(block.size()) < kBlockCount; ++i) {
+    const int x = i % per_side, y = i / per_side % per_side, z = i / (per_side * per_side);
+    block.push_back({static_cast<std::uint32_t>(i % shapes), Vec3{x + 0.5, y + 0.5, z + 0.5} * (1.4 * kSize),
+                     random_rotation(rng)});
   }
+  for (BlockBody& b : block) b.position = {b.position.x / 1.4, b.position.y / 1.4, b.position.z};
+  World w = bed(cubes, threads, block, kBlockSide, kBlockSide);
   const Real dt = critical_time_step(w);
   while (w.time < 0.5) step(w, dt);
+  for (std::size_t i = 0; i < block.size(); ++i) block[i] = {block[i].shape, w.bodies[i].position, w.bodies[i].orientation};
   if (!cache.empty()) {
     std::ofstream out(cache);
     out.precision(17);
-    for (const Body& b : w.bodies)
-      out << b.id << ' ' << b.shape << ' ' << b.position.x << ' ' << b.position.y << ' ' << b.position.z << ' '
-          << b.orientation.w << ' ' << b.orientation.x << ' ' << b.orientation.y << ' ' << b.orientation.z << '\n';
+    for (std::size_t i = 0; i < block.size(); ++i) {
+      const BlockBody& b = block[i];
+      out << i << ' ' << b.shape << ' ' << b.position.x << ' ' << b.position.y << ' ' << b.position.z << ' ' << b.orientation.w
+          << ' ' << b.orientation.x << ' ' << b.orientation.y << ' ' << b.orientation.z << '\n';
+    }
   }
-  return w;
+  return block;
 }
 
 // The block repeated tiles_x by tiles_y times side by side, in one box.
-World tiled_bed(const World& block, int tiles_x, int tiles_y) {
-  World w;
-  w.model = block.model;
-  w.threads = block.threads;
-  w.materials = block.materials;
-  w.templates = block.templates;
-  add_box_walls(w, tiles_x * kBlockSide, tiles_y * kBlockSide);
+World tiled_bed(bool cubes, int threads, const std::vector<BlockBody>& block, int tiles_x, int tiles_y) {
+  std::vector<BlockBody> bodies;
   for (int ty = 0; ty < tiles_y; ++ty)
     for (int tx = 0; tx < tiles_x; ++tx)
-      for (const Body& source : block.bodies) {
-        Body b;
-        b.id = w.bodies.size();
-        b.shape = source.shape;
-        b.position = source.position + Vec3{tx * kBlockSide, ty * kBlockSide, 0};
-        b.orientation = source.orientation;
-        w.bodies.push_back(b);
-      }
-  return w;
+      for (const BlockBody& b : block)
+        bodies.push_back({b.shape, b.position + Vec3{tx * kBlockSide, ty * kBlockSide, 0}, b.orientation});
+  return bed(cubes, threads, bodies, tiles_x * kBlockSide, tiles_y * kBlockSide);
 }
 
 // Every body as its world-frame hull vertices, one line each, for
@@ -150,23 +165,55 @@ struct Footprint {
 };
 
 Footprint footprint(const World& w) {
-  double bodies = static_cast<double>(w.bodies.capacity() * sizeof(Body) + w.boxes.capacity() * sizeof(Aabb) +
-                                      (w.sweep.order.capacity() + w.sweep.entries.capacity() +
-                                       w.sweep.strip_begin.capacity() + w.sweep.cursor.capacity()) *
-                                          sizeof(std::uint32_t));
-  double contacts = static_cast<double>(w.pair_caches.capacity() * sizeof(PairCache) +
-                                        w.candidates.capacity() * sizeof(BodyPair) +
-                                        w.contacts.capacity() * sizeof(StepContact));
-  for (const Body& b : w.bodies) contacts += static_cast<double>(b.history.capacity() * sizeof(ContactHistory));
-  for (const auto& found : w.sweep.found) contacts += static_cast<double>(found.capacity() * sizeof(BodyPair));
-  return {bodies / static_cast<double>(w.bodies.size()), contacts / std::max(1, w.last_contacts)};
+  const StepWorkspace& k = w.work;
+  double bodies = static_cast<double>(
+      w.bodies.capacity() * sizeof(Body) + k.boxes.boxes.capacity() * sizeof(Aabb) +
+      k.boxes.anchor_position.capacity() * sizeof(Vec3) + k.boxes.anchor_orientation.capacity() * sizeof(Quat) +
+      k.boxes.stale.capacity() + k.moving.capacity() * sizeof(std::uint32_t) + k.moving_boxes.capacity() * sizeof(Aabb) +
+      (k.sweep.order.capacity() + k.sweep.entries.capacity() + k.sweep.strip_begin.capacity() +
+       k.sweep.cursor.capacity()) * sizeof(std::uint32_t));
+  double contacts = static_cast<double>(w.pairs.capacity() * sizeof(PairState) +
+                                        k.candidates.capacity() * sizeof(BodyPair) +
+                                        k.contacts.capacity() * sizeof(StepContact) + k.keys.capacity() * sizeof(PairKey));
+  for (const auto& found : k.sweep.found) contacts += static_cast<double>(found.capacity() * sizeof(BodyPair));
+  return {bodies / static_cast<double>(w.bodies.size()), contacts / std::max(1, w.stats.contacts)};
+}
+
+// Free fall: 1,000 grains 1.5 sizes apart in a 10 x 10 x 10 lattice, no
+// walls, falling from rest and tumbling (spin ~ 10 rad/s per axis) for
+// `steps` steps (no contact ever). Prints the
+// cost per particle-step, the first step (start-up) excluded.
+void free_fall(int threads, int steps) {
+  std::vector<BlockBody> bodies;
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < kBlockCount; ++i)
+    bodies.push_back({static_cast<std::uint32_t>(i % 50), Vec3{Real(i % 10), Real(i / 10 % 10), Real(i / 100)} * (1.5 * kSize),
+                      random_rotation(rng)});
+  World w = bed(false, threads, bodies, 0, 0);
+  std::normal_distribution<double> spin(0, 10);  // rad/s: tumbling grains, as after collisions
+  for (Body& b : w.bodies)
+    b.angular_momentum = rotate(b.orientation, hadamard(principal_moments(w, b), Vec3{spin(rng), spin(rng), spin(rng)}));
+  const Real dt = critical_time_step(w);
+  step(w, dt);  // start-up: every box made, the static tree, buffers
+  const auto t0 = std::chrono::steady_clock::now();
+  int updates = 0;
+  for (int i = 0; i < steps; ++i) {
+    step(w, dt);
+    updates += w.stats.box_updates;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("free fall: %zu grains, %d steps of %.3g s: %.4f us per particle-step; %d contacts; "
+              "%.3f box updates per particle-step (skin %.3g)\n",
+              w.bodies.size(), steps, dt, 1e6 * seconds / steps / static_cast<double>(w.bodies.size()),
+              w.stats.contacts, static_cast<double>(updates) / steps / static_cast<double>(w.bodies.size()),
+              w.settings.box_skin);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   bool cubes = false;
-  int threads = 0, settle = 20, steps = 0;
+  int threads = 0, settle = 20, steps = 0, free_fall_steps = 0;
   std::string export_prefix, block_cache;
   std::vector<int> counts;
   for (int i = 1; i < argc; ++i) {
@@ -177,20 +224,26 @@ int main(int argc, char** argv) {
     else if (a == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (a == "--export" && i + 1 < argc) export_prefix = argv[++i];
     else if (a == "--block" && i + 1 < argc) block_cache = argv[++i];
+    else if (a == "--free-fall") free_fall_steps = 2000;
     else if (std::atoi(a.c_str()) >= kBlockCount && std::atoi(a.c_str()) % kBlockCount == 0) counts.push_back(std::atoi(a.c_str()));
     else {
       std::fprintf(stderr,
                    "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE] N [N ...]\n"
+                   "       %s --free-fall [--threads T] [--steps S]\n"
                    "  N: multiples of 1000 (default 1000 10000 100000)\n",
-                   argv[0]);
+                   argv[0], argv[0]);
       return 2;
     }
   }
+  if (free_fall_steps > 0) {
+    free_fall(threads, steps > 0 ? steps : free_fall_steps);
+    return 0;
+  }
   if (counts.empty()) counts = {1000, 10000, 100000};
   const auto t_block = std::chrono::steady_clock::now();
-  const World block = settled_block(cubes, threads, block_cache);
-  std::printf("block: %zu %s settled in %.1f s wall; %d contacts\n", block.bodies.size(), cubes ? "cubes" : "polyhedra",
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_block).count(), block.last_contacts);
+  const std::vector<BlockBody> block = settled_block(cubes, threads, block_cache);
+  std::printf("block: %zu %s settled in %.1f s wall\n", block.size(), cubes ? "cubes" : "polyhedra",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_block).count());
   std::printf("%-8s %9s %9s %12s %14s %12s %12s %12s\n", "N", "contacts", "per_part", "ms/step", "us/part-step",
               "bytes/part", "arrays/body", "arrays/cont");
   for (const int n : counts) {
@@ -200,7 +253,7 @@ int main(int argc, char** argv) {
       if (tiles % t == 0) tiles_x = t;
     const int tiles_y = tiles / tiles_x;
     const long before = resident_bytes();
-    World w = tiled_bed(block, tiles_x, tiles_y);
+    World w = tiled_bed(cubes, threads, block, tiles_x, tiles_y);
     const Real dt = critical_time_step(w);
     for (int i = 0; i < settle; ++i) step(w, dt);  // the tiles' seams come to rest
     if (!export_prefix.empty())
@@ -213,8 +266,8 @@ int main(int argc, char** argv) {
     const std::size_t bodies = w.bodies.size();
     const Footprint arrays = footprint(w);
     // Contacts per particle: pair contacts count for both bodies, wall contacts for one.
-    std::printf("%-8zu %9d %9.2f %12.3f %14.3f %12.0f %12.0f %12.0f\n", bodies, w.last_contacts,
-                (2.0 * w.last_contacts - w.last_wall_contacts) / static_cast<double>(bodies), 1e3 * seconds / timed,
+    std::printf("%-8zu %9d %9.2f %12.3f %14.3f %12.0f %12.0f %12.0f\n", bodies, w.stats.contacts,
+                (2.0 * w.stats.contacts - w.stats.wall_contacts) / static_cast<double>(bodies), 1e3 * seconds / timed,
                 1e6 * seconds / timed / static_cast<double>(bodies), static_cast<double>(bytes) / bodies,
                 arrays.per_body, arrays.per_contact);
     std::fflush(stdout);

@@ -1,5 +1,6 @@
-// gjkdem run: a DEM simulation from a scene, its outputs, progress, clean
-// stops on Ctrl-C / SIGTERM, checkpoints and --resume.
+// gjkdem run: options, signals and the progress bar. The run itself (steps,
+// outputs, energy balance, checkpoints, run.json) is the library's:
+// dem::run with the observers of io/run_observers.hpp.
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -17,7 +18,7 @@
 #endif
 
 #include "commands.hpp"
-#include "gjkdem/io/run_output.hpp"
+#include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/scene.hpp"
 
 namespace gjkdem::app {
@@ -40,12 +41,6 @@ std::string read_text(const fs::path& file) {
   return s.str();
 }
 
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-}
-
 std::string duration_text(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";
   const long s = std::lround(seconds);
@@ -57,24 +52,29 @@ std::string duration_text(double seconds) {
 
 // Progress on standard error: a bar redrawn in place on a terminal, a plain
 // line every 10 s (and at the end) otherwise.
-class Progress {
+class Progress : public dem::RunObserver {
  public:
-  Progress(bool quiet, std::uint64_t first_step, std::uint64_t total)
-      : quiet_(quiet), tty_(isatty(STDERR_FILENO)), first_(first_step), total_(total), start_(Clock::now()),
+  Progress(bool quiet, std::uint64_t first_step, Real duration)
+      : quiet_(quiet), tty_(isatty(STDERR_FILENO)), first_(first_step), duration_(duration), start_(Clock::now()),
         last_(start_) {}
-  void update(std::uint64_t step, Real time, Real duration, bool final = false) {
+  void on_output(const dem::World&, const dem::RunState&) override {}
+  void on_step(const dem::World& w, const dem::RunState& s) override { update(w, s, false); }
+  void on_stop(const dem::World& w, const dem::RunState& s, const dem::RunOutcome&) override { update(w, s, true); }
+
+ private:
+  void update(const dem::World& w, const dem::RunState& s, bool final) {
     if (quiet_) return;
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
     if (!final && since < (tty_ ? 0.25 : 10.0)) return;
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = elapsed > 0 ? static_cast<double>(step - first_) / elapsed : 0;
-    const double eta = rate > 0 ? static_cast<double>(total_ - step) / rate : NAN;
-    const double frac = total_ ? static_cast<double>(step) / static_cast<double>(total_) : 1;
+    const double rate = elapsed > 0 ? static_cast<double>(s.step - first_) / elapsed : 0;
+    const double eta = rate > 0 ? static_cast<double>(s.steps_total - s.step) / rate : NAN;
+    const double frac = s.steps_total ? static_cast<double>(s.step) / static_cast<double>(s.steps_total) : 1;
     char line[200];
-    std::snprintf(line, sizeof line, "t = %.4f / %.4g s  %5.1f%%  %.0f steps/s  ETA %s", time, duration, 100 * frac,
-                  rate, duration_text(eta).c_str());
+    std::snprintf(line, sizeof line, "t = %.4f / %.4g s  %5.1f%%  %.0f steps/s  ETA %s", w.time, duration_,
+                  100 * frac, rate, duration_text(eta).c_str());
     if (tty_) {
       const int width = 24, done = static_cast<int>(frac * width);
       std::cerr << "\r[" << std::string(done, '#') << std::string(width - done, '.') << "] " << line << "   "
@@ -84,151 +84,10 @@ class Progress {
     }
   }
 
- private:
   bool quiet_, tty_;
-  std::uint64_t first_, total_;
+  std::uint64_t first_;
+  Real duration_;
   Clock::time_point start_, last_;
-};
-
-struct RunFolder {
-  fs::path dir;
-  fs::path frames() const { return dir / "frames"; }
-  fs::path checkpoint() const { return dir / "checkpoint.bin"; }
-  fs::path trace() const { return dir / "trace.csv"; }
-  fs::path energy() const { return dir / "energy.csv"; }
-  fs::path run_json() const { return dir / "run.json"; }
-  fs::path scene() const { return dir / "scene.toml"; }
-};
-
-class Runner {
- public:
-  Runner(io::Scene scene, RunFolder folder, Json info, const RunOptions& opt)
-      : s_(std::move(scene)), f_(std::move(folder)), info_(std::move(info)), opt_(opt) {
-    for (const dem::ShapeTemplate& t : s_.world.templates) meshes_.push_back(io::display_mesh(t.shape));
-    total_ = static_cast<std::uint64_t>(std::ceil(s_.duration / s_.dt - 1e-9));
-    per_frame_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(s_.output_every / s_.dt)));
-  }
-
-  // A new run: headers, frame 0.
-  void start() {
-    write_text(f_.trace(), io::trace_header());
-    write_text(f_.energy(), io::energy_header());
-    p_.initial_energy = dem::kinetic_energy(s_.world) + dem::potential_energy(s_.world);
-    open_logs();
-    write_frame();
-  }
-
-  // A stopped run: the checkpoint's state, the logs cut back to it.
-  void resume() {
-    p_ = io::load_checkpoint(f_.checkpoint(), s_.world);
-    fs::resize_file(f_.trace(), p_.trace_bytes);
-    fs::resize_file(f_.energy(), p_.energy_bytes);
-    open_logs();
-  }
-
-  int run() {
-    write_info("running");
-    Progress progress(opt_.quiet, p_.step, total_);
-    const auto t0 = Clock::now();
-    const double wall_before = p_.wall_seconds;
-    auto wall = [&] { return wall_before + std::chrono::duration<double>(Clock::now() - t0).count(); };
-    try {
-      while (p_.step < total_) {
-        if (g_stop_signal || (opt_.stop_after >= 0 && p_.step >= static_cast<std::uint64_t>(opt_.stop_after))) {
-          p_.wall_seconds = wall();
-          checkpoint();
-          progress.update(p_.step, s_.world.time, s_.duration, true);
-          info_["stopped_by"] = g_stop_signal ? (g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM") : "--stop-after";
-          write_info("interrupted", wall());
-          if (!opt_.quiet)
-            std::cerr << "gjkdem: stopped at t = " << s_.world.time << " s; continue with: gjkdem run --resume "
-                      << f_.dir.string() << "\n";
-          return 130;
-        }
-        dem::step(s_.world, s_.dt);
-        ++p_.step;
-        if (p_.step % per_frame_ == 0 || p_.step == total_) {
-          check_finite();
-          write_frame();
-          p_.wall_seconds = wall();
-          if (s_.checkpoint_every > 0 && p_.frame % static_cast<std::uint64_t>(s_.checkpoint_every) == 0) checkpoint();
-        }
-        progress.update(p_.step, s_.world.time, s_.duration);
-      }
-    } catch (const std::exception& e) {
-      info_["error"] = e.what();
-      write_info("failed", wall());
-      std::cerr << "\ngjkdem: run failed: " << e.what() << "\n";
-      return 1;
-    }
-    progress.update(p_.step, s_.world.time, s_.duration, true);
-    p_.wall_seconds = wall();
-    write_info("completed", wall());
-    if (!opt_.quiet)
-      std::cerr << "gjkdem: completed " << p_.step << " steps (" << s_.world.bodies.size() << " bodies) in "
-                << duration_text(wall()) << "; results in " << f_.dir.string() << "\n";
-    return 0;
-  }
-
- private:
-  void open_logs() {
-    trace_.open(f_.trace(), std::ios::binary | std::ios::app);
-    energy_.open(f_.energy(), std::ios::binary | std::ios::app);
-    if (!trace_ || !energy_) throw std::runtime_error("cannot open the logs in " + f_.dir.string());
-  }
-
-  void check_finite() const {
-    for (const dem::Body& b : s_.world.bodies)
-      if (!is_finite(b.position) || !is_finite(b.velocity) || !is_finite(b.angular_momentum))
-        throw std::runtime_error("body " + std::to_string(b.id) + " has a non-finite state at t = " +
-                                 std::to_string(s_.world.time) + " s (time step too large for the stiffness?)");
-  }
-
-  void write_frame() {
-    const dem::World& w = s_.world;
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%06llu.vtk", static_cast<unsigned long long>(p_.frame));
-    if (s_.write_frames) {
-      io::write_vtk_frame(f_.frames() / name, w, meshes_);
-      p_.frames.emplace_back(name, w.time);
-      io::write_frame_series(f_.frames() / "frames.vtk.series", p_.frames);
-    }
-    for (const io::TracedBody& t : s_.traced) trace_ << io::trace_row(w, t.name, w.bodies[t.body]);
-    const Real kinetic = dem::kinetic_energy(w), potential = dem::potential_energy(w), elastic = w.elastic_energy;
-    energy_ << io::energy_row(w.time, kinetic, potential, elastic, p_.initial_energy - kinetic - potential - elastic,
-                              w.last_contacts);
-    trace_.flush();
-    energy_.flush();
-    if (!trace_ || !energy_) throw std::runtime_error("cannot write the logs in " + f_.dir.string());
-    ++p_.frame;
-  }
-
-  void checkpoint() {
-    trace_.flush();
-    energy_.flush();
-    p_.trace_bytes = fs::file_size(f_.trace());
-    p_.energy_bytes = fs::file_size(f_.energy());
-    io::save_checkpoint(f_.checkpoint(), s_.world, p_);
-  }
-
-  void write_info(const std::string& status, double wall_seconds = 0) {
-    info_["status"] = status;
-    info_["steps"] = p_.step;
-    info_["steps_total"] = total_;
-    info_["simulated_time"] = s_.world.time;
-    info_["frames"] = p_.frame;
-    info_["wall_time_s"] = wall_seconds;
-    write_text(f_.run_json(), info_.dump(2) + "\n");
-  }
-
-  io::Scene s_;
-  RunFolder f_;
-  Json info_;
-  const RunOptions& opt_;
-  std::vector<io::DisplayMesh> meshes_;
-  io::RunProgress p_;
-  std::uint64_t total_ = 0, per_frame_ = 1;
-  std::ofstream trace_, energy_;
 };
 
 Json base_info(const io::Scene& s, const std::string& scene_file, const fs::path& base_dir) {
@@ -240,8 +99,9 @@ Json base_info(const io::Scene& s, const std::string& scene_file, const fs::path
   info["scene"] = Json::parse(s.resolved_json);
   info["bodies"] = s.world.bodies.size();
   info["shape_templates"] = s.world.templates.size();
-  info["threads"] = s.world.threads;
+  info["threads"] = s.world.settings.threads;
   info["warnings"] = s.warnings;
+  info["dt"] = s.dt;
   return info;
 }
 
@@ -262,14 +122,13 @@ void install_signal_handlers() {
 int run_simulation(const RunOptions& opt) {
   std::string text, source, scene_file;
   fs::path base;
-  RunFolder folder;
-  Json previous;
+  io::RunPaths folder;
   try {
     if (!opt.resume.empty()) {
       folder.dir = opt.resume;
       if (!fs::exists(folder.checkpoint()))
         throw io::SceneError(folder.dir.string() + " holds no checkpoint.bin to resume from");
-      previous = Json::parse(read_text(folder.run_json()), nullptr, false);
+      const Json previous = Json::parse(read_text(folder.run_json()), nullptr, false);
       if (previous.is_discarded() || !previous.contains("scene_base"))
         throw io::SceneError(folder.run_json().string() + " is missing or unreadable");
       if (previous.value("status", "") == "completed") {
@@ -293,8 +152,14 @@ int run_simulation(const RunOptions& opt) {
     }
     io::Scene scene = io::load_scene(text, source, base);
     for (const std::string& w : scene.warnings) std::cerr << "gjkdem: warning: " << w << "\n";
-    if (opt.threads >= 0) scene.world.threads = opt.threads;
-    scene.world.threads = resolve_threads(scene.world.threads);
+    if (opt.threads >= 0) scene.world.settings.threads = opt.threads;
+    scene.world.settings.threads = resolve_threads(scene.world.settings.threads);
+    dem::RunState state;
+    try {
+      state = dem::plan_run(scene.duration, scene.dt, scene.output_every);
+    } catch (const std::invalid_argument& e) {
+      throw io::SceneError(source + ": " + e.what());
+    }
     if (opt.resume.empty()) {
       folder.dir = opt.out.empty() ? fs::path(scene.output_dir) : fs::path(opt.out);
       if (fs::exists(folder.run_json()) && !(opt.overwrite || scene.overwrite))
@@ -303,19 +168,69 @@ int run_simulation(const RunOptions& opt) {
       for (const fs::path& p : {folder.frames(), folder.checkpoint(), folder.trace(), folder.energy()})
         fs::remove_all(p);
       fs::create_directories(folder.frames());
-      write_text(folder.scene(), text);
+      io::write_file_atomically(folder.scene(), text);
     }
-    Json info = base_info(scene, scene_file, base);
-    info["dt"] = scene.dt;
+    const std::uint64_t fingerprint = io::fnv1a64(text);
+    std::vector<io::TraceWriter::Traced> traced;
+    for (const io::TracedBody& t : scene.traced) traced.push_back({t.name, t.body});
+    io::FrameWriter frames(folder.frames(), scene.world, scene.write_frames);
+    io::TraceWriter trace(traced);
+    io::EnergyWriter energy;
+    double wall_before = 0;
+    if (opt.resume.empty()) {
+      trace.start(folder.trace(), io::trace_header());
+      energy.start(folder.energy(), io::energy_header());
+    } else {
+      const io::Checkpoint c = io::load_checkpoint(folder.checkpoint(), scene.world, fingerprint);
+      if (c.run.steps_total != state.steps_total || c.run.dt != state.dt ||
+          c.run.steps_per_output != state.steps_per_output)
+        throw io::CheckpointError(folder.checkpoint().string() + " does not match the scene's duration and steps");
+      state = c.run;
+      frames.frames = c.logs.frames;
+      trace.resume(folder.trace(), c.logs.trace_bytes);
+      energy.resume(folder.energy(), c.logs.energy_bytes);
+      wall_before = c.logs.wall_seconds;
+    }
+    io::Checkpointer checkpoints(folder.checkpoint(), scene.checkpoint_every, fingerprint, frames, trace, energy,
+                                 wall_before);
+    io::RunInfoWriter info(folder.run_json(), base_info(scene, scene_file, base).dump(), checkpoints);
+    Progress progress(opt.quiet, state.step, scene.duration);
+    dem::RunObserver* observers[] = {&frames, &trace, &energy, &checkpoints, &info, &progress};
     if (!opt.quiet)
       std::cerr << "gjkdem: " << scene.world.bodies.size() << " bodies, " << scene.world.templates.size()
-                << " shape templates, dt = " << scene.dt << " s, " << scene.world.threads << " threads, output in "
-                << folder.dir.string() << "\n";
+                << " shape templates, dt = " << scene.dt << " s, " << scene.world.settings.threads
+                << " threads, output in " << folder.dir.string() << "\n";
     install_signal_handlers();
-    Runner runner(std::move(scene), folder, info, opt);
-    if (opt.resume.empty()) runner.start();
-    else runner.resume();
-    return runner.run();
+    info.started(scene.world, state);
+    const auto stop = [&] {
+      if (g_stop_signal) {
+        info.stopped_by = g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM";
+        return true;
+      }
+      if (opt.stop_after >= 0 && state.step >= static_cast<std::uint64_t>(opt.stop_after)) {
+        info.stopped_by = "--stop-after";
+        return true;
+      }
+      return false;
+    };
+    const dem::RunOutcome outcome = dem::run(scene.world, state, observers, stop);
+    switch (outcome.status) {
+      case dem::RunStatus::Completed:
+        if (!opt.quiet)
+          std::cerr << "gjkdem: completed " << state.step << " steps (" << scene.world.bodies.size()
+                    << " bodies) in " << duration_text(checkpoints.wall_seconds()) << "; results in "
+                    << folder.dir.string() << "\n";
+        return 0;
+      case dem::RunStatus::Stopped:
+        if (!opt.quiet)
+          std::cerr << "gjkdem: stopped at t = " << scene.world.time << " s; continue with: gjkdem run --resume "
+                    << folder.dir.string() << "\n";
+        return 130;
+      case dem::RunStatus::Failed:
+        std::cerr << "\ngjkdem: run failed: " << outcome.error << "\n";
+        return 1;
+    }
+    return 1;
   } catch (const io::SceneError& e) {
     std::cerr << "gjkdem: error: " << e.what() << "\n";
     return 2;
@@ -325,6 +240,9 @@ int run_simulation(const RunOptions& opt) {
   } catch (const fs::filesystem_error& e) {
     std::cerr << "gjkdem: error: " << e.what() << "\n";
     return 2;
+  } catch (const std::runtime_error& e) {
+    std::cerr << "gjkdem: error: " << e.what() << "\n";
+    return 1;
   }
 }
 

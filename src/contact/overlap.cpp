@@ -16,7 +16,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr Real kPi = 3.14159265358979323846;
 
 bool zero_volume(const Shape& s) {
   if (s.margin > 0) return false;
@@ -257,12 +256,12 @@ void finish_normal(OverlapResult& r, Real total_area) {
 }  // namespace
 
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
-                      OverlapWorkspace& w) {
+                      OverlapWorkspace& w, GjkCache* cache) {
   OverlapResult r;
   const Real size = 2 * std::fmax(bounding_radius(a), bounding_radius(b));
   const Real tol = kOverlapRelTol * size;
   w.result = -1;
-  if (zero_volume(a) || zero_volume(b) || !intersect(a, pose_a, b, pose_b)) return r;  // Empty
+  if (zero_volume(a) || zero_volume(b) || !intersect(a, pose_a, b, pose_b, cache)) return r;  // Empty
 
   if (clippable(a) && clippable(b)) {
     for (int k = 0; k < 2; ++k) {

@@ -6,7 +6,7 @@
 
 #include "gjkdem/tolerances.hpp"
 
-namespace gjkdem {
+namespace gjkdem::dem {
 namespace {
 
 // Restitution of a dimensionless impact x'' = -max(0, F(x, x')) entered at
@@ -94,4 +94,4 @@ Real hertz_normal_force(const HertzParameters& p, Real overlap, Real speed) noex
   return std::fmax(k_n * overlap + 2 * p.damping * std::sqrt(s_n * p.effective_mass) * speed, Real(0));
 }
 
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

@@ -1,19 +1,57 @@
 #include "gjkdem/dem/rigid_rotation.hpp"
 
-namespace gjkdem {
+#include <cmath>
 
+namespace gjkdem::dem {
+
+namespace {
+
+// sin and cos of x: Taylor series to full double precision for |x| < 0.25
+// (the half angles of a time step are far smaller), libm beyond.
+void sin_cos(Real x, Real& s, Real& c) noexcept {
+  if (!(std::fabs(x) < 0.25)) {
+    s = std::sin(x);
+    c = std::cos(x);
+    return;
+  }
+  // Horner in x^2 with the inverse factorials; the next terms are below
+  // 0.25^17 / 17! ~ 5e-25.
+  constexpr Real f3 = 1.0 / 6, f5 = f3 / 20, f7 = f5 / 42, f9 = f7 / 72, f11 = f9 / 110, f13 = f11 / 156,
+                 f15 = f13 / 210;
+  constexpr Real f2 = 1.0 / 2, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132,
+                 f14 = f12 / 182, f16 = f14 / 240;
+  const Real x2 = x * x;
+  s = x * (1 - x2 * (f3 - x2 * (f5 - x2 * (f7 - x2 * (f9 - x2 * (f11 - x2 * (f13 - x2 * f15)))))));
+  c = 1 - x2 * (f2 - x2 * (f4 - x2 * (f6 - x2 * (f8 - x2 * (f10 - x2 * (f12 - x2 * (f14 - x2 * f16)))))));
+}
+
+}  // namespace
+
+// The body-frame angular momentum pi is carried along: a turn of the body by
+// theta about its axis i turns pi by -theta about that axis (two components
+// change), so the matrix of q is made once, not once per sub-rotation.
 void rotate_free(Quat& q, const Vec3& l_world, const Vec3& moments, Real dt) noexcept {
-  auto sub = [&](int axis, Real t) {
-    const Vec3 pi = transpose_mul(to_matrix(q), l_world);  // body-frame angular momentum
-    Vec3 e;
-    e[axis] = 1;
-    q = normalized(q * quat_from_axis_angle(e, t * pi[axis] / moments[axis]));
+  Vec3 pi = transpose_mul(to_matrix(q), l_world);
+  auto sub = [&](int i, Real t) {
+    const Real angle = t * pi[i] / moments[i];
+    if (angle == 0) return;
+    Real s, c;
+    sin_cos(angle / 2, s, c);
+    Quat r{c, 0, 0, 0};
+    (i == 0 ? r.x : (i == 1 ? r.y : r.z)) = s;
+    q = q * r;
+    const Real cos_full = c * c - s * s, sin_full = 2 * s * c;
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const Real pj = pi[j], pk = pi[k];
+    pi[j] = cos_full * pj + sin_full * pk;
+    pi[k] = cos_full * pk - sin_full * pj;
   };
   sub(0, dt / 2);
   sub(1, dt / 2);
   sub(2, dt);
   sub(1, dt / 2);
   sub(0, dt / 2);
+  q = normalized(q);
 }
 
 Vec3 angular_velocity(const Quat& q, const Vec3& l_world, const Vec3& moments) noexcept {
@@ -26,4 +64,4 @@ Real rotational_energy(const Quat& q, const Vec3& l_world, const Vec3& moments) 
   return dot(angular_velocity(q, l_world, moments), l_world) / 2;
 }
 
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

@@ -14,8 +14,6 @@ namespace gjkdem::io {
 namespace {
 
 constexpr int kDisplayDirections = 64;
-// The last byte is the format version: 2 added the twisting and rocking springs.
-constexpr char kCheckpointMagic[8] = {'g', 'j', 'k', 'd', 'c', 'k', 'p', '2'};
 
 void append(std::string& s, Real v) {
   char buf[32];
@@ -42,45 +40,6 @@ void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
   m.polygon_begin = d.facet_begin;
   m.indices = d.facet_vertices;
 }
-
-// Raw binary I/O of the checkpoint.
-struct Writer {
-  std::ofstream out;
-  template <class T>
-  void put(const T& v) { out.write(reinterpret_cast<const char*>(&v), sizeof v); }
-  void put(const Vec3& v) { put(v.x), put(v.y), put(v.z); }
-  void put(const Quat& q) { put(q.w), put(q.x), put(q.y), put(q.z); }
-  void put(const std::string& s) {
-    put(static_cast<std::uint64_t>(s.size()));
-    out.write(s.data(), static_cast<std::streamsize>(s.size()));
-  }
-};
-
-struct Reader {
-  std::ifstream in;
-  std::string name;
-  template <class T>
-  void get(T& v) {
-    in.read(reinterpret_cast<char*>(&v), sizeof v);
-    if (!in) throw CheckpointError(name + ": truncated checkpoint");
-  }
-  void get(Vec3& v) { get(v.x), get(v.y), get(v.z); }
-  void get(Quat& q) { get(q.w), get(q.x), get(q.y), get(q.z); }
-  void get(std::string& s) {
-    std::uint64_t n = 0;
-    get(n);
-    if (n > (1u << 20)) throw CheckpointError(name + ": corrupt checkpoint");
-    s.resize(n);
-    in.read(s.data(), static_cast<std::streamsize>(n));
-    if (!in) throw CheckpointError(name + ": truncated checkpoint");
-  }
-  std::uint64_t count(std::uint64_t limit) {
-    std::uint64_t n = 0;
-    get(n);
-    if (n > limit) throw CheckpointError(name + ": corrupt checkpoint");
-    return n;
-  }
-};
 
 }  // namespace
 
@@ -179,7 +138,7 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   s += "," + name;
   // The orientation of the body frame the author gave: principal frame -> world
   // composed with the template's shape frame.
-  const Quat q = b.orientation * conjugate(w.templates[b.shape].principal.rotation);
+  const Quat q = dem::shape_orientation(w.templates[b.shape], b);
   const Vec3 spin = dem::angular_velocity_of(w, b);
   for (Real v : {b.position.x, b.position.y, b.position.z, q.w, q.x, q.y, q.z, b.velocity.x, b.velocity.y,
                  b.velocity.z, spin.x, spin.y, spin.z}) {
@@ -200,64 +159,6 @@ std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Re
   }
   s += std::to_string(contacts) + "\n";
   return s;
-}
-
-void save_checkpoint(const std::filesystem::path& file, const dem::World& w, const RunProgress& p) {
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    Writer o{std::ofstream(tmp, std::ios::binary)};
-    o.out.write(kCheckpointMagic, sizeof kCheckpointMagic);
-    o.put(p.step), o.put(p.frame), o.put(p.initial_energy), o.put(p.trace_bytes), o.put(p.energy_bytes);
-    o.put(p.wall_seconds);
-    o.put(static_cast<std::uint64_t>(p.frames.size()));
-    for (const auto& [name, time] : p.frames) o.put(name), o.put(time);
-    o.put(w.time), o.put(w.elastic_energy), o.put(w.last_contacts), o.put(w.forces_current);
-    o.put(static_cast<std::uint64_t>(w.bodies.size()));
-    for (const dem::Body& b : w.bodies) {
-      o.put(b.id), o.put(b.position), o.put(b.orientation), o.put(b.velocity), o.put(b.angular_momentum);
-      o.put(b.force), o.put(b.torque);
-      o.put(static_cast<std::uint64_t>(b.history.size()));
-      for (const dem::ContactHistory& h : b.history) o.put(h.other), o.put(h.spring), o.put(h.twist), o.put(h.roll);
-    }
-    o.put(static_cast<std::uint64_t>(w.pair_caches.size()));
-    for (const dem::PairCache& c : w.pair_caches) o.put(c);
-    if (!o.out) throw std::runtime_error("cannot write checkpoint " + tmp.string());
-  }
-  std::filesystem::rename(tmp, file);
-}
-
-RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& w) {
-  Reader in{std::ifstream(file, std::ios::binary), file.string()};
-  if (!in.in) throw CheckpointError("cannot read checkpoint " + file.string());
-  char magic[sizeof kCheckpointMagic];
-  in.in.read(magic, sizeof magic);
-  constexpr std::size_t kVersionByte = sizeof kCheckpointMagic - 1;
-  if (!in.in || std::memcmp(magic, kCheckpointMagic, kVersionByte) != 0)
-    throw CheckpointError(file.string() + " is not a gjkdem checkpoint");
-  if (magic[kVersionByte] != kCheckpointMagic[kVersionByte])
-    throw CheckpointError(file.string() + " has checkpoint format " + std::string(1, magic[kVersionByte]) +
-                          "; this gjkdem reads format " + std::string(1, kCheckpointMagic[kVersionByte]) +
-                          " (restart the run without --resume)");
-  RunProgress p;
-  in.get(p.step), in.get(p.frame), in.get(p.initial_energy), in.get(p.trace_bytes), in.get(p.energy_bytes);
-  in.get(p.wall_seconds);
-  p.frames.resize(in.count(1u << 30));
-  for (auto& [name, time] : p.frames) in.get(name), in.get(time);
-  in.get(w.time), in.get(w.elastic_energy), in.get(w.last_contacts), in.get(w.forces_current);
-  if (in.count(1ull << 40) != w.bodies.size())
-    throw CheckpointError(file.string() + ": the scene has a different number of bodies than the checkpoint");
-  for (dem::Body& b : w.bodies) {
-    std::uint64_t id = 0;
-    in.get(id);
-    if (id != b.id) throw CheckpointError(file.string() + ": body ids differ from the scene's");
-    in.get(b.position), in.get(b.orientation), in.get(b.velocity), in.get(b.angular_momentum);
-    in.get(b.force), in.get(b.torque);
-    b.history.resize(in.count(1u << 20));
-    for (dem::ContactHistory& h : b.history) in.get(h.other), in.get(h.spring), in.get(h.twist), in.get(h.roll), h.touched = true;
-  }
-  w.pair_caches.resize(in.count(1ull << 40));
-  for (dem::PairCache& c : w.pair_caches) in.get(c);
-  return p;
 }
 
 }  // namespace gjkdem::io

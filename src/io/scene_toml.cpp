@@ -14,26 +14,18 @@
 #include <toml++/toml.h>
 
 #include "gjkdem/collide/query.hpp"
-#include "gjkdem/dem/generators.hpp"
-#include "gjkdem/dem/half_space.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/mesh.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
 #include "gjkdem/shape/polytope.hpp"
-#include "gjkdem/shape/tessellate.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::io {
 namespace {
 
 using Json = nlohmann::ordered_json;
-using dem::Body;
-using dem::World;
 
-// Plane walls get ids above every body's, so that contact histories (kept by
-// the smaller id) stay with the particle.
-constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
-// Directions of the tessellation of curved shapes under the volume law.
-constexpr int kDefaultTessellation = 96;
 
 std::string line_of(const toml::node& n) {
   const auto line = n.source().begin.line;
@@ -126,6 +118,7 @@ class TableReader {
     if (std::fabs(norm - 1) > kUnitQuaternionTol) fail(key, "must be a unit quaternion [w, x, y, z]");
     return normalized(q);
   }
+  const toml::table& table_node() const { return table_; }
   const toml::table* table(const std::string& key) {
     const toml::node* n = find(key);
     if (!n) return nullptr;
@@ -147,13 +140,8 @@ class TableReader {
 Json to_json(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
 Json to_json(const Quat& q) { return Json::array({q.w, q.x, q.y, q.z}); }
 
-// A shape read from a SHAPE table: its core in a local frame and that frame's
-// pose in the body's frame.
-struct ShapeSpec {
-  Shape shape;
-  Transform pose;
-  Real diameter = 0;  // of a sphere about the body frame's origin holding it
-};
+// A shape read from a SHAPE table, in its body's frame.
+using ShapeSpec = dem::BodyShape;
 
 class SceneBuilder {
  public:
@@ -164,16 +152,19 @@ class SceneBuilder {
     read_simulation(top);
     read_output(top);
     read_contact(top);
+    builder_.emplace(settings_);
     for_each_table(top, "material", [&](TableReader& r) { read_material(r); });
     for_each_table(top, "wall", [&](TableReader& r) { read_wall(r); });
     for_each_table(top, "body", [&](TableReader& r) { read_body(r); });
-    check_explicit_bodies();
     for_each_table(top, "generator", [&](TableReader& r) { read_generator(r); });
     top.finish();
-    if (scene_.world.bodies.empty() || std::all_of(scene_.world.bodies.begin(), scene_.world.bodies.end(),
-                                                   [](const Body& b) { return b.fixed; }))
+    if (builder_->moving_count() == 0)
       throw SceneError(source_ + ": the scene has no moving body (add a [[body]] or a [[generator]])");
-    prepare_for_volume_law();
+    try {
+      scene_.world = builder_->build();
+    } catch (const dem::BuildError& e) {
+      throw SceneError(source_ + ": " + e.what());
+    }
     if (scene_.dt_auto) scene_.dt = dem::critical_time_step(scene_.world);
     resolved_["simulation"]["dt"] = scene_.dt;
     resolved_["simulation"]["dt_auto"] = scene_.dt_auto;
@@ -193,6 +184,16 @@ class SceneBuilder {
       TableReader r(*e.as_table(), key + "[" + std::to_string(index++) + "]");
       read(r);
       r.finish();
+    }
+  }
+
+  // Runs a builder call; what it refuses becomes a SceneError at `where`'s line.
+  template <class F>
+  auto building(const toml::node& where, F&& call) {
+    try {
+      return call();
+    } catch (const dem::BuildError& e) {
+      throw SceneError(std::string(e.what()) + line_of(where));
     }
   }
 
@@ -216,15 +217,15 @@ class SceneBuilder {
         scene_.dt = r.positive("dt");
       }
     }
-    scene_.world.gravity = r.vec3("gravity").value_or(Vec3{0, 0, -9.81});
+    settings_.gravity = r.vec3("gravity").value_or(Vec3{0, 0, -9.81});
     const std::int64_t threads = r.integer("threads").value_or(0);
     if (threads < 0 || threads > 4096) r.fail("threads", "must be 0 (all cores) or a thread count");
-    scene_.world.threads = static_cast<int>(threads);
+    settings_.threads = static_cast<int>(threads);
     const std::int64_t seed = r.integer("seed").value_or(1);
     if (seed < 0) r.fail("seed", "must be >= 0");
     scene_.seed = static_cast<std::uint64_t>(seed);
     r.finish();
-    resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(scene_.world.gravity)},
+    resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
                                {"threads", threads}, {"seed", seed}};
   }
 
@@ -249,7 +250,8 @@ class SceneBuilder {
 
   void read_contact(TableReader& top) {
     std::string model = "volume", form = "normalized";
-    World& w = scene_.world;
+    dem::WorldSettings& w = settings_;
+    w.model = dem::ContactModel::Volume;
     if (const toml::table* t = sub_table(top, "contact")) {
       TableReader r(*t, "contact");
       model = r.string("model").value_or("volume");
@@ -264,15 +266,13 @@ class SceneBuilder {
       else r.fail("volume_form", "must be \"normalized\" or \"potential\", not \"" + form + "\"");
       w.linear_stiffness = r.positive("linear_stiffness", 0.0);
       w.rocking_resistance = r.boolean("rocking_resistance", true);
-      const std::int64_t dirs = r.integer("tessellation").value_or(kDefaultTessellation);
+      const std::int64_t dirs = r.integer("tessellation").value_or(w.tessellation);
       if (dirs < 8 || dirs > 100000) r.fail("tessellation", "must be between 8 and 100000 directions");
-      tessellation_ = static_cast<int>(dirs);
+      w.tessellation = static_cast<int>(dirs);
       r.finish();
-    } else {
-      w.model = dem::ContactModel::Volume;
     }
     resolved_["contact"] = {{"model", model}, {"volume_form", form},
-                            {"rocking_resistance", w.rocking_resistance}, {"tessellation", tessellation_}};
+                            {"rocking_resistance", w.rocking_resistance}, {"tessellation", w.tessellation}};
     if (w.volume_stiffness > 0) resolved_["contact"]["volume_stiffness"] = w.volume_stiffness;
     if (w.linear_stiffness > 0) resolved_["contact"]["linear_stiffness"] = w.linear_stiffness;
   }
@@ -280,7 +280,7 @@ class SceneBuilder {
   void read_material(TableReader& r) {
     dem::Material m;
     m.name = r.required_string("name");
-    if (materials_.count(m.name)) r.fail("name", "material '" + m.name + "' is defined twice");
+    if (builder_->find_material(m.name)) r.fail("name", "material '" + m.name + "' is defined twice");
     m.density = r.positive("density");
     m.youngs_modulus = r.positive("youngs_modulus");
     m.poisson_ratio = r.number("poisson_ratio").value_or(0.25);
@@ -289,8 +289,7 @@ class SceneBuilder {
     if (!(m.restitution > 0 && m.restitution <= 1)) r.fail("restitution", "must lie in (0, 1]");
     m.friction = r.number("friction").value_or(0.5);
     if (!(m.friction >= 0)) r.fail("friction", "must be >= 0");
-    materials_[m.name] = static_cast<std::uint32_t>(scene_.world.materials.size());
-    scene_.world.materials.push_back(m);
+    building(r.table_node(), [&] { return builder_->add_material(m); });
     resolved_["material"].push_back({{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
                                      {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution},
                                      {"friction", m.friction}});
@@ -298,10 +297,11 @@ class SceneBuilder {
 
   std::uint32_t material_of(TableReader& r) {
     const std::string name = r.required_string("material");
-    const auto it = materials_.find(name);
-    if (it == materials_.end()) r.fail("material", "no [[material]] is named '" + name + "'");
-    return it->second;
+    const std::optional<std::uint32_t> m = builder_->find_material(name);
+    if (!m) r.fail("material", "no [[material]] is named '" + name + "'");
+    return *m;
   }
+
 
   std::filesystem::path file_of(TableReader& r, const std::string& key) {
     const std::filesystem::path f = base_ / r.required_string(key);
@@ -326,7 +326,7 @@ class SceneBuilder {
   // for generators random_polyhedron (drawn per variant by the caller).
   ShapeSpec read_shape(TableReader& owner, const std::string& key) {
     const toml::table* t = owner.table(key);
-    if (!t) throw SceneError(owner.where() + ": missing required key '" + key + "'");
+    if (!t) throw SceneError(owner.where() + ": missing required key '" + key + "'" + line_of(owner.table_node()));
     TableReader r(*t, owner.where() + "." + key);
     const std::string type = r.required_string("type");
     ShapeSpec s;
@@ -334,7 +334,7 @@ class SceneBuilder {
       const std::string name = r.required_string("name");
       const Real size = r.positive("size");
       try {
-        s.shape = dem::platonic(name, size);
+        s.shape = platonic(name, size);
       } catch (const std::invalid_argument& e) {
         r.fail("name", e.what());
       }
@@ -346,124 +346,71 @@ class SceneBuilder {
     } else {
       std::ostringstream json;
       json << toml::json_formatter{*t};
+      // In a scene a shape is given in its body's frame: centred on the
+      // body's origin and unrotated unless it says otherwise.
+      Json shape_json = Json::parse(json.str());
+      if (type != "polytope" && type != "triangle" && type != "capsule" && !shape_json.contains("center"))
+        shape_json["center"] = Json::array({0.0, 0.0, 0.0});
       try {
-        const PlacedInput p = parse_shape(json.str());
+        const PlacedInput p = parse_shape(shape_json.dump());
         s.shape = p.shape;
         s.pose = p.pose;
       } catch (const std::exception& e) {
         throw SceneError(owner.where() + "." + key + ": " + e.what() + line_of(*t));
       }
     }
-    s.diameter = 2 * (length(s.pose.translation) + bounding_radius(s.shape));
     return s;
   }
 
-  dem::ShapeTemplate make_particle(const Shape& shape, TableReader& r) {
-    try {
-      return dem::make_template(shape);
-    } catch (const std::invalid_argument& e) {
-      r.fail("shape", std::string("cannot be a particle: ") + e.what());
-    }
-  }
-
-  // A body whose author frame sits at (position, rotation), holding `s`.
-  void place_body(Body& b, const ShapeSpec& s, const Vec3& position, const Quat& rotation, const Vec3& velocity,
-                  const Vec3& spin) {
-    const World& w = scene_.world;
-    const dem::ShapeTemplate& t = w.templates[b.shape];
-    const Transform author = Transform::from(position, rotation);
-    const Quat shape_q = rotation * quat_from_matrix(s.pose.rotation);
-    b.orientation = normalized(shape_q * t.principal.rotation);
-    b.position = apply(author, apply(s.pose, t.unit_mass.centroid));
-    b.velocity = velocity;
-    if (!b.fixed) {  // L = R I R^T w, with I the principal moments
-      const Vec3 moments = t.principal.moments * w.materials[b.material].density;
-      const Vec3 local = rotate(conjugate(b.orientation), spin);
-      b.angular_momentum = rotate(b.orientation, Vec3{moments.x * local.x, moments.y * local.y, moments.z * local.z});
-    }
-  }
-
   void read_body(TableReader& r) {
-    Body b;
-    b.id = next_id_++;
+    dem::BodyDef d;
+    d.label = r.where();
     const std::optional<std::string> name = r.string("name");
-    const ShapeSpec s = read_shape(r, "shape");
-    b.material = material_of(r);
-    b.fixed = r.boolean("fixed", false);
-    const Vec3 position = r.vec3("position").value_or(Vec3{});
-    const Quat rotation = r.rotation("rotation").value_or(Quat{});
-    const Vec3 velocity = r.vec3("velocity").value_or(Vec3{});
-    const Vec3 spin = r.vec3("angular_velocity").value_or(Vec3{});
-    if (b.fixed && (length(velocity) > 0 || length(spin) > 0))
+    d.shape = read_shape(r, "shape");
+    d.material = material_of(r);
+    d.fixed = r.boolean("fixed", false);
+    d.position = r.vec3("position").value_or(Vec3{});
+    d.rotation = r.rotation("rotation").value_or(Quat{});
+    d.velocity = r.vec3("velocity").value_or(Vec3{});
+    d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
+    if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
       r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0)");
-    // Fixed bodies have no mass: their template's principal frame is the shape's.
-    scene_.world.templates.push_back(b.fixed ? dem::make_wall_template(s.shape) : make_particle(s.shape, r));
-    b.shape = static_cast<std::uint32_t>(scene_.world.templates.size() - 1);
-    place_body(b, s, position, rotation, velocity, spin);
-    const std::uint32_t index = static_cast<std::uint32_t>(scene_.world.bodies.size());
+    if (name && names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
+    const std::uint32_t index = building(r.table_node(), [&] { return builder_->add_body(d); });
     if (name) {
-      if (names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
       names_.insert(*name);
       scene_.traced.push_back({*name, index});
     }
-    explicit_.push_back({index, r.where()});
-    scene_.world.bodies.push_back(b);
-    Json j = {{"shape", "(as given)"}, {"material", scene_.world.materials[b.material].name},
-              {"position", to_json(position)}, {"rotation", to_json(rotation)}, {"velocity", to_json(velocity)},
-              {"angular_velocity", to_json(spin)}, {"fixed", b.fixed}};
+    Json j = {{"shape", "(as given)"}, {"material", r.required_string("material")},
+              {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
+              {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
     if (name) j["name"] = *name;
     resolved_["body"].push_back(j);
-  }
-
-  // Explicit moving bodies must not overlap each other, fixed bodies or planes
-  // (touching is fine: stacks start touching).
-  void check_explicit_bodies() {
-    const World& w = scene_.world;
-    for (std::size_t i = 0; i < explicit_.size(); ++i) {
-      const Body& a = w.bodies[explicit_[i].first];
-      const Shape& sa = w.templates[a.shape].shape;
-      const Transform pa = dem::shape_pose(w, a);
-      const Real tol = 1e-9 * bounding_radius(sa);
-      for (const dem::PlaneWall& p : w.planes)
-        if (!a.fixed && dem::half_space_contact(sa, pa, p.point, p.normal).depth > tol)
-          throw SceneError(explicit_[i].second + " starts inside a plane wall");
-      for (std::size_t j = 0; j < w.bodies.size(); ++j) {
-        const Body& b = w.bodies[j];
-        if (j == explicit_[i].first || (a.fixed && b.fixed)) continue;
-        if (!b.fixed && j < explicit_[i].first) continue;  // that pair was checked from the other side
-        const Shape& sb = w.templates[b.shape].shape;
-        const PenetrationResult pr = penetration(sa, pa, sb, dem::shape_pose(w, b));
-        if (pr.intersect && pr.depth > tol) {
-          std::string other = "a wall";
-          for (const auto& [k, where] : explicit_)
-            if (k == j) other = where;
-          throw SceneError(explicit_[i].second + " overlaps " + other + " by " + std::to_string(pr.depth) +
-                           " m at the start");
-        }
-      }
-    }
   }
 
   void read_generator(TableReader& r) {
     const std::int64_t count = r.integer("count").value_or(-1);
     if (count <= 0 || count > 100'000'000) r.fail("count", "must be a positive integer");
-    const std::uint32_t material = material_of(r);
+    dem::RegionFill fill;
+    fill.label = r.where();
+    fill.count = static_cast<std::size_t>(count);
+    fill.material = material_of(r);
     const toml::table* region_table = r.table("region");
-    if (!region_table) throw SceneError(r.where() + ": missing required key 'region'" );
+    if (!region_table) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
     TableReader region(*region_table, r.where() + ".region");
-    const Vec3 lo = region.vec3("min").value_or(Vec3{}), hi = region.vec3("max").value_or(Vec3{});
+    fill.lo = region.vec3("min").value_or(Vec3{});
+    fill.hi = region.vec3("max").value_or(Vec3{});
     if (!region.has("min") || !region.has("max")) throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(*region_table));
-    if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z)) region.fail("max", "must exceed 'min' on every axis");
+    if (!(fill.hi.x > fill.lo.x && fill.hi.y > fill.lo.y && fill.hi.z > fill.lo.z)) region.fail("max", "must exceed 'min' on every axis");
     region.finish();
-    const Vec3 velocity = r.vec3("velocity").value_or(Vec3{});
+    fill.velocity = r.vec3("velocity").value_or(Vec3{});
     const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
     if (variants <= 0) r.fail("variants", "must be a positive integer");
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
 
     // The shapes: random polyhedra come in `variants` draws, shared by the bodies.
-    std::vector<ShapeSpec> shapes;
     const toml::table* st = r.table("shape");
-    if (!st) throw SceneError(r.where() + ": missing required key 'shape'");
+    if (!st) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
     Json shape_json;
     if (st->get("type") && st->get("type")->value<std::string>() == std::optional<std::string>("random_polyhedron")) {
       TableReader s(*st, r.where() + ".shape");
@@ -482,69 +429,43 @@ class SceneBuilder {
       }
       s.finish();
       std::uniform_real_distribution<double> draw(size_lo, size_hi);
-      for (std::int64_t k = 0; k < variants; ++k) {
-        ShapeSpec spec;
-        spec.shape = dem::random_polyhedron(static_cast<int>(vertices), draw(rng), rng);
-        spec.diameter = 2 * bounding_radius(spec.shape);
-        shapes.push_back(spec);
-      }
+      for (std::int64_t k = 0; k < variants; ++k)
+        fill.variants.push_back({random_polyhedron(static_cast<int>(vertices), draw(rng), rng), {}});
       shape_json = {{"type", "random_polyhedron"}, {"vertices", vertices}, {"size", {size_lo, size_hi}},
                     {"variants", variants}};
     } else {
-      shapes.push_back(read_shape(r, "shape"));
+      fill.variants.push_back(read_shape(r, "shape"));
       std::ostringstream json;
       json << toml::json_formatter{*st};
       shape_json = Json::parse(json.str());
     }
-    const std::uint32_t first_template = static_cast<std::uint32_t>(scene_.world.templates.size());
-    Real diameter = 0;
-    for (const ShapeSpec& s : shapes) {
-      scene_.world.templates.push_back(make_particle(s.shape, r));
-      diameter = std::fmax(diameter, s.diameter);
-    }
-    const std::vector<dem::Placement> spots =
-        dem::place_in_region(scene_.world, lo, hi, diameter, static_cast<std::size_t>(count), rng);
-    if (spots.size() < static_cast<std::size_t>(count))
-      throw SceneError(r.where() + ": the region holds only " + std::to_string(spots.size()) + " of the " +
-                       std::to_string(count) + " bodies (each needs a free cube of side " + std::to_string(diameter) +
-                       " m); enlarge 'region' or lower 'count'" + line_of(*region_table));
-    std::uniform_int_distribution<std::size_t> pick(0, shapes.size() - 1);
-    for (const dem::Placement& p : spots) {
-      Body b;
-      b.id = next_id_++;
-      const std::size_t v = pick(rng);
-      b.shape = first_template + static_cast<std::uint32_t>(v);
-      b.material = material;
-      place_body(b, shapes[v], p.position - rotate(p.rotation, shapes[v].pose.translation), p.rotation, velocity, {});
-      scene_.world.bodies.push_back(b);
-    }
+    building(*region_table, [&] { return builder_->fill_region(fill, rng); });
     resolved_["generator"].push_back({{"count", count}, {"shape", shape_json},
-                                      {"material", scene_.world.materials[material].name},
-                                      {"region", {{"min", to_json(lo)}, {"max", to_json(hi)}}},
-                                      {"velocity", to_json(velocity)}, {"variants", variants}});
+                                      {"material", r.required_string("material")},
+                                      {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}},
+                                      {"velocity", to_json(fill.velocity)}, {"variants", variants}});
   }
 
   void read_wall(TableReader& r) {
-    World& w = scene_.world;
     const std::string type = r.required_string("type");
     const std::uint32_t material = material_of(r);
-    Json j = {{"type", type}, {"material", w.materials[material].name}};
+    Json j = {{"type", type}, {"material", r.required_string("material")}};
     if (type == "plane") {
       const Vec3 point = r.vec3("point").value_or(Vec3{});
       const std::optional<Vec3> normal = r.vec3("normal");
-      if (!normal) throw SceneError(r.where() + ": missing required key 'normal'");
-      if (!(length(*normal) > 0)) r.fail("normal", "must not be zero");
-      w.planes.push_back({kPlaneIdBase + w.planes.size(), point, normalized(*normal), material});
+      if (!normal) throw SceneError(r.where() + ": missing required key 'normal'" + line_of(r.table_node()));
+      if (!(max_abs(*normal) > 0)) r.fail("normal", "must not be zero");
+      building(r.table_node(), [&] { builder_->add_plane(point, *normal, material, r.where()); });
       j["point"] = to_json(point);
-      j["normal"] = to_json(normalized(*normal));
+      j["normal"] = to_json(normalized(*normal / max_abs(*normal)));
     } else if (type == "box") {
       const std::optional<Vec3> lo = r.vec3("min"), hi = r.vec3("max");
-      if (!lo || !hi) throw SceneError(r.where() + ": a box wall needs 'min' and 'max'");
+      if (!lo || !hi) throw SceneError(r.where() + ": a box wall needs 'min' and 'max'" + line_of(r.table_node()));
       if (!(hi->x > lo->x && hi->y > lo->y && hi->z > lo->z)) r.fail("max", "must exceed 'min' on every axis");
       const bool open_top = r.boolean("open_top", false);
       const Vec3 size = *hi - *lo;
       const Real thick = r.positive("thickness", 0.5 * std::fmin(size.x, std::fmin(size.y, size.z)));
-      add_box_walls(*lo, *hi, open_top, thick, material);
+      building(r.table_node(), [&] { builder_->add_box_walls(*lo, *hi, open_top, thick, material, r.where()); });
       j["min"] = to_json(*lo);
       j["max"] = to_json(*hi);
       j["open_top"] = open_top;
@@ -567,7 +488,8 @@ class SceneBuilder {
         hi = max(hi, v);
       }
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
-      add_mesh_walls(mesh, thick, material);
+      building(r.table_node(),
+               [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where()); });
       j["file"] = file.string();
       j["position"] = to_json(position);
       j["rotation"] = to_json(rotation);
@@ -579,84 +501,14 @@ class SceneBuilder {
     resolved_["wall"].push_back(j);
   }
 
-  void add_fixed(const Shape& shape, const Vec3& position, std::uint32_t material, std::uint32_t group) {
-    World& w = scene_.world;
-    w.templates.push_back(dem::make_wall_template(shape));
-    Body b;
-    b.id = next_id_++;
-    b.shape = static_cast<std::uint32_t>(w.templates.size() - 1);
-    b.material = material;
-    b.group = group;
-    b.fixed = true;
-    b.position = position;
-    w.bodies.push_back(b);
-  }
-
-  // A box container: one slab per side, outside [lo, hi], the slabs of the
-  // floor and roof spanning the side slabs so the corners are closed.
-  void add_box_walls(const Vec3& lo, const Vec3& hi, bool open_top, Real t, std::uint32_t material) {
-    const std::uint32_t group = ++groups_;
-    const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-    add_fixed(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, lo.z - t / 2}, material, group);
-    if (!open_top) add_fixed(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, hi.z + t / 2}, material, group);
-    add_fixed(Shape{Box{{t / 2, h.y + t, h.z}}}, {lo.x - t / 2, c.y, c.z}, material, group);
-    add_fixed(Shape{Box{{t / 2, h.y + t, h.z}}}, {hi.x + t / 2, c.y, c.z}, material, group);
-    add_fixed(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, lo.y - t / 2, c.z}, material, group);
-    add_fixed(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, hi.y + t / 2, c.z}, material, group);
-  }
-
-  // Mesh walls: one fixed body per triangle. The penetration laws see the
-  // seed's triangle with a margin (thickness / 2 on each side); the volume law
-  // sees the prism of that thickness, so the pieces of a flat region tile it
-  // and their overlap volumes add up exactly.
-  void add_mesh_walls(const TriangleMesh& mesh, Real thick, std::uint32_t material) {
-    const std::uint32_t group = ++groups_;
-    for (const auto& tri : mesh.triangles) {
-      const Vec3 a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
-      const Vec3 n3 = cross(b - a, c - a);
-      if (!(length(n3) > 0)) continue;  // degenerate triangles hold nothing
-      const Vec3 centre = (a + b + c) / 3.0, n = normalized(n3) * (thick / 2);
-      Shape shape;
-      if (scene_.world.model == dem::ContactModel::Volume) {
-        const Vec3 prism[6] = {a - centre + n, b - centre + n, c - centre + n,
-                               a - centre - n, b - centre - n, c - centre - n};
-        shape = Shape{make_polytope(prism)};
-      } else {
-        shape = Shape{Triangle{{a - centre, b - centre, c - centre}}, thick / 2};
-      }
-      add_fixed(shape, centre, material, group);
-    }
-  }
-
-  // The volume law clips polytopes: curved moving shapes get an inscribed
-  // tessellation for contacts (their mass properties stay exact).
-  void prepare_for_volume_law() {
-    World& w = scene_.world;
-    if (w.model != dem::ContactModel::Volume) return;
-    std::vector<bool> moving(w.templates.size(), false);
-    for (const Body& b : w.bodies)
-      if (!b.fixed) moving[b.shape] = true;
-    for (std::size_t t = 0; t < w.templates.size(); ++t) {
-      Shape& s = w.templates[t].shape;
-      const bool clipped = s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
-      const bool sphere = std::holds_alternative<Point>(s.core);
-      if (clipped || (!moving[t] && !sphere)) continue;
-      if (sphere && !moving[t]) continue;
-      s = Shape{tessellate(s, tessellation_).polytope};
-    }
-  }
-
   std::string source_;
   std::filesystem::path base_;
   Scene scene_;
+  dem::WorldSettings settings_;
+  std::optional<dem::WorldBuilder> builder_;
   Json resolved_;
-  std::map<std::string, std::uint32_t> materials_;
   std::set<std::string> names_;
-  std::vector<std::pair<std::uint32_t, std::string>> explicit_;  // explicit bodies and where they were given
-  std::uint64_t next_id_ = 0;
-  std::uint32_t groups_ = 0;
   std::uint64_t generator_count_ = 0;
-  int tessellation_ = kDefaultTessellation;
 };
 
 }  // namespace

@@ -10,7 +10,7 @@ Tessellation tessellate(const Shape& shape, int directions) {
   std::vector<Vec3> pts;
   const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   for (const Vec3& d : axes) pts.push_back(support(shape, d));
-  const Real golden = 3.14159265358979323846 * (3 - std::sqrt(Real(5)));
+  const Real golden = kPi * (3 - std::sqrt(Real(5)));
   for (int i = 0; i < directions; ++i) {
     const Real z = 1 - 2 * (i + Real(0.5)) / directions;
     const Real r = std::sqrt(1 - z * z);

@@ -16,7 +16,7 @@
 #include <random>
 
 #include "gjkdem/contact/overlap.hpp"
-#include "gjkdem/dem/mass_properties.hpp"
+#include "gjkdem/shape/mass_properties.hpp"
 
 namespace gjkdem {
 namespace {

@@ -11,7 +11,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Body {
   Shape shape;

@@ -8,7 +8,7 @@
 
 #include "gjkdem/dem/world.hpp"
 
-namespace gjkdem {
+namespace gjkdem::dem {
 namespace {
 
 TEST(BroadPhase, AabbIsTight) {
@@ -100,57 +100,35 @@ TEST(BroadPhase, StripsMatchBruteForceOnAWideBedForAnyThreadCount) {
   }
 }
 
-// The warm starts follow their pairs from one step's candidate list to the
-// next (random sorted lists against a map keyed by pair).
-TEST(BroadPhase, PairCachesFollowTheirPairs) {
-  std::mt19937_64 rng(6);
-  std::vector<dem::PairCache> caches;
-  std::map<BodyPair, int> expected;  // pair -> the tag its cache carries
-  int tag = 0;
-  for (int round = 0; round < 50; ++round) {
-    std::vector<BodyPair> candidates;
-    for (const auto& [pair, _] : expected)
-      if (rng() % 4 != 0) candidates.push_back(pair);  // a quarter of the pairs end
-    for (int k = static_cast<int>(rng() % 60); k > 0; --k) {  // new pairs
-      const std::uint32_t i = rng() % 40, j = i + 1 + rng() % 40;
-      candidates.emplace_back(i, j);
+// The static tree of fixed boxes finds what a brute-force scan finds.
+TEST(BroadPhase, StaticTreeMatchesBruteForce) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int n : {0, 1, 3, 4, 5, 17, 300}) {
+    std::vector<Aabb> boxes(n);
+    std::vector<std::uint32_t> ids(n);
+    for (int k = 0; k < n; ++k) {
+      const Vec3 c{u(rng), u(rng), u(rng)}, h{0.05 * u(rng), 0.05 * u(rng), 0.3 * u(rng)};
+      boxes[k] = {c - h, c + h};
+      ids[k] = static_cast<std::uint32_t>(1000 + 3 * k);
     }
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    dem::align_pair_caches(candidates, caches);
-    ASSERT_EQ(caches.size(), candidates.size());
-    std::map<BodyPair, int> next;
-    for (std::size_t k = 0; k < caches.size(); ++k) {
-      ASSERT_EQ(caches[k].pair, candidates[k]);
-      const auto old = expected.find(candidates[k]);
-      if (old != expected.end()) {
-        EXPECT_EQ(caches[k].gjk.size, 1);
-        EXPECT_EQ(caches[k].gjk.hint_a, old->second) << "round " << round;
-      } else {
-        EXPECT_EQ(caches[k].gjk.size, 0) << "a new pair starts cold";
-        caches[k].gjk.size = 1;  // what a step's narrow phase would leave
-        caches[k].gjk.hint_a = ++tag;
-      }
-      next[candidates[k]] = caches[k].gjk.hint_a;
+    StaticTree tree;
+    build_static_tree(boxes, ids, tree);
+    int hits = 0;
+    for (int q = 0; q < 200; ++q) {
+      const Vec3 c{u(rng), u(rng), u(rng)}, h{0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng)};
+      const Aabb query{c - h, c + h};
+      std::vector<std::uint32_t> found, expected;
+      query_static_tree(tree, query, found);
+      for (int k = 0; k < n; ++k)
+        if (overlaps(boxes[k], query)) expected.push_back(ids[k]);
+      std::sort(found.begin(), found.end());
+      EXPECT_EQ(found, expected) << "n = " << n << ", query " << q;
+      hits += static_cast<int>(expected.size());
     }
-    expected.swap(next);
+    if (n == 300) EXPECT_GT(hits, 200);  // the queries do meet boxes
   }
-  EXPECT_GT(tag, 500);
-  // A damaged list (from a checkpoint): unsorted, with repeats. Every
-  // candidate still gets exactly one entry, of its own pair.
-  caches.assign(4, {});
-  caches[0].pair = caches[1].pair = caches[3].pair = {1, 2};
-  caches[2].pair = {0, 5};
-  const std::vector<BodyPair> few = {{0, 5}, {1, 2}, {3, 4}};
-  dem::align_pair_caches(few, caches);
-  ASSERT_EQ(caches.size(), few.size());
-  for (std::size_t k = 0; k < few.size(); ++k) EXPECT_EQ(caches[k].pair, few[k]);
-  caches.assign(5, {});  // more entries of one pair than there are candidates
-  for (dem::PairCache& c : caches) c.pair = {1, 2};
-  dem::align_pair_caches(std::vector<BodyPair>{{1, 2}}, caches);
-  ASSERT_EQ(caches.size(), 1u);
-  EXPECT_EQ(caches[0].pair, (BodyPair{1, 2}));
 }
 
 }  // namespace
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

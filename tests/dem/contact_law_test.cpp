@@ -9,7 +9,7 @@
 #include <cmath>
 #include <functional>
 
-namespace gjkdem {
+namespace gjkdem::dem {
 namespace {
 
 struct Impact {
@@ -47,7 +47,7 @@ Impact integrate(double m, double v0, double dt, const std::function<double(doub
 // E = 4.8e10 Pa, nu = 0.2) onto a rigid wall of the same material at 0.2 m/s.
 TEST(ContactLaw, HertzImpactMatchesHertzTheory) {
   const double radius = 0.01, rho = 2500, e_mod = 4.8e10, nu = 0.2, v0 = 0.2;
-  const double mass = rho * 4.0 / 3 * 3.14159265358979323846 * radius * radius * radius;
+  const double mass = rho * 4.0 / 3 * kPi * radius * radius * radius;
   HertzParameters p{effective_mass(mass, INFINITY), effective_radius(radius, INFINITY),
                     effective_modulus(e_mod, nu, e_mod, nu), 0};
   const Impact r = integrate(p.effective_mass, v0, 1e-9, [&](double x, double v) { return hertz_normal_force(p, x, v); });
@@ -76,10 +76,10 @@ TEST(ContactLaw, RestitutionOutEqualsIn) {
   }
   // Without the clamp acting (light damping) the calibration is the textbook ratio.
   const double ln_e = std::log(0.95);
-  EXPECT_NEAR(linear_damping_ratio_for_restitution(0.95), -ln_e / std::sqrt(3.14159265358979323846 * 3.14159265358979323846 + ln_e * ln_e), 2e-3);
+  EXPECT_NEAR(linear_damping_ratio_for_restitution(0.95), -ln_e / std::sqrt(kPi * kPi + ln_e * ln_e), 2e-3);
   EXPECT_THROW(hertz_damping_for_restitution(0), std::invalid_argument);
   EXPECT_THROW(hertz_damping_for_restitution(1.5), std::invalid_argument);
 }
 
 }  // namespace
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

@@ -8,18 +8,20 @@
 #include <cmath>
 
 #include "gjkdem/dem/rigid_rotation.hpp"
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
 TEST(FreeBody, IntermediateAxisFlipsWithMomentumKept) {
-  World w;
-  w.gravity = {};
-  w.materials.push_back({"steel", 7800, 2e11, 0.3, 1, 0});
-  w.templates.push_back(make_template(Shape{Box{{0.05, 0.1, 0.15}}}));
-  Body b;
-  const Vec3 moments = w.templates[0].principal.moments * 7800;
+  WorldSettings settings;
+  settings.gravity = {};
+  WorldBuilder builder(settings);
+  const std::uint32_t steel = builder.add_material({"steel", 7800, 2e11, 0.3, 1, 0});
+  builder.add_body({.shape = {Shape{Box{{0.05, 0.1, 0.15}}}, {}}, .material = steel, .label = "box"});
+  World w = builder.build();
+  Body& b = w.bodies[0];
+  const Vec3 moments = principal_moments(w, b);
   // The principal axes sorted by moment: the middle one is the intermediate axis.
   int mid = 0;
   for (int k = 0; k < 3; ++k)
@@ -29,7 +31,6 @@ TEST(FreeBody, IntermediateAxisFlipsWithMomentumKept) {
   Vec3 spin_body{0.01, 0.01, 0.01};
   spin_body[mid] = 10;  // rad/s about the intermediate axis, perturbed
   b.angular_momentum = rotate(b.orientation, hadamard(moments, spin_body));
-  w.bodies.push_back(b);
   const Vec3 l0 = w.bodies[0].angular_momentum;
   const Real e0 = kinetic_energy(w);
   int sign_changes = 0;

@@ -29,8 +29,8 @@
 #include <string>
 
 #include "gjkdem/contact/overlap.hpp"
-#include "gjkdem/dem/generators.hpp"
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -52,13 +52,12 @@ struct Packing {
   int steps = 0;
 };
 
-void add_box(World& w, Real side) {
-  const std::uint64_t id = 1u << 20;
-  w.planes.push_back({id, {0, 0, 0}, {0, 0, 1}, 0});
-  w.planes.push_back({id + 1, {0, 0, 0}, {1, 0, 0}, 0});
-  w.planes.push_back({id + 2, {side, 0, 0}, {-1, 0, 0}, 0});
-  w.planes.push_back({id + 3, {0, 0, 0}, {0, 1, 0}, 0});
-  w.planes.push_back({id + 4, {0, side, 0}, {0, -1, 0}, 0});
+void add_box(WorldBuilder& b, std::uint32_t material, Real side) {
+  b.add_plane({0, 0, 0}, {0, 0, 1}, material, "floor");
+  b.add_plane({0, 0, 0}, {1, 0, 0}, material, "wall -x");
+  b.add_plane({side, 0, 0}, {-1, 0, 0}, material, "wall +x");
+  b.add_plane({0, 0, 0}, {0, 1, 0}, material, "wall -y");
+  b.add_plane({0, side, 0}, {0, -1, 0}, material, "wall +y");
 }
 
 Real top_of_bed(const World& w) {
@@ -87,27 +86,29 @@ int settle(World& w, Real dt, Real at_least, Real at_most, Real rest) {
 }
 
 Packing pour(const std::string& solid, Real side, const PourSettings& settings = {}) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.materials.push_back({"plastic", 1000, settings.youngs_modulus, 0.3, 0.3, settings.friction});
-  w.templates.push_back(make_template(platonic(solid, kDiameter)));
-  add_box(w, side);
+  WorldSettings world_settings;
+  world_settings.model = ContactModel::Volume;
+  WorldBuilder first(world_settings);
+  const std::uint32_t plastic =
+      first.add_material({"plastic", 1000, settings.youngs_modulus, 0.3, 0.3, settings.friction});
+  add_box(first, plastic, side);
+  World w = first.build();
   std::mt19937_64 rng(settings.seed);
   Packing result;
   Real dt = 0;
   const int batches = settings.batches;
   for (int batch = 0; batch < batches; ++batch) {
     const Real floor = w.bodies.empty() ? 0 : top_of_bed(w) + kDiameter / 2;
-    const auto places = place_in_region(w, {0, 0, floor}, {side, side, floor + 20 * kDiameter}, kDiameter,
-                                        kGrains / batches, rng);
-    EXPECT_EQ(places.size(), std::size_t(kGrains / batches));
-    for (const Placement& p : places) {
-      Body b;
-      b.id = w.bodies.size();
-      b.position = p.position;
-      b.orientation = p.rotation;
-      w.bodies.push_back(b);
-    }
+    WorldBuilder more(std::move(w));  // the next batch, in the layers just above the bed
+    RegionFill fill;
+    fill.variants = {{platonic(solid, kDiameter), {}}};
+    fill.count = kGrains / batches;
+    fill.lo = {0, 0, floor};
+    fill.hi = {side, side, floor + 20 * kDiameter};
+    fill.material = plastic;
+    fill.label = "batch " + std::to_string(batch);
+    EXPECT_EQ(more.fill_region(fill, rng).size(), std::size_t(kGrains / batches));
+    w = more.build();
     if (batch == 0) dt = critical_time_step(w);
     result.steps += settle(w, dt, 0.15, 0.6, 1e-3);
   }

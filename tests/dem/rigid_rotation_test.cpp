@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-namespace gjkdem {
+namespace gjkdem::dem {
 namespace {
 
 // Reference: Euler's equations dpi/dt = pi x (pi / I) in the body frame, RK4.
@@ -51,8 +51,8 @@ TEST(RigidRotation, AxisymmetricSpinIsSteady) {
   EXPECT_NEAR(w.z, 3.0, 1e-12);
   EXPECT_NEAR(rotate(q, {0, 0, 1}).z, 1.0, 1e-12);
   // The body turned by omega * t = 3 * 10 rad about z.
-  EXPECT_NEAR(std::atan2(rotate(q, {1, 0, 0}).y, rotate(q, {1, 0, 0}).x), std::remainder(30.0, 2 * 3.14159265358979323846), 1e-9);
+  EXPECT_NEAR(std::atan2(rotate(q, {1, 0, 0}).y, rotate(q, {1, 0, 0}).x), std::remainder(30.0, 2 * kPi), 1e-9);
 }
 
 }  // namespace
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

@@ -12,28 +12,29 @@
 
 #include <cmath>
 
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
 TEST(Stack, ThreeCubesStayAtRestForTwoSeconds) {
   constexpr Real a = 0.02, k = 1e9, density = 2500, g = 9.81;
-  World w;
-  w.model = ContactModel::Volume;
-  w.volume_stiffness = k;
-  w.materials.push_back({"rock", density, 1e7, 0.25, 0.5, 0.5});
-  w.templates.push_back(make_template(Shape{Box{{a / 2, a / 2, a / 2}}}));
-  w.planes.push_back({1000, {0, 0, 0}, {0, 0, 1}, 0});
+  WorldSettings settings;
+  settings.model = ContactModel::Volume;
+  settings.volume_stiffness = k;
+  WorldBuilder builder(settings);
+  const std::uint32_t rock = builder.add_material({"rock", density, 1e7, 0.25, 0.5, 0.5});
+  builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  for (int n = 0; n < 3; ++n)  // apart; their starting state is set below
+    builder.add_body({.shape = {Shape{Box{{a / 2, a / 2, a / 2}}}, {}}, .material = rock, .position = {0, 0, 1.0 + n}});
+  World w = builder.build();
   const Real weight = density * a * a * a * g;
   const Real sink = weight / (k * a * a);  // of one cube under one cube's weight
   Real z = a / 2 - 3 * sink;               // the floor carries three cubes
   for (int n = 0; n < 3; ++n) {
-    Body b;
-    b.id = static_cast<std::uint64_t>(n);
+    Body& b = w.bodies[n];
     b.position = {1e-7 * (n - 1), 2e-7 * n, z};
     b.orientation = quat_from_axis_angle(normalized(Vec3{1, Real(2 - n), 0.5}), 1e-6 * (n + 1));
-    w.bodies.push_back(b);
     z += a - (2 - n) * sink;  // the contact above carries the cubes above it
   }
   std::vector<Vec3> start;
@@ -48,7 +49,7 @@ TEST(Stack, ThreeCubesStayAtRestForTwoSeconds) {
       largest_tilt = std::fmax(largest_tilt, 2 * std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z));
     }
   }
-  EXPECT_EQ(w.last_contacts, 3);
+  EXPECT_EQ(w.stats.contacts, 3);
   EXPECT_LT(largest_move, 1e-4 * a);
   EXPECT_LT(largest_tilt, 1e-4);  // radians: an edge moves by less than 1e-4 of the size
   for (const Body& b : w.bodies) EXPECT_LT(length(b.velocity), 1e-5);

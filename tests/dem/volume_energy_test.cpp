@@ -16,7 +16,8 @@
 #include <cmath>
 #include <random>
 
-#include "gjkdem/dem/generators.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
@@ -33,8 +34,8 @@ bool run_through_contact(World& w, Real dt, int max_steps) {
   bool touched = false;
   for (int i = 0; i < max_steps; ++i) {
     step(w, dt);
-    if (w.last_contacts > 0) touched = true;
-    if (touched && w.last_contacts == 0) return true;
+    if (w.stats.contacts > 0) touched = true;
+    if (touched && w.stats.contacts == 0) return true;
   }
   return false;
 }
@@ -42,18 +43,19 @@ bool run_through_contact(World& w, Real dt, int max_steps) {
 TEST(VolumeEnergy, PolyhedronBouncesOnAPlaneWithItsEnergy) {
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 8; ++trial) {
-    World w;
-    w.model = ContactModel::Volume;
-    w.volume_stiffness = 1e9;
-    w.materials.push_back({"rock", 2500, 1e7, 0.25, 1.0, 0});
-    w.templates.push_back(make_template(random_polyhedron(12, 0.02, rng)));
-    w.planes.push_back({1000, {0, 0, 0}, {0, 0, 1}, 0});
-    Body b;
+    WorldSettings settings;
+    settings.model = ContactModel::Volume;
+    settings.volume_stiffness = 1e9;
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 1.0, 0});
+    builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+    builder.add_body({.shape = {random_polyhedron(12, 0.02, rng), {}}, .material = rock, .position = {0, 0, 1}});
+    World w = builder.build();
+    Body& b = w.bodies[0];  // the state to start from
     b.orientation = random_orientation(rng);
     b.position = {0, 0, 0.0125};
     b.velocity = {0.1, 0, -0.5};
     b.angular_momentum = Vec3{1, -2, 3} * 1e-6;
-    w.bodies.push_back(b);
     const Real e0 = kinetic_energy(w) + potential_energy(w);
     ASSERT_TRUE(run_through_contact(w, 2e-7, 200000)) << trial;
     EXPECT_NEAR((kinetic_energy(w) + potential_energy(w)) / e0, 1, 1e-8) << "trial " << trial;
@@ -65,23 +67,22 @@ TEST(VolumeEnergy, PolyhedraCollideWithTheirEnergyUnderThePotentialForm) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> g;
   for (int trial = 0; trial < 6; ++trial) {
-    World w;
-    w.model = ContactModel::Volume;
-    w.volume_form = VolumeForm::Potential;
-    w.rocking_resistance = false;
-    w.gravity = {};
-    w.volume_stiffness = 1e10;
-    w.materials.push_back({"rock", 2500, 1e7, 0.25, 1.0, 0});
-    w.templates.push_back(make_template(random_polyhedron(12, 0.02, rng)));
-    w.templates.push_back(make_template(random_polyhedron(12, 0.02, rng)));
+    WorldSettings settings;
+    settings.model = ContactModel::Volume;
+    settings.volume_form = VolumeForm::Potential;
+    settings.rocking_resistance = false;
+    settings.gravity = {};
+    settings.volume_stiffness = 1e10;
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 1.0, 0});
+    for (int k = 0; k < 2; ++k)
+      builder.add_body({.shape = {random_polyhedron(12, 0.02, rng), {}}, .material = rock, .position = {0, 0, k * 1.0}});
+    World w = builder.build();
     for (std::uint32_t k = 0; k < 2; ++k) {
-      Body b;
-      b.id = k;
-      b.shape = k;
+      Body& b = w.bodies[k];  // the state to start from
       b.orientation = random_orientation(rng);
       b.position = {k == 0 ? -0.0105 : 0.0105, 0.003 * g(rng), 0.003 * g(rng)};
       b.velocity = {k == 0 ? 0.5 : -0.5, 0, 0};
-      w.bodies.push_back(b);
     }
     const Real e0 = kinetic_energy(w);
     ASSERT_TRUE(run_through_contact(w, 2e-7, 200000)) << trial;

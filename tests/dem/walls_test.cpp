@@ -6,23 +6,24 @@
 
 #include <cmath>
 
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
 constexpr Real kRadius = 0.01, kRho = 0.001;
 
-World sphere_world() {
-  World w;
-  w.model = ContactModel::Hertz;
-  w.materials.push_back({"rubber", 1000, 1e7, 0.3, 0.2, 0.5});
-  w.templates.push_back(make_template(make_sphere(kRadius)));
-  Body b;
-  b.id = 0;
-  b.position = {0, 0, kRadius + kRho + 1e-4};
-  w.bodies.push_back(b);
-  return w;
+// A sphere above the floor, and the floor made by `add_floor`.
+template <class AddFloor>
+World sphere_world(AddFloor add_floor) {
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder builder(settings);
+  const std::uint32_t rubber = builder.add_material({"rubber", 1000, 1e7, 0.3, 0.2, 0.5});
+  builder.add_body({.shape = {make_sphere(kRadius), {}}, .material = rubber,
+                    .position = {0, 0, kRadius + kRho + 1e-4}, .label = "sphere"});
+  add_floor(builder, rubber);
+  return builder.build();
 }
 
 Real settle(World& w) {
@@ -32,30 +33,20 @@ Real settle(World& w) {
 }
 
 TEST(Walls, MeshTrianglesActAsOneContactLikeAPlane) {
-  World plane = sphere_world();
-  plane.planes.push_back({1000, {0, 0, kRho}, {0, 0, 1}, 0});
+  World plane = sphere_world([](WorldBuilder& b, std::uint32_t m) { b.add_plane({0, 0, kRho}, {0, 0, 1}, m, "floor"); });
   const Real z_plane = settle(plane);
 
-  World mesh = sphere_world();
   // Square [-0.05, 0.05]^2 split along its diagonal through the origin, the
   // triangles thickened by kRho on each side (top surface at z = kRho).
-  const Vec3 c[4] = {{-0.05, -0.05, 0}, {0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}};
-  const int tris[2][3] = {{0, 1, 2}, {0, 2, 3}};
-  for (const auto& t : tris) {
-    const Vec3 centre = (c[t[0]] + c[t[1]] + c[t[2]]) / 3.0;
-    mesh.templates.push_back(make_wall_template(Shape{Triangle{{c[t[0]] - centre, c[t[1]] - centre, c[t[2]] - centre}}, kRho}));
-    Body piece;
-    piece.id = mesh.bodies.size();
-    piece.shape = static_cast<std::uint32_t>(mesh.templates.size() - 1);
-    piece.fixed = true;
-    piece.group = 1;
-    piece.position = centre;
-    mesh.bodies.push_back(piece);
-  }
+  World mesh = sphere_world([](WorldBuilder& b, std::uint32_t m) {
+    const Vec3 c[4] = {{-0.05, -0.05, 0}, {0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}};
+    const std::array<std::uint32_t, 3> tris[2] = {{0, 1, 2}, {0, 2, 3}};
+    b.add_mesh_walls(c, tris, 2 * kRho, m, "square");
+  });
   const Real z_mesh = settle(mesh);
-  EXPECT_EQ(mesh.last_contacts, 1);
+  EXPECT_EQ(mesh.stats.contacts, 1);
 
-  const Real m = 1000 * 4.0 / 3 * 3.14159265358979323846 * std::pow(kRadius, 3);
+  const Real m = 1000 * 4.0 / 3 * kPi * std::pow(kRadius, 3);
   const Real e_pair = 1 / (2 * (1 - 0.09) / 1e7);  // the walls share the sphere's material
   const Real depth = std::pow(m * 9.81 / (4.0 / 3 * e_pair * std::sqrt(kRadius)), 2.0 / 3);
   EXPECT_NEAR(kRadius + kRho - z_plane, depth, 0.01 * depth);

@@ -4,7 +4,9 @@
 // overlap, peak force and duration against Hertz theory, within 2%) and
 // test 2 (restitution out = in for e = 0.2 to 1, within 2%).
 #include "gjkdem/dem/world.hpp"
-#include "gjkdem/dem/rigid_rotation.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+
+#include <algorithm>
 
 #include <gtest/gtest.h>
 
@@ -18,24 +20,18 @@ struct ImpactResult {
 };
 
 ImpactResult drop_on_wall(double restitution, double speed, ContactModel model = ContactModel::Hertz) {
-  World w;
-  w.model = model;
-  w.linear_stiffness = 1e4;
-  w.gravity = {};
-  w.materials.push_back({"glass", 2500, 4.8e10, 0.2, restitution, 0});
-  w.templates.push_back(make_template(make_sphere(0.01)));
-  w.templates.push_back(make_template(Shape{Box{{0.05, 0.05, 0.01}}}));
-  Body wall;
-  wall.id = 1;
-  wall.shape = 1;
-  wall.fixed = true;
-  wall.position = {0, 0, -0.01};  // top face at z = 0
-  Body ball;
-  ball.id = 2;
-  ball.shape = 0;
-  ball.position = {0, 0, 0.01 + 1e-7};  // just above the wall
-  ball.velocity = {0, 0, -speed};
-  w.bodies = {wall, ball};
+  WorldSettings settings;
+  settings.model = model;
+  settings.linear_stiffness = 1e4;
+  settings.gravity = {};
+  WorldBuilder builder(settings);
+  const std::uint32_t glass = builder.add_material({"glass", 2500, 4.8e10, 0.2, restitution, 0});
+  // Top face at z = 0; the ball just above it.
+  builder.add_body({.shape = {Shape{Box{{0.05, 0.05, 0.01}}}, {}}, .material = glass, .position = {0, 0, -0.01},
+                    .fixed = true, .label = "wall"});
+  builder.add_body({.shape = {make_sphere(0.01), {}}, .material = glass, .position = {0, 0, 0.01 + 1e-7},
+                    .velocity = {0, 0, -speed}, .label = "ball"});
+  World w = builder.build();
   ImpactResult r;
   const double dt = 5e-8;
   bool touched = false;
@@ -59,7 +55,7 @@ ImpactResult drop_on_wall(double restitution, double speed, ContactModel model =
 TEST(World, ChungOoiTest1ElasticImpactMatchesHertz) {
   const double v = 0.2;
   const ImpactResult r = drop_on_wall(1.0, v);
-  const double mass = 2500 * 4.0 / 3 * 3.14159265358979323846 * 1e-6;
+  const double mass = 2500 * 4.0 / 3 * kPi * 1e-6;
   const double e_star = 1 / (2 * (1 - 0.2 * 0.2) / 4.8e10), r_star = 0.01;
   const double d_max = std::pow(15 * mass * v * v / (16 * e_star * std::sqrt(r_star)), 0.4);
   const double f_max = 4.0 / 3 * e_star * std::sqrt(r_star) * std::pow(d_max, 1.5);
@@ -80,24 +76,19 @@ TEST(World, ChungOoiTest2RestitutionOutEqualsIn) {
 // A cube of half-size 0.01 m on a large fixed floor under the volume law
 // (k = 1e9 N/m^3 unless changed), resting at its static overlap.
 World cube_on_floor(double restitution, double friction, const Vec3& gravity) {
-  World w;
-  w.model = ContactModel::Volume;
-  w.gravity = gravity;
-  w.volume_stiffness = 1e9;
-  w.materials.push_back({"rock", 2500, 1e7, 0.25, restitution, friction});
-  w.templates.push_back(make_template(Shape{Box{{0.01, 0.01, 0.01}}}));
-  w.templates.push_back(make_template(Shape{Box{{1, 1, 0.01}}}));
-  Body floor;
-  floor.id = 1;
-  floor.shape = 1;
-  floor.fixed = true;
-  floor.position = {0, 0, -0.01};
-  Body cube;
-  cube.id = 2;
-  cube.shape = 0;
-  cube.position = {0, 0, 0.01 - 2500 * 8e-6 * -gravity.z / (1e9 * 4e-4)};  // resting overlap
-  w.bodies = {floor, cube};
-  return w;
+  WorldSettings settings;
+  settings.model = ContactModel::Volume;
+  settings.gravity = gravity;
+  settings.volume_stiffness = 1e9;
+  WorldBuilder builder(settings);
+  builder.accept_initial_overlaps();  // the cube starts at its resting overlap
+  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, restitution, friction});
+  builder.add_body({.shape = {Shape{Box{{1, 1, 0.01}}}, {}}, .material = rock, .position = {0, 0, -0.01},
+                    .fixed = true, .label = "floor"});
+  builder.add_body({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .material = rock,
+                    .position = {0, 0, 0.01 - 2500 * 8e-6 * -gravity.z / (1e9 * 4e-4)},  // resting overlap
+                    .label = "cube"});
+  return builder.build();
 }
 
 struct Landing {
@@ -108,7 +99,7 @@ struct Landing {
 // orientation, its lowest point 1e-9 m above the floor (`height` = centre
 // height at first touch), and records the first contact.
 Landing land(World w, const Quat& orientation, const Vec3& offset, double height, double dt) {
-  w.gravity = {};
+  w.settings.gravity = {};
   Body& cube = w.bodies[1];
   cube.orientation = orientation;
   cube.position = offset + Vec3{0, 0, height + 1e-9};
@@ -132,7 +123,7 @@ Landing land(World w, const Quat& orientation, const Vec3& offset, double height
 // and the undamped law gives it back all its speed.
 TEST(World, VolumeLawCubeLandingFlat) {
   const double m = 2500 * 8e-6, area = 4e-4, k = 1e9 * area;
-  const double t_c = 3.14159265358979323846 * std::sqrt(m / k), d_max = 0.5 * std::sqrt(m / k);
+  const double t_c = kPi * std::sqrt(m / k), d_max = 0.5 * std::sqrt(m / k);
   const Landing r = land(cube_on_floor(1.0, 0, {}), {}, {0.003, -0.002, 0}, 0.01, t_c / 2000);
   EXPECT_NEAR(r.duration / t_c, 1.0, 0.02);
   EXPECT_NEAR(r.peak / d_max, 1.0, 0.02);
@@ -148,7 +139,7 @@ TEST(World, VolumeLawCubeLandingFlat) {
 TEST(World, VolumeLawCubeLandingOnAnEdge) {
   const double m = 2500 * 8e-6, kl = 1e9 * 0.02, v = 0.5;
   const double d_max = std::cbrt(3 * m * v * v / (2 * kl)), t_c = 2.80436 * d_max / v;
-  const Landing r = land(cube_on_floor(1.0, 0, {}), quat_from_axis_angle({1, 0, 0}, 3.14159265358979323846 / 4), {},
+  const Landing r = land(cube_on_floor(1.0, 0, {}), quat_from_axis_angle({1, 0, 0}, kPi / 4), {},
                          0.01 * std::sqrt(2.0), t_c / 4000);
   EXPECT_NEAR(r.duration / t_c, 1.0, 0.02);
   EXPECT_NEAR(r.peak / d_max, 1.0, 0.02);
@@ -161,7 +152,7 @@ TEST(World, VolumeLawCubeLandingOnAnEdge) {
 // contact lasts 2 delta_max / v * 1.311029 (the integral of (1 - u^4)^(-1/2)).
 TEST(World, VolumeLawCubeLandingOnAVertex) {
   World w = cube_on_floor(1.0, 0, {});
-  w.volume_stiffness = 1e11;
+  w.settings.volume_stiffness = 1e11;
   const double m = 2500 * 8e-6, c = 1e11 * std::sqrt(3.0) / 2, v = 0.5;
   const double d_max = std::pow(2 * m * v * v / c, 0.25), t_c = 2 * 1.311029 * d_max / v;
   const Vec3 diag = normalized(Vec3{-1, -1, -1});  // the corner (-1,-1,-1) points down
@@ -185,7 +176,7 @@ TEST(World, VolumeLawDampingGivesTheRestitution) {
 // A cube on a floor tilted by theta (gravity tilted instead): it stays put
 // when tan(theta) < mu and slides with g (sin theta - mu cos theta) otherwise.
 TEST(World, CubeOnInclineSticksOrSlides) {
-  const double g = 9.81, theta = 20 * 3.14159265358979323846 / 180;
+  const double g = 9.81, theta = 20 * kPi / 180;
   const Vec3 gravity{g * std::sin(theta), 0, -g * std::cos(theta)};
   World stick = cube_on_floor(0.3, 0.5, gravity);
   for (int i = 0; i < 50000; ++i) step(stick, 2e-5);  // 1 s
@@ -207,39 +198,36 @@ TEST(World, CubeOnInclineSticksOrSlides) {
 // contact-point angular momentum m v R + I w is kept, I = 2/5 m R^2),
 // whatever mu is; the slip lasts 2 v0 / (7 mu g).
 TEST(World, SlidingSphereEndsRollingAtFiveSevenths) {
-  World w;
-  w.model = ContactModel::Hertz;
-  w.materials.push_back({"soft", 2500, 1e7, 0.25, 0.5, 0.3});
-  w.templates.push_back(make_template(make_sphere(0.01)));
-  w.templates.push_back(make_template(Shape{Box{{1, 1, 0.01}}}));
-  Body floor;
-  floor.id = 1;
-  floor.shape = 1;
-  floor.fixed = true;
-  floor.position = {0, 0, -0.01};
-  Body ball;
-  ball.id = 2;
-  ball.shape = 0;
-  ball.position = {0, 0, 0.01 - 2.7e-5};  // about the static overlap under gravity
-  ball.velocity = {1, 0, 0};
-  w.bodies = {floor, ball};
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder builder(settings);
+  builder.accept_initial_overlaps();  // the ball starts at about its resting overlap
+  const std::uint32_t soft = builder.add_material({"soft", 2500, 1e7, 0.25, 0.5, 0.3});
+  builder.add_body({.shape = {Shape{Box{{1, 1, 0.01}}}, {}}, .material = soft, .position = {0, 0, -0.01},
+                    .fixed = true, .label = "floor"});
+  builder.add_body({.shape = {make_sphere(0.01), {}}, .material = soft,
+                    .position = {0, 0, 0.01 - 2.7e-5},  // about the static overlap under gravity
+                    .velocity = {1, 0, 0}, .label = "ball"});
+  World w = builder.build();
   const double dt = 1e-5;
   double slip_end = -1;
   for (int k = 0; k < 30000; ++k) {
     step(w, dt);
     const Body& b = w.bodies[1];
-    const Vec3 omega = angular_velocity(b.orientation, b.angular_momentum,
-                                        w.templates[0].principal.moments * w.materials[0].density);
+    const Vec3 omega = angular_velocity_of(w, b);
     const double slip = b.velocity.x - omega.y * 0.01;
     if (slip_end < 0 && slip < 1e-3) slip_end = w.time;
   }
   const Body& b = w.bodies[1];
-  const Vec3 omega = angular_velocity(b.orientation, b.angular_momentum, w.templates[0].principal.moments * w.materials[0].density);
+  const Vec3 omega = angular_velocity_of(w, b);
   EXPECT_NEAR(b.velocity.x, 5.0 / 7, 0.01 * 5 / 7);
   EXPECT_NEAR(omega.y * 0.01, b.velocity.x, 1e-3);
   EXPECT_NEAR(slip_end, 2 / (7 * 0.3 * 9.81), 0.03 * 2 / (7 * 0.3 * 9.81));
   EXPECT_NEAR(b.position.z, 0.01, 1e-4);  // still on the floor
-  EXPECT_EQ(w.bodies[0].history.size(), 1u);  // the persistent contact keeps its spring
+  // The persistent contact keeps its spring.
+  EXPECT_EQ(std::count_if(w.pairs.begin(), w.pairs.end(),
+                          [](const PairState& p) { return length(p.history.spring) > 0; }),
+            1);
 }
 
 }  // namespace

@@ -122,15 +122,15 @@ TEST(Scene, DefaultSceneLoads) {
   EXPECT_GT(s.world.bodies.size(), 1990u);
   EXPECT_TRUE(s.dt_auto);
   EXPECT_GT(s.dt, 0);
-  EXPECT_EQ(s.world.model, dem::ContactModel::Volume);
+  EXPECT_EQ(s.world.settings.model, dem::ContactModel::Volume);
 }
 
 TEST(Scene, VolumeFormIsRead) {
-  EXPECT_EQ(load_scene(kHead + kCube, "x", ".").world.volume_form, dem::VolumeForm::Normalized);
+  EXPECT_EQ(load_scene(kHead + kCube, "x", ".").world.settings.volume_form, dem::VolumeForm::Normalized);
   const Scene s =
       load_scene(kHead + "[contact]\nvolume_form = \"potential\"\nrocking_resistance = false\n" + kCube, "x", ".");
-  EXPECT_EQ(s.world.volume_form, dem::VolumeForm::Potential);
-  EXPECT_FALSE(s.world.rocking_resistance);
+  EXPECT_EQ(s.world.settings.volume_form, dem::VolumeForm::Potential);
+  EXPECT_FALSE(s.world.settings.rocking_resistance);
   EXPECT_NE(s.resolved_json.find("\"volume_form\": \"potential\""), std::string::npos) << s.resolved_json;
 }
 

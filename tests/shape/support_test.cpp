@@ -10,7 +10,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Signed power: sign(x) |x|^p, the superquadric parametrisation.
 double spow(double x, double p) { return std::copysign(std::pow(std::fabs(x), p), x); }

@@ -9,7 +9,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(Tessellate, BoundIsCertifiedAndShrinks) {
   const Shape shapes[] = {make_sphere(1), Shape{Ellipsoid{{1, 0.3, 0.6}}}, Shape{Superellipsoid{{1, 1, 0.5}, 0.3, 1.7}},

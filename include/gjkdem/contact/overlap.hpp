@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "gjkdem/collide/gjk_cache.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem {
@@ -84,7 +85,9 @@ std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
 /// along A's face. They form closed loops; `tol` matches end points (length).
 std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& work, Real tol);
 
+/// `cache` (optional) warm-starts the GJK test that decides whether the
+/// shapes meet at all, as for intersect(): the DEM engine passes the pair's.
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
-                      OverlapWorkspace& work);
+                      OverlapWorkspace& work, GjkCache* cache = nullptr);
 
 }  // namespace gjkdem

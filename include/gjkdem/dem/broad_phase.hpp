@@ -21,7 +21,7 @@
 
 #include "gjkdem/shape/shape.hpp"
 
-namespace gjkdem {
+namespace gjkdem::dem {
 
 struct Aabb {
   Vec3 lo, hi;
@@ -42,9 +42,34 @@ struct SweepWorkspace {
   std::vector<std::vector<BodyPair>> found;  ///< per thread
 };
 
+/// True when the boxes overlap (touching counts).
+inline bool overlaps(const Aabb& a, const Aabb& b) noexcept {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
+         b.lo.z <= a.hi.z;
+}
+
+/// A bounding-volume tree over boxes that never move (median splits on the
+/// longest axis, two children per node).
+struct StaticTree {
+  struct Node {
+    Aabb box;
+    std::uint32_t first = 0, count = 0;  ///< leaf: items[first .. first + count); inner: count = 0
+    std::uint32_t left = 0, right = 0;   ///< children (inner nodes)
+  };
+  std::vector<Node> nodes;             ///< nodes[0] is the root (empty tree: no nodes)
+  std::vector<Aabb> item_boxes;
+  std::vector<std::uint32_t> items;    ///< the ids given to build, leaf by leaf
+};
+
+/// Builds the tree of `boxes`, each with the id at the same position in `ids`.
+void build_static_tree(std::span<const Aabb> boxes, std::span<const std::uint32_t> ids, StaticTree& tree);
+
+/// Appends to `found` the id of every box of the tree that overlaps `box`.
+void query_static_tree(const StaticTree& tree, const Aabb& box, std::vector<std::uint32_t>& found);
+
 /// Every pair (i < j) of overlapping boxes (touching counts), sorted, on up
 /// to `threads` OpenMP threads (the same result for any count).
 void overlapping_pairs(std::span<const Aabb> boxes, SweepWorkspace& work, std::vector<BodyPair>& pairs,
                        int threads = 1);
 
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

@@ -19,7 +19,7 @@
 // the clamp never acts).
 #include "gjkdem/math/real.hpp"
 
-namespace gjkdem {
+namespace gjkdem::dem {
 
 /// Effective values of a pair (m* = m1 m2 / (m1 + m2), 1/R* = 1/R1 + 1/R2,
 /// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2). A fixed body has infinite mass or
@@ -53,4 +53,4 @@ Real hertz_damping_for_restitution(Real restitution);
 
 Real hertz_normal_force(const HertzParameters& p, Real overlap, Real approach_speed) noexcept;
 
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

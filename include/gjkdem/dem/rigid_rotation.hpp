@@ -11,7 +11,7 @@
 // Torques enter as half-step kicks of the world angular momentum around it.
 #include "gjkdem/math/quat.hpp"
 
-namespace gjkdem {
+namespace gjkdem::dem {
 
 /// Advances `orientation` (principal frame -> world) by dt with the world
 /// angular momentum `angular_momentum` held fixed. `moments` are the principal
@@ -24,4 +24,4 @@ Vec3 angular_velocity(const Quat& orientation, const Vec3& angular_momentum, con
 /// Rotational kinetic energy (J).
 Real rotational_energy(const Quat& orientation, const Vec3& angular_momentum, const Vec3& moments) noexcept;
 
-}  // namespace gjkdem
+}  // namespace gjkdem::dem

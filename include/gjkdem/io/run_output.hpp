@@ -1,8 +1,7 @@
 #pragma once
 // What a run writes (../shared/spec/scene-format.md): ParaView frames (legacy
 // VTK polydata, binary, one file per frame, and a frames.vtk.series index with
-// the simulated times), rows of trace.csv and energy.csv, and checkpoints from
-// which a stopped run continues bit for bit.
+// the simulated times) and rows of trace.csv and energy.csv.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -40,30 +39,5 @@ std::string trace_row(const dem::World& world, const std::string& name, const de
 std::string energy_header();
 /// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts.
 std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Real dissipated, int contacts);
-
-struct CheckpointError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-/// Where a run stands, beside the world's state.
-struct RunProgress {
-  std::uint64_t step = 0;           ///< steps done
-  std::uint64_t frame = 0;          ///< frames written
-  Real initial_energy = 0;          ///< kinetic + potential + elastic at the start
-  std::uint64_t trace_bytes = 0;    ///< size of trace.csv when the checkpoint was taken
-  std::uint64_t energy_bytes = 0;   ///< size of energy.csv then
-  double wall_seconds = 0;          ///< run time before this point
-  std::vector<std::pair<std::string, Real>> frames;  ///< frame files and times so far
-};
-
-/// Everything that changes during a run (bodies' states, forces, contact
-/// histories, warm starts, clock), raw doubles in this machine's byte order;
-/// written to a temporary file and renamed, so a crash never leaves half a
-/// checkpoint.
-void save_checkpoint(const std::filesystem::path& file, const dem::World& world, const RunProgress& progress);
-
-/// Restores a checkpoint into a world rebuilt from the same scene. Throws
-/// CheckpointError when the file is unreadable or belongs to another scene.
-RunProgress load_checkpoint(const std::filesystem::path& file, dem::World& world);
 
 }  // namespace gjkdem::io

@@ -1,13 +1,11 @@
-#include "gjkdem/dem/generators.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "gjkdem/collide/query.hpp"
 #include "gjkdem/shape/polytope.hpp"
 
-namespace gjkdem::dem {
-namespace {
+namespace gjkdem {
 
 Quat random_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> g;
@@ -17,6 +15,8 @@ Quat random_rotation(std::mt19937_64& rng) {
     if (n > 1e-6) return normalized(q);
   }
 }
+
+namespace {
 
 Shape scaled_polytope(std::vector<Vec3> points, Real diameter) {
   Real r = 0;
@@ -72,37 +72,4 @@ Shape platonic(const std::string& name, Real diameter) {
   return scaled_polytope(p, diameter);
 }
 
-std::vector<Placement> place_in_region(const World& w, const Vec3& lo, const Vec3& hi, Real diameter,
-                                       std::size_t count, std::mt19937_64& rng) {
-  std::vector<Placement> out;
-  const Vec3 size = hi - lo;
-  const int nx = static_cast<int>(size.x / diameter), ny = static_cast<int>(size.y / diameter),
-            nz = static_cast<int>(size.z / diameter);
-  if (nx < 1 || ny < 1 || nz < 1) return out;
-  // Spread the slack evenly: cells of equal size filling the region.
-  const Vec3 cell{size.x / nx, size.y / ny, size.z / nz};
-  const Vec3 slack = (cell - Vec3{diameter, diameter, diameter}) * 0.5;
-  std::uniform_real_distribution<double> u(-1, 1);
-  const Shape ball = make_sphere(diameter / 2);
-  for (int k = 0; k < nz && out.size() < count; ++k)
-    for (int j = 0; j < ny && out.size() < count; ++j)
-      for (int i = 0; i < nx && out.size() < count; ++i) {
-        const Vec3 centre = lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
-                            Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
-        const Quat q = random_rotation(rng);
-        bool free = true;
-        for (const PlaneWall& p : w.planes)
-          if (dot(centre - p.point, p.normal) < diameter / 2) free = false;
-        const Transform ball_pose = Transform::from(centre, Quat{});
-        for (std::size_t b = 0; free && b < w.bodies.size(); ++b) {
-          const Shape& s = w.templates[w.bodies[b].shape].shape;
-          const Transform pose = shape_pose(w, w.bodies[b]);
-          if (length(centre - pose.translation) > bounding_radius(s) + diameter / 2) continue;
-          if (intersect(s, pose, ball, ball_pose)) free = false;
-        }
-        if (free) out.push_back({centre, q});
-      }
-  return out;
-}
-
-}  // namespace gjkdem::dem
+}  // namespace gjkdem

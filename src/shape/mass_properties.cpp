@@ -1,4 +1,4 @@
-#include "gjkdem/dem/mass_properties.hpp"
+#include "gjkdem/shape/mass_properties.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -7,7 +7,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr Real kPi = 3.14159265358979323846;
 
 Mat3 diagonal(Real x, Real y, Real z) {
   Mat3 m;

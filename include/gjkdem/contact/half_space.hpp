@@ -14,7 +14,7 @@
 // to 4% of its energy in one bounce.)
 #include "gjkdem/shape/shape.hpp"
 
-namespace gjkdem::dem {
+namespace gjkdem {
 
 struct HalfSpaceContact {
   bool touching = false;  ///< some point of the body lies on or below the plane
@@ -33,4 +33,4 @@ struct HalfSpaceContact {
 HalfSpaceContact half_space_contact(const Shape& shape, const Transform& pose, const Vec3& point,
                                     const Vec3& normal);
 
-}  // namespace gjkdem::dem
+}  // namespace gjkdem

@@ -1,7 +1,7 @@
 // Mass properties against independent computations: closed forms checked on
 // their polytope approximations (tessellations), and the polytope integration
 // against a box and a tetrahedron known by hand.
-#include "gjkdem/dem/mass_properties.hpp"
+#include "gjkdem/shape/mass_properties.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,6 @@
 namespace gjkdem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 void expect_mat_near(const Mat3& a, const Mat3& b, double tol) {
   for (int i = 0; i < 3; ++i)

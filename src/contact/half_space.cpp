@@ -1,4 +1,4 @@
-#include "gjkdem/dem/half_space.hpp"
+#include "gjkdem/contact/half_space.hpp"
 
 #include <array>
 #include <cmath>
@@ -8,10 +8,9 @@
 #include "gjkdem/shape/convex_hull.hpp"
 #include "gjkdem/tolerances.hpp"
 
-namespace gjkdem::dem {
+namespace gjkdem {
 namespace {
 
-constexpr Real kPi = 3.14159265358979323846;
 
 // The surface of a polytope or box core as world-frame triangles, outward.
 bool surface_triangles(const Shape& s, const Transform& pose, std::vector<std::array<Vec3, 3>>& out) {
@@ -126,4 +125,4 @@ HalfSpaceContact half_space_contact(const Shape& shape, const Transform& pose, c
   return c;
 }
 
-}  // namespace gjkdem::dem
+}  // namespace gjkdem

@@ -1,7 +1,7 @@
 // A body against a half-space, checked against independent answers: the
 // overlap clipper (a polytope against a box far larger than it, whose top
 // face is the plane) and the closed form of a spherical cap.
-#include "gjkdem/dem/half_space.hpp"
+#include "gjkdem/contact/half_space.hpp"
 
 #include <gtest/gtest.h>
 
@@ -93,7 +93,7 @@ TEST(HalfSpace, BoxBelowThePlaneIsClippedExactly) {
 }
 
 TEST(HalfSpace, SphereCapMatchesClosedForm) {
-  const Real r = 0.3, pi = 3.14159265358979323846;
+  const Real r = 0.3, pi = kPi;
   for (Real h : {0.01, 0.1, 0.3, 0.5}) {
     const HalfSpaceContact c = half_space_contact(make_sphere(r), Transform::from({1, 2, r - h}, Quat{}), {0, 0, 0},
                                                   {0, 0, 1});

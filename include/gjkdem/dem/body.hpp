@@ -1,0 +1,67 @@
+#pragma once
+// What a DEM world is made of: shape templates shared by many bodies, bodies,
+// and plane walls. Bodies are plain, fixed-size data (no pointers, no
+// containers), so that an array of them can be viewed from NumPy, sent as an
+// MPI datatype or copied to a GPU as it is. What a contact remembers between
+// steps lives in the world's pair store (pair_state.hpp), not in the bodies.
+#include <cstdint>
+#include <type_traits>
+
+#include "gjkdem/shape/mass_properties.hpp"
+#include "gjkdem/shape/shape.hpp"
+
+namespace gjkdem::dem {
+
+/// A shape and its mass properties per unit density, computed once and
+/// shared by every body made from it.
+struct ShapeTemplate {
+  Shape shape;                   ///< in its own local frame, as the world's contact model sees it
+  MassProperties unit_mass;      ///< per unit density, in the shape's frame (zero for walls)
+  PrincipalAxes principal;       ///< of unit_mass.inertia
+  /// Radius of curvature for the Hertz law (m): exact for spheres and capsules;
+  /// for other shapes the radius of the sphere of equal volume (documented
+  /// approximation for polyhedra). Infinite for wall pieces.
+  Real curvature_radius = 0;
+  /// Largest distance of the shape's points from the centre of mass (m):
+  /// how far a turn can move them (box skins, generators).
+  Real reach = 0;
+};
+
+/// A template for a moving particle (throws std::invalid_argument for shapes
+/// without volume).
+ShapeTemplate make_template(const Shape& shape);
+
+/// A template for fixed pieces (a flat triangle has no volume): no mass, and
+/// its principal frame is the shape's own frame.
+ShapeTemplate make_wall_template(const Shape& shape);
+
+struct Body {
+  std::uint64_t id = 0;          ///< global id, stable across domains and restarts
+  std::uint32_t shape = 0;       ///< index into World::templates
+  std::uint32_t material = 0;    ///< index into World::materials
+  std::uint32_t group = 0;       ///< > 0: a piece of a wall (contacts with one group are merged)
+  std::uint32_t fixed = 0;       ///< 1: never moves (walls, obstacles)
+  Vec3 position;                 ///< centre of mass, world (m)
+  Quat orientation;              ///< principal frame -> world
+  Vec3 velocity;                 ///< m/s
+  Vec3 angular_momentum;         ///< world frame, about the centre of mass (kg m^2/s)
+  Vec3 force, torque;            ///< of the last force evaluation (N, N m about the centre of mass)
+};
+static_assert(std::is_trivially_copyable_v<Body> && std::is_standard_layout_v<Body>);
+
+/// An infinite plane wall: material on the side opposite to `normal`.
+struct PlaneWall {
+  std::uint64_t id = 0;       ///< global id, above every body's (it keys the pair store)
+  Vec3 point;
+  Vec3 normal;                ///< unit, pointing out of the wall
+  std::uint32_t material = 0;
+};
+
+/// Pose of a body's shape: its principal frame placed in the world, composed
+/// with the shape's frame relative to its principal frame.
+Transform shape_pose(const ShapeTemplate& shape, const Body& body) noexcept;
+
+/// The orientation of the frame the shape was given in (shape frame -> world).
+Quat shape_orientation(const ShapeTemplate& shape, const Body& body) noexcept;
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,42 @@
+#pragma once
+// The boxes of the broad phase, enlarged by a skin and kept while a body
+// stays inside its own (the Verlet-list idea of molecular dynamics, and
+// Yade's "verletDist"): a box is recomputed from six support calls only when
+// the body may have left it, and when no box changed the broad phase keeps
+// its candidate pairs.
+//
+// A moving body holds its box while its points cannot have moved by more than
+// the skin since the box was made: a point at distance r from the centre of
+// mass moves by at most |dx| + 2 |q - q0| r when the centre moves by dx and the
+// orientation turns from q0 to q (unit quaternions with q . q0 >= 0: the
+// chord |q - q0| = 2 sin(theta / 4) and the point moves 2 sin(theta / 2) r <=
+// 4 sin(theta / 4) r). Fixed bodies get a tight box once.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/broad_phase.hpp"
+
+namespace gjkdem::dem {
+
+struct BoxCache {
+  std::vector<Aabb> boxes;          ///< per body, world
+  std::vector<Vec3> anchor_position;     ///< centre of mass when the box was made
+  std::vector<Quat> anchor_orientation;  ///< orientation then
+  std::vector<std::uint8_t> stale;       ///< per body: recomputed in the last update
+};
+
+/// Brings the boxes of `bodies` up to date: every box when the cache does not
+/// match the body count (then fixed bodies too), else those of moving bodies
+/// that may have left theirs. `skin` is relative to each template's reach.
+/// Returns how many boxes were recomputed.
+std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                         BoxCache& cache, int threads);
+
+/// Remakes every box from the anchors held in `cache` (restoring a
+/// checkpoint): each box comes out with the same bits as when it was made.
+void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                              BoxCache& cache);
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,25 @@
+#pragma once
+// What the narrow phase finds for one candidate contact, the input of the
+// force law.
+#include "gjkdem/math/vec3.hpp"
+
+namespace gjkdem::dem {
+
+enum class GeometryStatus {
+  Apart,        ///< not touching
+  Touching,     ///< the fields below are set
+  Unsupported,  ///< the contact model has no computation for this pair of shapes
+};
+
+struct ContactGeometry {
+  GeometryStatus status = GeometryStatus::Apart;
+  Vec3 normal;              ///< unit, a -> b
+  Vec3 point;               ///< where friction and damping act, world
+  Real depth = 0;           ///< penetration depth, or V / |S_A| for the volume law (m)
+  Real area = 0;            ///< |S_A| (volume law, m^2)
+  Real volume = 0;          ///< overlap volume (volume law, m^3)
+  Real depth_integral = 0;  ///< plane walls, volume law: integral of the depth over the overlap (m^4)
+  Vec3 moment;              ///< moment about the world origin of a unit normal force on b (m)
+};
+
+}  // namespace gjkdem::dem

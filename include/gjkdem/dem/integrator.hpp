@@ -1,0 +1,20 @@
+#pragma once
+// Time integration of the bodies between force evaluations (kick-drift-kick,
+// velocity Verlet for the translation): a kick adds h of force and torque to
+// velocities and world angular momenta; a drift moves positions by dt and
+// turns orientations by the symplectic free rotation (rigid_rotation.hpp).
+// Fixed bodies never move.
+#include <span>
+
+#include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/material.hpp"
+
+namespace gjkdem::dem {
+
+void kick(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
+          Real h) noexcept;
+
+void drift(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
+           Real dt, int threads) noexcept;
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,53 @@
+#pragma once
+// Materials, and the table of what every pair of them gives a contact:
+// effective moduli, friction, restitution and the calibrated damping of the
+// world's contact law. The table is filled once when a world is built, so a
+// contact reads its pair's values with one index, never a map lookup.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gjkdem/math/real.hpp"
+
+namespace gjkdem::dem {
+
+struct Material {
+  std::string name;
+  Real density = 2500;          ///< kg/m^3, > 0
+  Real youngs_modulus = 1e7;    ///< Pa, > 0
+  Real poisson_ratio = 0.25;    ///< in (-1, 0.5)
+  Real restitution = 0.5;       ///< normal coefficient of restitution, (0, 1]
+  Real friction = 0.5;          ///< Coulomb coefficient, >= 0
+};
+
+/// The contact law between bodies (docs/dem.md).
+/// - Hertz: damped Hertz on the penetration depth (GJK/EPA), Mindlin's
+///   tangential stiffness;
+/// - Linear: a linear spring-dashpot on the penetration depth;
+/// - Volume: k V from the overlap region (the seed's contact model).
+enum class ContactModel { Hertz, Linear, Volume };
+
+/// What a pair of materials gives a contact (symmetric in the two).
+struct MaterialPair {
+  Real youngs_modulus = 0;  ///< E* (Pa)
+  Real shear_modulus = 0;   ///< Mindlin's G* (Pa)
+  Real friction = 0;        ///< sqrt(mu_a mu_b)
+  Real restitution = 0;     ///< sqrt(e_a e_b)
+  /// The law's calibrated damping for that restitution: beta for Hertz,
+  /// the damping ratio zeta for the linear and volume laws.
+  Real damping = 0;
+};
+
+/// Every pair of a world's materials, row-major: pair (i, j) at i * count + j.
+struct MaterialTable {
+  std::uint32_t count = 0;
+  std::vector<MaterialPair> pairs;
+
+  const MaterialPair& operator()(std::uint32_t a, std::uint32_t b) const noexcept { return pairs[a * count + b]; }
+};
+
+/// The table for `materials` under `model` (calibrates the damping of each
+/// distinct restitution once).
+MaterialTable make_material_table(const std::vector<Material>& materials, ContactModel model);
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,45 @@
+#pragma once
+// The one store of what a contact remembers from step to step, keyed by the
+// pair of global ids: the GJK warm start while the pair's boxes overlap, and
+// the tangential, twisting and rocking springs while it touches. Keyed by
+// ids, not indices, so the state follows the bodies through a checkpoint, a
+// reordering or (later) a move between MPI domains.
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gjkdem/collide/gjk_cache.hpp"
+#include "gjkdem/math/vec3.hpp"
+
+namespace gjkdem::dem {
+
+/// The ids of a pair, smaller first (a plane wall's id is above every body's).
+struct PairKey {
+  std::uint64_t lo = 0, hi = 0;
+  friend constexpr auto operator<=>(const PairKey&, const PairKey&) = default;
+};
+
+constexpr PairKey pair_key(std::uint64_t a, std::uint64_t b) noexcept { return a < b ? PairKey{a, b} : PairKey{b, a}; }
+
+/// Springs of a touching contact. Each is world-frame and is carried into
+/// the current tangent plane before use (contact_force.hpp).
+struct PairHistory {
+  Vec3 spring;   ///< tangential displacement (m)
+  Real twist = 0;  ///< relative spin about the normal (rad), volume law
+  Vec3 roll;     ///< relative rocking (rad), volume law between bodies
+};
+
+struct PairState {
+  PairKey key;
+  GjkCache gjk;         ///< warm start (body pairs)
+  PairHistory history;  ///< zero while the pair does not touch
+};
+
+/// Makes `states` follow the sorted `keys`: entries of pairs still listed
+/// keep their state, new pairs start cold, the rest are dropped. Needs
+/// `states` sorted by key (a damaged one cannot make it index out of range);
+/// no allocation once capacity suffices.
+void align_pair_states(std::span<const PairKey> keys, std::vector<PairState>& states);
+
+}  // namespace gjkdem::dem

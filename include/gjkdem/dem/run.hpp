@@ -1,0 +1,76 @@
+#pragma once
+// Running a world: advancing it to a time in fixed steps, with observers
+// called at the output cadence (frames, logs and checkpoints are observers,
+// io/run_observers.hpp; so are viewers and Python callbacks), the energy
+// balance, and a stop request polled between steps. A run that stops can be
+// continued from its RunState and the world (a checkpoint holds both).
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::dem {
+
+/// Where a run stands. Everything here is saved in a checkpoint.
+struct RunState {
+  Real dt = 0;                        ///< s
+  std::uint64_t steps_total = 0;      ///< the run ends after this many steps
+  std::uint64_t steps_per_output = 1; ///< observers see the world every this many steps (and at the end)
+  std::uint64_t step = 0;             ///< steps done
+  std::uint64_t outputs = 0;          ///< outputs done (the first, at step 0, included)
+  Real initial_energy = 0;            ///< kinetic + potential + elastic at the start (J)
+};
+
+/// A run of `duration` seconds in steps of dt, an output every `output_every`
+/// seconds (rounded to whole steps, at least one). Throws std::invalid_argument
+/// unless 0 < dt, 0 < duration, 0 < output_every, all finite, and the run
+/// takes fewer than 2^53 steps.
+RunState plan_run(Real duration, Real dt, Real output_every);
+
+/// Where the energy went (J): dissipated = initial - kinetic - potential -
+/// elastic, what damping and friction took out of the system.
+struct EnergyBalance {
+  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0;
+};
+
+EnergyBalance energy_balance(const World& world, Real initial_energy) noexcept;
+
+enum class RunStatus {
+  Completed,  ///< all steps done
+  Stopped,    ///< the stop request was seen; continue with run() again
+  Failed,     ///< `error` says why; the world is left where it failed
+};
+
+struct RunOutcome {
+  RunStatus status = RunStatus::Completed;
+  std::string error;
+};
+
+/// Sees a run. Observers are called in the order given; an exception thrown
+/// by one fails the run with its message.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  /// At step 0 of a new run and every steps_per_output steps (and after the
+  /// last step): the world after `state.step` steps, `state.outputs` counting
+  /// this output.
+  virtual void on_output(const World& world, const RunState& state) = 0;
+  /// After every step (keep it cheap).
+  virtual void on_step(const World& /*world*/, const RunState& /*state*/) {}
+  /// When run() returns.
+  virtual void on_stop(const World& /*world*/, const RunState& /*state*/, const RunOutcome& /*outcome*/) {}
+};
+
+/// Advances `world` until state.steps_total, calling the observers.
+/// `stop_requested` (optional) is asked before every step. On a new run
+/// (state.step == 0 and no output yet) the forces are evaluated, the initial
+/// energy recorded and the first output made before the first step.
+RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
+               const std::function<bool()>& stop_requested = {});
+
+/// A message for a failed step, naming the pair.
+std::string describe_failure(const World& world, const StepReport& report);
+
+}  // namespace gjkdem::dem

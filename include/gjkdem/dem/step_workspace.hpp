@@ -1,0 +1,45 @@
+#pragma once
+// The scratch of a step: everything a step computes and throws away, kept in
+// the world only so that its memory is reused. Nothing here survives into a
+// checkpoint; a world restored without it rebuilds it on its first step.
+#include <cstdint>
+#include <vector>
+
+#include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/broad_phase.hpp"
+#include "gjkdem/dem/contact_geometry.hpp"
+#include "gjkdem/dem/pair_state.hpp"
+
+namespace gjkdem::dem {
+
+/// One candidate contact of a force evaluation: bodies (a, b), or plane wall a
+/// and body b. Slot k of the contact list goes with entry k of the world's
+/// pair store; each slot is written by one thread only.
+struct StepContact {
+  std::uint32_t a = 0, b = 0;
+  bool a_is_plane = false;
+  bool active = false;      ///< touching, after merging the contacts of a wall
+  ContactGeometry geometry;
+  // Force law.
+  Vec3 force;               ///< on b
+  Vec3 torque;              ///< on b, about the world origin
+  PairHistory history;      ///< the springs after this evaluation
+  Real elastic = 0;         ///< energy stored in the contact (J)
+};
+
+struct StepWorkspace {
+  BoxCache boxes;
+  StaticTree fixed_tree;             ///< of the fixed bodies' boxes
+  bool static_ready = false;         ///< fixed_tree and moving are built
+  SweepWorkspace sweep;
+  std::vector<BodyPair> candidates;  ///< body index pairs (i < j) whose boxes overlap, sorted
+  bool candidates_current = false;   ///< no box changed since the candidates were found
+  std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
+  std::vector<PairKey> keys;         ///< the contacts' keys
+  std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
+  std::vector<std::uint32_t> moving;      ///< indices of the moving bodies
+  std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep
+};
+
+}  // namespace gjkdem::dem

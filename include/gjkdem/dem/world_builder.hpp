@@ -1,0 +1,142 @@
+#pragma once
+// Building a world: materials, bodies, walls and generated beds go in, a
+// checked World comes out. The builder gives every body and wall its global
+// id, prepares each shape for the contact model (under the volume law every
+// curved shape, moving or fixed, is clipped as an inscribed polytope), checks
+// that explicit bodies do not start inside each other or a wall, refuses what
+// the engine cannot do (a message names the body or wall, by the label it was
+// given), and fills the table of material pairs. Scene files (io/scene.hpp),
+// tests, benchmarks and Python all build worlds through it.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::dem {
+
+/// What the builder refuses; the message names the body, wall or material.
+struct BuildError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Plane walls get ids from here up, above every body's.
+inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
+
+/// A shape as an author gives it: its frame placed in the body's frame
+/// (identity: centred on the body's origin, unrotated).
+struct BodyShape {
+  Shape shape{};
+  Transform pose{};
+};
+
+struct BodyDef {
+  BodyShape shape{};            ///< ignored when `shared_shape` is set
+  /// >= 0: the shape of add_shape with this index, shared with other bodies
+  /// (one template, one copy of its mass properties).
+  std::int64_t shared_shape = -1;
+  std::uint32_t material = 0;   ///< from add_material
+  Vec3 position{};              ///< of the body's frame (the author's), world (m)
+  Quat rotation{};              ///< of the body's frame, world
+  Vec3 velocity{};              ///< of the centre of mass (m/s)
+  Vec3 angular_velocity{};      ///< world (rad/s)
+  bool fixed = false;           ///< never moves; must have no velocity
+  std::string label{};          ///< names the body in messages, e.g. "body[2]" or its name
+};
+
+/// Bodies placed without overlap in the box [lo, hi], in cells one bounding
+/// diameter wide filled layer by layer from the bottom, each with a random
+/// orientation and offset; cells that touch a body already added or lie
+/// outside a plane wall are skipped.
+struct RegionFill {
+  std::vector<BodyShape> variants;  ///< each body takes one at random (shared templates)
+  std::size_t count = 0;
+  Vec3 lo, hi;
+  std::uint32_t material = 0;
+  Vec3 velocity;
+  std::string label;                ///< e.g. "generator[0]"
+};
+
+class WorldBuilder {
+ public:
+  explicit WorldBuilder(const WorldSettings& settings = {});
+
+  /// Continues a world already built (and maybe run): bodies added now join
+  /// it with the next ids; its bodies keep their state and contacts. New
+  /// explicit bodies are checked against everything; the world's own bodies
+  /// are not checked again (a settled bed overlaps).
+  explicit WorldBuilder(World world);
+
+  const WorldSettings& settings() const noexcept { return settings_; }
+
+  /// Checks the values (density and modulus > 0, Poisson ratio in (-1, 0.5),
+  /// restitution in (0, 1], friction >= 0) and that the name is new.
+  std::uint32_t add_material(const Material& material);
+  std::optional<std::uint32_t> find_material(std::string_view name) const;
+
+  /// Adds one body; returns its index (and id).
+  std::uint32_t add_body(const BodyDef& body);
+
+  /// A shape many moving bodies share (BodyDef::shared_shape); returns its index.
+  std::uint32_t add_shape(const BodyShape& shape, const std::string& label);
+
+  /// Explicit bodies may start overlapping each other and the walls: a state
+  /// saved from a settled bed, or a stack started at its resting overlaps.
+  /// (By default such a start is refused, naming the two bodies.)
+  void accept_initial_overlaps() noexcept { check_overlaps_ = false; }
+
+  /// An infinite plane; `normal` need not be unit but must have a direction.
+  void add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label);
+
+  /// A box container [lo, hi]: one fixed slab of the given thickness per side
+  /// outside it (no roof when open_top), the floor and roof spanning the side
+  /// slabs so the corners are closed.
+  void add_box_walls(const Vec3& lo, const Vec3& hi, bool open_top, Real thickness, std::uint32_t material,
+                     const std::string& label);
+
+  /// A triangle mesh (world coordinates) as one fixed piece per triangle:
+  /// the seed's triangle with a margin of thickness / 2 under the penetration
+  /// laws, a prism of that thickness under the volume law (the pieces of a
+  /// flat region tile it and their overlap volumes add up exactly).
+  void add_mesh_walls(std::span<const Vec3> vertices, std::span<const std::array<std::uint32_t, 3>> triangles,
+                      Real thickness, std::uint32_t material, const std::string& label);
+
+  /// Fills a region (RegionFill); draws from `rng`. Throws BuildError when
+  /// the region holds fewer than `count` bodies. Returns the bodies' indices.
+  std::vector<std::uint32_t> fill_region(const RegionFill& fill, std::mt19937_64& rng);
+
+  std::size_t body_count() const noexcept { return world_.bodies.size(); }
+  std::size_t moving_count() const noexcept;
+
+  /// Checks and prepares everything; the builder is empty afterwards.
+  World build();
+
+ private:
+  std::uint32_t add_template(const Shape& shape, bool fixed, const std::string& label);
+  std::uint64_t next_id() const noexcept;
+  void place(Body& body, const BodyShape& shape, const Vec3& position, const Quat& rotation, const Vec3& velocity,
+             const Vec3& spin) const;
+  std::uint32_t add_fixed_piece(const Shape& shape, const Vec3& position, std::uint32_t material, std::uint32_t group,
+                                const std::string& label);
+  void check_material(std::uint32_t material, const std::string& label) const;
+  void check_explicit_bodies() const;
+  void prepare_shapes();
+
+  WorldSettings settings_;
+  World world_;
+  std::vector<std::string> labels_;     ///< per body
+  std::vector<Shape> given_shapes_;     ///< per template, as given (before preparation)
+  std::vector<std::uint32_t> explicit_; ///< bodies from add_body
+  std::size_t prepared_templates_ = 0;  ///< templates of a continued world, prepared already
+  std::vector<std::pair<std::uint32_t, Transform>> shared_;  ///< add_shape: template and shape pose
+  bool check_overlaps_ = true;
+  std::uint32_t groups_ = 0;
+};
+
+}  // namespace gjkdem::dem

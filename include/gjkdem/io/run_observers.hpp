@@ -1,0 +1,127 @@
+#pragma once
+// The observers that write a run folder (../shared/spec/scene-format.md):
+// frames, trace.csv, energy.csv, checkpoints and run.json. Each one sees the
+// run through dem::RunObserver; together they continue a stopped run from its
+// checkpoint with the same bytes as an uninterrupted one.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "gjkdem/dem/run.hpp"
+#include "gjkdem/io/checkpoint.hpp"
+#include "gjkdem/io/run_output.hpp"
+
+namespace gjkdem::io {
+
+/// The files of a run folder.
+struct RunPaths {
+  std::filesystem::path dir;
+  std::filesystem::path frames() const { return dir / "frames"; }
+  std::filesystem::path checkpoint() const { return dir / "checkpoint.bin"; }
+  std::filesystem::path trace() const { return dir / "trace.csv"; }
+  std::filesystem::path energy() const { return dir / "energy.csv"; }
+  std::filesystem::path run_json() const { return dir / "run.json"; }
+  std::filesystem::path scene() const { return dir / "scene.toml"; }
+};
+
+/// frames/frame_NNNNNN.vtk at every output, and frames/frames.vtk.series.
+class FrameWriter : public dem::RunObserver {
+ public:
+  FrameWriter(std::filesystem::path dir, const dem::World& world, bool enabled);
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+  /// Frame files and times so far (a checkpoint keeps them).
+  std::vector<std::pair<std::string, Real>> frames;
+
+ private:
+  std::filesystem::path dir_;
+  std::vector<DisplayMesh> meshes_;
+  bool enabled_;
+};
+
+/// A CSV log appended at every output; flushed each time, so a checkpoint
+/// can record its length and a resumed run cut it back to that.
+class CsvLog : public dem::RunObserver {
+ public:
+  /// A new log with its header, or (resume) the existing file cut to `bytes`.
+  void start(const std::filesystem::path& file, const std::string& header);
+  void resume(const std::filesystem::path& file, std::uint64_t bytes);
+  std::uint64_t bytes() const { return bytes_; }
+
+ protected:
+  void append(const std::string& rows);
+
+ private:
+  std::filesystem::path file_;
+  std::ofstream out_;
+  std::uint64_t bytes_ = 0;
+};
+
+/// trace.csv: one row per traced body per output.
+class TraceWriter : public CsvLog {
+ public:
+  struct Traced {
+    std::string name;
+    std::uint32_t body = 0;  ///< index into world.bodies
+  };
+  explicit TraceWriter(std::vector<Traced> traced) : traced_(std::move(traced)) {}
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+
+ private:
+  std::vector<Traced> traced_;
+};
+
+/// energy.csv: the energy balance at every output.
+class EnergyWriter : public CsvLog {
+ public:
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+};
+
+/// checkpoint.bin every `every` outputs (0: never) and when the run is
+/// stopped, so that it can continue.
+class Checkpointer : public dem::RunObserver {
+ public:
+  Checkpointer(std::filesystem::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,
+               const CsvLog& trace, const CsvLog& energy, double wall_before);
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+  void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
+  /// Wall time of the run so far (s), earlier sessions included.
+  double wall_seconds() const;
+
+ private:
+  void save(const dem::World& world, const dem::RunState& state);
+  std::filesystem::path file_;
+  int every_;
+  std::uint64_t fingerprint_;
+  const FrameWriter& frames_;
+  const CsvLog &trace_, &energy_;
+  double wall_before_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+/// run.json: the run's description (`info`, a JSON object) with its status,
+/// written atomically when the run starts and when it stops.
+class RunInfoWriter : public dem::RunObserver {
+ public:
+  RunInfoWriter(std::filesystem::path file, const std::string& info_json, const Checkpointer& clock);
+  void on_output(const dem::World&, const dem::RunState&) override {}
+  /// status "running" (steps so far).
+  void started(const dem::World& world, const dem::RunState& state);
+  void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
+  /// What stopped a run that was stopped ("SIGINT", "--stop-after", ...).
+  std::string stopped_by;
+
+ private:
+  void write(const std::string& status, const dem::World& world, const dem::RunState& state,
+             const std::string& error);
+  std::filesystem::path file_;
+  std::string info_json_;
+  const Checkpointer& clock_;
+};
+
+/// Writes `text` to `file` through a temporary file and a rename.
+void write_file_atomically(const std::filesystem::path& file, const std::string& text);
+
+}  // namespace gjkdem::io

@@ -1,0 +1,85 @@
+#include "gjkdem/dem/boxes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace gjkdem::dem {
+namespace {
+
+// Below this many bodies the loop runs on one thread: waking the team costs more.
+constexpr std::int64_t kMinParallelBodies = 512;
+// Boxes at least this far out (in skins) are made again with one that left.
+constexpr Real kBatchFraction = 0.5;
+
+}  // namespace
+
+std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                         BoxCache& cache, int threads) {
+  const std::size_t n = bodies.size();
+  const bool all = cache.boxes.size() != n;
+  if (all) {
+    cache.boxes.assign(n, Aabb{});
+    cache.anchor_position.assign(n, Vec3{});
+    cache.anchor_orientation.assign(n, Quat{});
+    cache.stale.assign(n, 0);
+  }
+  // How far each moving body's points may have moved since its box was made,
+  // in units of its skin (> 1: it may have left the box).
+  const std::int64_t count = static_cast<std::int64_t>(n);
+  auto moved = [&](std::int64_t i) {
+    const Body& b = bodies[i];
+    const Real reach = templates[b.shape].reach;
+    const Quat& q0 = cache.anchor_orientation[i];
+    const Real same = q0.w * b.orientation.w + q0.x * b.orientation.x + q0.y * b.orientation.y + q0.z * b.orientation.z;
+    const Real s = same < 0 ? -1 : 1;  // q and -q are one turn
+    const Real dw = b.orientation.w - s * q0.w, dx = b.orientation.x - s * q0.x, dy = b.orientation.y - s * q0.y,
+               dz = b.orientation.z - s * q0.z;
+    const Real chord = std::sqrt(dw * dw + dx * dx + dy * dy + dz * dz);
+    return (length(b.position - cache.anchor_position[i]) + 2 * chord * reach) / (skin * reach);
+  };
+  // When one box must be made again, so are those more than half way out of
+  // theirs: the sweep that follows then serves them too, instead of running
+  // again a step later.
+  Real threshold = 1;
+  if (!all) {
+    int any = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : any) if (count >= kMinParallelBodies)
+    for (std::int64_t i = 0; i < count; ++i)
+      if (!bodies[i].fixed && !(moved(i) <= 1)) any = 1;
+    if (!any) {
+      std::fill(cache.stale.begin(), cache.stale.end(), 0);
+      return 0;
+    }
+    threshold = kBatchFraction;
+  }
+  std::int64_t updated = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : updated) if (count >= kMinParallelBodies)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const Body& b = bodies[i];
+    const ShapeTemplate& t = templates[b.shape];
+    cache.stale[i] = 0;
+    if (!all && (b.fixed || moved(i) <= threshold)) continue;
+    cache.boxes[i] = aabb(t.shape, shape_pose(t, b), b.fixed ? 0 : skin * t.reach);
+    cache.anchor_position[i] = b.position;
+    cache.anchor_orientation[i] = b.orientation;
+    cache.stale[i] = 1;
+    ++updated;
+  }
+  return static_cast<std::size_t>(updated);
+}
+
+void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                              BoxCache& cache) {
+  cache.boxes.resize(bodies.size());
+  cache.stale.assign(bodies.size(), 1);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body at = bodies[i];
+    at.position = cache.anchor_position[i];
+    at.orientation = cache.anchor_orientation[i];
+    const ShapeTemplate& t = templates[at.shape];
+    cache.boxes[i] = aabb(t.shape, shape_pose(t, at), at.fixed ? 0 : skin * t.reach);
+  }
+}
+
+}  // namespace gjkdem::dem

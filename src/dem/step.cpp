@@ -1,0 +1,243 @@
+// One step of the engine: the stages of world.hpp in order.
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+
+#include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/contact_force.hpp"
+#include "gjkdem/dem/integrator.hpp"
+#include "gjkdem/dem/narrow_phase.hpp"
+#include "gjkdem/dem/world.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gjkdem::dem {
+namespace {
+
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+// Below these sizes a loop runs on one thread: waking the team costs more.
+constexpr std::int64_t kMinParallelBodies = 512;
+constexpr std::int64_t kMinParallelContacts = 64;
+
+int thread_count(int requested) {
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+int thread_id() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// Candidate body pairs: moving against moving by the sweep, moving against
+// fixed from the static tree (built again when the boxes were all made anew).
+void find_candidates(World& w, int threads) {
+  StepWorkspace& work = w.work;
+  const std::vector<Aabb>& boxes = work.boxes.boxes;
+  if (!work.static_ready) {
+    work.moving.clear();
+    std::vector<std::uint32_t> fixed;
+    std::vector<Aabb> fixed_boxes;
+    for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+      if (w.bodies[i].fixed) {
+        fixed.push_back(i);
+        fixed_boxes.push_back(boxes[i]);
+      } else {
+        work.moving.push_back(i);
+      }
+    }
+    build_static_tree(fixed_boxes, fixed, work.fixed_tree);
+    work.static_ready = true;
+  }
+  work.moving_boxes.resize(work.moving.size());
+  for (std::size_t k = 0; k < work.moving.size(); ++k) work.moving_boxes[k] = boxes[work.moving[k]];
+  std::vector<BodyPair>& pairs = work.candidates;
+  overlapping_pairs(work.moving_boxes, work.sweep, pairs, threads);
+  for (BodyPair& p : pairs) p = {work.moving[p.first], work.moving[p.second]};  // moving is increasing
+  std::vector<std::uint32_t> found;
+  for (const std::uint32_t i : work.moving) {
+    found.clear();
+    query_static_tree(work.fixed_tree, boxes[i], found);
+    for (const std::uint32_t f : found) pairs.emplace_back(std::min(i, f), std::max(i, f));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  work.candidates_current = true;
+}
+
+// The contact list in pair-key order (bodies are in increasing id order and
+// plane ids lie above every body's): for each body, its candidates with
+// larger indices, then the plane walls its box reaches.
+void list_contacts(World& w) {
+  StepWorkspace& work = w.work;
+  std::vector<StepContact>& contacts = work.contacts;
+  contacts.clear();
+  work.keys.clear();
+  const std::vector<BodyPair>& pairs = work.candidates;
+  std::size_t k = 0;
+  for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& body = w.bodies[i];
+    for (; k < pairs.size() && pairs[k].first == i; ++k) {
+      StepContact c;
+      c.a = i;
+      c.b = pairs[k].second;
+      contacts.push_back(c);
+      work.keys.push_back(pair_key(body.id, w.bodies[c.b].id));
+    }
+    if (body.fixed) continue;
+    const Aabb& box = work.boxes.boxes[i];
+    for (std::uint32_t p = 0; p < w.planes.size(); ++p) {
+      const PlaneWall& wall = w.planes[p];
+      Real lowest = -dot(wall.normal, wall.point);  // of the box's corners above the plane
+      for (int axis = 0; axis < 3; ++axis) lowest += wall.normal[axis] * (wall.normal[axis] > 0 ? box.lo[axis] : box.hi[axis]);
+      if (lowest > 0) continue;
+      StepContact c;
+      c.a = p;
+      c.b = i;
+      c.a_is_plane = true;
+      contacts.push_back(c);
+      work.keys.push_back(pair_key(body.id, wall.id));
+    }
+  }
+}
+
+ContactSide side_of(const World& w, const Body& b) {
+  ContactSide s;
+  if (b.fixed) {
+    s.mass = s.curvature_radius = s.volume = kInf;
+    return s;
+  }
+  const ShapeTemplate& t = w.templates[b.shape];
+  s.moving = true;
+  s.position = b.position;
+  s.velocity = b.velocity;
+  s.spin = angular_velocity_of(w, b);
+  s.mass = mass_of(w, b);
+  s.curvature_radius = t.curvature_radius;
+  s.volume = t.unit_mass.volume;
+  return s;
+}
+
+// dt: time since the last evaluation, for the springs (0 at the start).
+StepReport compute_forces(World& w, Real dt) {
+  const int threads = thread_count(w.settings.threads);
+  StepWorkspace& work = w.work;
+  if (static_cast<int>(work.overlap.size()) < threads) work.overlap.resize(threads);
+  const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Body& b = w.bodies[i];
+    b.force = b.fixed ? Vec3{} : w.settings.gravity * mass_of(w, b);
+    b.torque = {};
+  }
+  if (work.boxes.boxes.size() != w.bodies.size()) work.static_ready = false;  // every box is made anew
+  const std::size_t updated = update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads);
+  if (updated > 0 || !work.static_ready || !work.candidates_current) find_candidates(w, threads);
+  list_contacts(w);
+  align_pair_states(work.keys, w.pairs);
+
+  std::vector<StepContact>& contacts = work.contacts;
+  const ContactModel model = w.settings.model;
+  const std::int64_t m = static_cast<std::int64_t>(contacts.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
+  for (std::int64_t k = 0; k < m; ++k) {
+    StepContact& c = contacts[k];
+    const Body& b = w.bodies[c.b];
+    const ShapeTemplate& tb = w.templates[b.shape];
+    if (c.a_is_plane) {
+      c.geometry = plane_contact(w.planes[c.a], tb.shape, shape_pose(tb, b), model);
+    } else {
+      const Body& a = w.bodies[c.a];
+      const ShapeTemplate& ta = w.templates[a.shape];
+      c.geometry = body_contact(ta.shape, shape_pose(ta, a), tb.shape, shape_pose(tb, b), model, &w.pairs[k].gjk,
+                                work.overlap[thread_id()]);
+    }
+    c.active = c.geometry.status == GeometryStatus::Touching;
+  }
+  for (const StepContact& c : contacts)
+    if (c.geometry.status == GeometryStatus::Unsupported)
+      return {StepStatus::UnsupportedPair, c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, w.bodies[c.b].id};
+  if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
+  for (std::int64_t k = 0; k < m; ++k) {
+    StepContact& c = contacts[k];
+    if (!c.active) continue;
+    const Body& b = w.bodies[c.b];
+    ContactSide side_a;
+    std::uint32_t material_a;
+    if (c.a_is_plane) {
+      side_a.mass = side_a.curvature_radius = side_a.volume = kInf;
+      material_a = w.planes[c.a].material;
+    } else {
+      side_a = side_of(w, w.bodies[c.a]);
+      material_a = w.bodies[c.a].material;
+    }
+    const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
+                                         side_of(w, b), w.pairs[k].history, w.settings, dt);
+    c.force = f.force;
+    c.torque = f.torque;
+    c.history = f.history;
+    c.elastic = f.elastic;
+  }
+
+  // Sums in the fixed order of the contact list: the same bits for any thread count.
+  StepStats& stats = w.stats;
+  stats = {};
+  stats.box_updates = static_cast<int>(updated);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const StepContact& c = contacts[k];
+    if (!c.active) {
+      w.pairs[k].history = {};  // a contact that ended forgets its springs
+      continue;
+    }
+    Body& b = w.bodies[c.b];
+    b.force += c.force;
+    b.torque += c.torque - cross(b.position, c.force);
+    if (!c.a_is_plane) {
+      Body& a = w.bodies[c.a];
+      a.force -= c.force;
+      a.torque -= c.torque - cross(a.position, c.force);
+    }
+    w.pairs[k].history = c.history;
+    stats.elastic_energy += c.elastic;
+    ++stats.contacts;
+    if (c.a_is_plane || w.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
+  }
+  w.forces_current = true;
+  return {};
+}
+
+}  // namespace
+
+StepReport compute_forces_now(World& w) {
+  if (w.forces_current) return {};
+  return compute_forces(w, 0);
+}
+
+StepReport step(World& w, Real dt) {
+  if (!w.forces_current) {
+    const StepReport r = compute_forces(w, 0);
+    if (r.status != StepStatus::Ok) return r;
+  }
+  const int threads = thread_count(w.settings.threads);
+  kick(w.bodies, w.templates, w.materials, dt / 2);
+  drift(w.bodies, w.templates, w.materials, dt, threads);
+  const StepReport r = compute_forces(w, dt);
+  if (r.status != StepStatus::Ok) {
+    w.forces_current = false;
+    return r;
+  }
+  kick(w.bodies, w.templates, w.materials, dt / 2);
+  w.time += dt;
+  return r;
+}
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,359 @@
+#include "gjkdem/dem/world_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/contact/half_space.hpp"
+#include "gjkdem/shape/polytope.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
+#include "gjkdem/shape/tessellate.hpp"
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+// A solid polytope or box without margin: what the volume law clips.
+bool solid_polytope(const Shape& s) {
+  if (s.margin != 0) return false;
+  if (const auto* b = std::get_if<Box>(&s.core))
+    return b->half_extents.x > 0 && b->half_extents.y > 0 && b->half_extents.z > 0;
+  if (const auto* p = std::get_if<Polytope>(&s.core)) return !p->data->triangles.empty();
+  return false;
+}
+
+std::string number_text(Real v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) {
+  if (!(settings.tessellation >= 8)) throw BuildError("settings: tessellation must be at least 8 directions");
+  if (!(settings.box_skin >= 0)) throw BuildError("settings: box_skin must be >= 0");
+  world_.settings = settings;
+}
+
+WorldBuilder::WorldBuilder(World world) : settings_(world.settings), world_(std::move(world)) {
+  for (const ShapeTemplate& t : world_.templates) given_shapes_.push_back(t.shape);
+  for (const Body& b : world_.bodies) {
+    labels_.push_back("body " + std::to_string(b.id));
+    groups_ = std::max(groups_, b.group);
+  }
+  prepared_templates_ = world_.templates.size();
+  world_.forces_current = false;
+}
+
+std::uint32_t WorldBuilder::add_material(const Material& m) {
+  const std::string what = "material '" + m.name + "': ";
+  if (find_material(m.name)) throw BuildError(what + "defined twice");
+  if (!(m.density > 0)) throw BuildError(what + "density must be > 0");
+  if (!(m.youngs_modulus > 0)) throw BuildError(what + "youngs_modulus must be > 0");
+  if (!(m.poisson_ratio > -1 && m.poisson_ratio < 0.5)) throw BuildError(what + "poisson_ratio must lie in (-1, 0.5)");
+  if (!(m.restitution > 0 && m.restitution <= 1)) throw BuildError(what + "restitution must lie in (0, 1]");
+  if (!(m.friction >= 0)) throw BuildError(what + "friction must be >= 0");
+  world_.materials.push_back(m);
+  return static_cast<std::uint32_t>(world_.materials.size() - 1);
+}
+
+std::optional<std::uint32_t> WorldBuilder::find_material(std::string_view name) const {
+  for (std::uint32_t k = 0; k < world_.materials.size(); ++k)
+    if (world_.materials[k].name == name) return k;
+  return std::nullopt;
+}
+
+void WorldBuilder::check_material(std::uint32_t material, const std::string& label) const {
+  if (material >= world_.materials.size())
+    throw BuildError(label + ": material " + std::to_string(material) + " was never added");
+}
+
+std::uint64_t WorldBuilder::next_id() const noexcept {
+  return world_.bodies.empty() ? 0 : world_.bodies.back().id + 1;
+}
+
+std::size_t WorldBuilder::moving_count() const noexcept {
+  return static_cast<std::size_t>(
+      std::count_if(world_.bodies.begin(), world_.bodies.end(), [](const Body& b) { return !b.fixed; }));
+}
+
+std::uint32_t WorldBuilder::add_template(const Shape& shape, bool fixed, const std::string& label) {
+  ShapeTemplate t;
+  if (fixed) {
+    t = make_wall_template(shape);
+  } else {
+    try {
+      t = make_template(shape);
+    } catch (const std::invalid_argument& e) {
+      throw BuildError(label + ": cannot be a moving body: " + e.what());
+    }
+  }
+  world_.templates.push_back(t);
+  given_shapes_.push_back(shape);
+  return static_cast<std::uint32_t>(world_.templates.size() - 1);
+}
+
+// The body's principal frame from the author's frame (position, rotation) and
+// the shape's frame within it.
+void WorldBuilder::place(Body& b, const BodyShape& s, const Vec3& position, const Quat& rotation,
+                         const Vec3& velocity, const Vec3& spin) const {
+  const ShapeTemplate& t = world_.templates[b.shape];
+  const Transform author = Transform::from(position, rotation);
+  const Quat shape_q = rotation * quat_from_matrix(s.pose.rotation);
+  b.orientation = normalized(shape_q * t.principal.rotation);
+  b.position = apply(author, apply(s.pose, t.unit_mass.centroid));
+  b.velocity = velocity;
+  if (!b.fixed) {  // L = R I R^T w, with I the principal moments
+    const Vec3 moments = t.principal.moments * world_.materials[b.material].density;
+    const Vec3 local = rotate(conjugate(b.orientation), spin);
+    b.angular_momentum = rotate(b.orientation, Vec3{moments.x * local.x, moments.y * local.y, moments.z * local.z});
+  }
+}
+
+std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
+  const std::string label = d.label.empty() ? "body " + std::to_string(world_.bodies.size()) : d.label;
+  check_material(d.material, label);
+  for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
+    if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
+  if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
+    throw BuildError(label + ": a fixed body cannot move (velocity and angular_velocity must be 0)");
+  Body b;
+  b.id = next_id();
+  b.material = d.material;
+  b.fixed = d.fixed;
+  if (d.shared_shape >= 0) {
+    if (d.shared_shape >= static_cast<std::int64_t>(shared_.size()))
+      throw BuildError(label + ": shared shape " + std::to_string(d.shared_shape) + " was never added");
+    if (d.fixed) throw BuildError(label + ": shared shapes are for moving bodies");
+    const auto& [index, pose] = shared_[static_cast<std::size_t>(d.shared_shape)];
+    b.shape = index;
+    place(b, {given_shapes_[index], pose}, d.position, d.rotation, d.velocity, d.angular_velocity);
+  } else {
+    b.shape = add_template(d.shape.shape, d.fixed, label);
+    place(b, d.shape, d.position, d.rotation, d.velocity, d.angular_velocity);
+  }
+  world_.bodies.push_back(b);
+  labels_.push_back(label);
+  explicit_.push_back(static_cast<std::uint32_t>(world_.bodies.size() - 1));
+  return static_cast<std::uint32_t>(world_.bodies.size() - 1);
+}
+
+std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string& label) {
+  shared_.emplace_back(add_template(shape.shape, false, label), shape.pose);
+  return static_cast<std::uint32_t>(shared_.size() - 1);
+}
+
+void WorldBuilder::add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label) {
+  check_material(material, label);
+  if (!is_finite(point) || !is_finite(normal)) throw BuildError(label + ": point and normal must be finite");
+  // Scaled first, so that huge components do not overflow the length.
+  const Real largest = max_abs(normal);
+  const Vec3 unit = largest > 0 ? normalized(normal / largest) : Vec3{};
+  if (!(length(unit) > 0.5)) throw BuildError(label + ": the normal must not be zero");
+  world_.planes.push_back({kPlaneIdBase + world_.planes.size(), point, unit, material});
+}
+
+std::uint32_t WorldBuilder::add_fixed_piece(const Shape& shape, const Vec3& position, std::uint32_t material,
+                                            std::uint32_t group, const std::string& label) {
+  Body b;
+  b.id = next_id();
+  b.shape = add_template(shape, true, label);
+  b.material = material;
+  b.group = group;
+  b.fixed = true;
+  b.position = position;
+  world_.bodies.push_back(b);
+  labels_.push_back(label);
+  return static_cast<std::uint32_t>(world_.bodies.size() - 1);
+}
+
+void WorldBuilder::add_box_walls(const Vec3& lo, const Vec3& hi, bool open_top, Real t, std::uint32_t material,
+                                 const std::string& label) {
+  check_material(material, label);
+  if (!is_finite(lo) || !is_finite(hi) || !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+    throw BuildError(label + ": max must exceed min on every axis");
+  if (!(t > 0) || !std::isfinite(t)) throw BuildError(label + ": the thickness must be > 0");
+  const std::uint32_t group = ++groups_;
+  const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
+  add_fixed_piece(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, lo.z - t / 2}, material, group, label + " (floor)");
+  if (!open_top)
+    add_fixed_piece(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, hi.z + t / 2}, material, group, label + " (roof)");
+  add_fixed_piece(Shape{Box{{t / 2, h.y + t, h.z}}}, {lo.x - t / 2, c.y, c.z}, material, group, label + " (side -x)");
+  add_fixed_piece(Shape{Box{{t / 2, h.y + t, h.z}}}, {hi.x + t / 2, c.y, c.z}, material, group, label + " (side +x)");
+  add_fixed_piece(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, lo.y - t / 2, c.z}, material, group, label + " (side -y)");
+  add_fixed_piece(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, hi.y + t / 2, c.z}, material, group, label + " (side +y)");
+}
+
+void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
+                                  std::span<const std::array<std::uint32_t, 3>> triangles, Real thick,
+                                  std::uint32_t material, const std::string& label) {
+  check_material(material, label);
+  if (!(thick > 0) || !std::isfinite(thick)) throw BuildError(label + ": the thickness must be > 0");
+  const std::uint32_t group = ++groups_;
+  std::size_t index = 0;
+  for (const auto& tri : triangles) {
+    const std::string piece = label + " (triangle " + std::to_string(index++) + ")";
+    for (std::uint32_t v : tri)
+      if (v >= vertices.size()) throw BuildError(piece + ": vertex index out of range");
+    const Vec3 a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) throw BuildError(piece + ": vertices must be finite");
+    const Vec3 n3 = cross(b - a, c - a);
+    if (!(length(n3) > 0)) continue;  // degenerate triangles hold nothing
+    const Vec3 centre = (a + b + c) / 3.0, n = normalized(n3) * (thick / 2);
+    Shape shape;
+    if (settings_.model == ContactModel::Volume) {
+      const Vec3 prism[6] = {a - centre + n, b - centre + n, c - centre + n, a - centre - n, b - centre - n, c - centre - n};
+      shape = Shape{make_polytope(prism)};
+    } else {
+      shape = Shape{Triangle{{a - centre, b - centre, c - centre}}, thick / 2};
+    }
+    add_fixed_piece(shape, centre, material, group, piece);
+  }
+}
+
+std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
+  const std::string& label = f.label.empty() ? std::string("region") : f.label;
+  check_material(f.material, label);
+  if (f.variants.empty()) throw BuildError(label + ": no shape to fill the region with");
+  if (!is_finite(f.lo) || !is_finite(f.hi) || !(f.hi.x > f.lo.x && f.hi.y > f.lo.y && f.hi.z > f.lo.z))
+    throw BuildError(label + ": the region's max must exceed its min on every axis");
+  const std::uint32_t first_template = static_cast<std::uint32_t>(world_.templates.size());
+  Real diameter = 0;  // of a sphere about each shape frame's origin holding every variant
+  for (const BodyShape& s : f.variants) {
+    add_template(s.shape, false, label);
+    diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + bounding_radius(s.shape)));
+  }
+  // Cells of at least one diameter, the slack spread evenly.
+  std::vector<std::pair<Vec3, Quat>> spots;
+  const Vec3 size = f.hi - f.lo;
+  const Real nx = std::floor(size.x / diameter), ny = std::floor(size.y / diameter), nz = std::floor(size.z / diameter);
+  if (nx >= 1 && ny >= 1 && nz >= 1) {
+    const Vec3 cell{size.x / nx, size.y / ny, size.z / nz};
+    const Vec3 slack = (cell - Vec3{diameter, diameter, diameter}) * 0.5;
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Shape ball = make_sphere(diameter / 2);
+    for (Real k = 0; k < nz && spots.size() < f.count; ++k)
+      for (Real j = 0; j < ny && spots.size() < f.count; ++j)
+        for (Real i = 0; i < nx && spots.size() < f.count; ++i) {
+          const Vec3 centre = f.lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
+                              Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
+          const Quat q = random_rotation(rng);
+          bool free = true;
+          for (const PlaneWall& p : world_.planes)
+            if (dot(centre - p.point, p.normal) < diameter / 2) free = false;
+          const Transform ball_pose = Transform::from(centre, Quat{});
+          for (std::size_t b = 0; free && b < world_.bodies.size(); ++b) {
+            const Shape& s = given_shapes_[world_.bodies[b].shape];
+            const Transform pose = shape_pose(world_.templates[world_.bodies[b].shape], world_.bodies[b]);
+            if (length(centre - pose.translation) > bounding_radius(s) + diameter / 2) continue;
+            if (intersect(s, pose, ball, ball_pose)) free = false;
+          }
+          if (free) spots.emplace_back(centre, q);
+        }
+  }
+  if (spots.size() < f.count)
+    throw BuildError(label + ": the region holds only " + std::to_string(spots.size()) + " of the " +
+                     std::to_string(f.count) + " bodies (each needs a free cube of side " + number_text(diameter) +
+                     " m); enlarge the region or lower the count");
+  std::uniform_int_distribution<std::size_t> pick(0, f.variants.size() - 1);
+  std::vector<std::uint32_t> placed;
+  for (const auto& [centre, q] : spots) {
+    Body b;
+    b.id = next_id();
+    const std::size_t v = pick(rng);
+    b.shape = first_template + static_cast<std::uint32_t>(v);
+    b.material = f.material;
+    place(b, f.variants[v], centre - rotate(q, f.variants[v].pose.translation), q, f.velocity, {});
+    world_.bodies.push_back(b);
+    labels_.push_back(label + " body " + std::to_string(placed.size()));
+    placed.push_back(static_cast<std::uint32_t>(world_.bodies.size() - 1));
+  }
+  return placed;
+}
+
+// Explicit bodies must not overlap each other, fixed bodies or planes
+// (touching is fine: stacks start touching). Generated bodies are placed
+// clear of everything added before them.
+void WorldBuilder::check_explicit_bodies() const {
+  const World& w = world_;
+  if (!check_overlaps_ || explicit_.empty()) return;
+  std::vector<bool> is_explicit(w.bodies.size(), false);
+  for (std::uint32_t i : explicit_) is_explicit[i] = true;
+  std::vector<Transform> poses(w.bodies.size());
+  std::vector<Aabb> boxes(w.bodies.size());  // of bounding spheres
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    poses[i] = shape_pose(w.templates[w.bodies[i].shape], w.bodies[i]);
+    const Real r = bounding_radius(given_shapes_[w.bodies[i].shape]);
+    boxes[i] = {poses[i].translation - Vec3{r, r, r}, poses[i].translation + Vec3{r, r, r}};
+  }
+  for (std::uint32_t i : explicit_) {
+    const Body& a = w.bodies[i];
+    const Shape& sa = given_shapes_[a.shape];
+    const Real tol = 1e-9 * bounding_radius(sa);
+    for (const PlaneWall& p : w.planes)
+      if (!a.fixed && half_space_contact(sa, poses[i], p.point, p.normal).depth > tol)
+        throw BuildError(labels_[i] + " starts inside a plane wall (point " + number_text(p.point.x) + ", " +
+                         number_text(p.point.y) + ", " + number_text(p.point.z) + ")");
+  }
+  SweepWorkspace sweep;
+  std::vector<BodyPair> pairs;
+  overlapping_pairs(boxes, sweep, pairs);
+  for (const auto& [i, j] : pairs) {  // i < j; reported as the explicit one of smaller index first
+    if (!is_explicit[i] && !is_explicit[j]) continue;
+    const Body& a = w.bodies[i];
+    const Body& b = w.bodies[j];
+    if (a.fixed && b.fixed) continue;
+    const Shape& sa = given_shapes_[a.shape];
+    const Shape& sb = given_shapes_[b.shape];
+    const Real tol = 1e-9 * bounding_radius(is_explicit[i] ? sa : sb);
+    const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
+    if (pr.intersect && pr.depth > tol) {
+      const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;
+      throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(pr.depth) +
+                       " m at the start");
+    }
+  }
+}
+
+// Every shape gets what the contact model needs, moving or fixed: the volume
+// law clips solid polytopes, so every other shape becomes the inscribed
+// polytope of a tessellation (its mass properties stay those of the shape);
+// shapes without volume cannot take part. The penetration laws take every shape.
+void WorldBuilder::prepare_shapes() {
+  if (settings_.model != ContactModel::Volume) return;
+  std::vector<std::size_t> user(world_.templates.size(), 0);  // a body of each template, for messages
+  for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
+  for (std::size_t t = prepared_templates_; t < world_.templates.size(); ++t) {
+    Shape& s = world_.templates[t].shape;
+    if (solid_polytope(s)) continue;
+    const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[t]];
+    if (s.margin == 0 && (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
+                          std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
+                          std::holds_alternative<Box>(s.core)))
+      throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
+                             "thickness, or use model \"hertz\" or \"linear\")");
+    Tessellation tess = tessellate(s, settings_.tessellation);
+    if (!solid_polytope(Shape{tess.polytope}))
+      throw BuildError(who + ": the tessellation of this shape for the volume law is flat");
+    s = Shape{tess.polytope};
+  }
+}
+
+World WorldBuilder::build() {
+  if (world_.bodies.empty() && world_.planes.empty()) throw BuildError("the world is empty");
+  check_explicit_bodies();
+  prepare_shapes();
+  world_.material_pairs = make_material_table(world_.materials, settings_.model);
+  World out = std::move(world_);
+  world_ = World{};
+  world_.settings = settings_;
+  labels_.clear();
+  given_shapes_.clear();
+  explicit_.clear();
+  groups_ = 0;
+  prepared_templates_ = 0;
+  return out;
+}
+
+}  // namespace gjkdem::dem

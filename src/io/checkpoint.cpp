@@ -1,0 +1,301 @@
+#include "gjkdem/io/checkpoint.hpp"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "gjkdem/dem/boxes.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
+constexpr std::uint32_t kHeaderBytes = 40;
+constexpr const char* kInfo =
+    "gjkdem checkpoint, format 3. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
+    "elastic_energy contacts(u64) wall_contacts(u64); BODY count, per body id(u64) position(3) orientation(w,x,y,z) "
+    "velocity(3) angular_momentum(3) force(3) torque(3); BOXS count, per body anchor position(3) and orientation(4); "
+    "PAIR count, per pair key(lo,hi u64) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) spring(3) twist roll(3); "
+    "LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 length, bytes) time.";
+
+class Out {
+ public:
+  void u8(std::uint8_t v) { bytes_.push_back(static_cast<char>(v)); }
+  void u32(std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
+  }
+  void u64(std::uint64_t v) {
+    for (int k = 0; k < 8; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
+  }
+  void real(Real v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  void vec(const Vec3& v) { real(v.x), real(v.y), real(v.z); }
+  void quat(const Quat& q) { real(q.w), real(q.x), real(q.y), real(q.z); }
+  void text(std::string_view s) {
+    u64(s.size());
+    bytes_.append(s);
+  }
+  // A section: tag, then its length patched in when it ends.
+  std::size_t begin(const char (&tag)[5]) {
+    bytes_.append(tag, 4);
+    const std::size_t at = bytes_.size();
+    u64(0);
+    return at;
+  }
+  void end(std::size_t at) {
+    const std::uint64_t length = bytes_.size() - at - 8;
+    for (int k = 0; k < 8; ++k) bytes_[at + k] = static_cast<char>(static_cast<std::uint8_t>(length >> (8 * k)));
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class In {
+ public:
+  In(std::string_view bytes, std::string name) : bytes_(bytes), name_(std::move(name)) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    throw CheckpointError(name_ + ": damaged checkpoint (" + what + ")");
+  }
+  std::uint8_t u8() {
+    need(1);
+    return static_cast<std::uint8_t>(bytes_[at_++]);
+  }
+  std::uint32_t u32() {
+    need(4);
+    std::uint32_t v = 0;
+    for (int k = 0; k < 4; ++k) v |= std::uint32_t{static_cast<std::uint8_t>(bytes_[at_++])} << (8 * k);
+    return v;
+  }
+  std::uint64_t u64() {
+    need(8);
+    std::uint64_t v = 0;
+    for (int k = 0; k < 8; ++k) v |= std::uint64_t{static_cast<std::uint8_t>(bytes_[at_++])} << (8 * k);
+    return v;
+  }
+  Real real() { return std::bit_cast<Real>(u64()); }
+  Vec3 vec() {
+    const Real x = real(), y = real(), z = real();
+    return {x, y, z};
+  }
+  Quat quat() {
+    const Real w = real(), x = real(), y = real(), z = real();
+    return {w, x, y, z};
+  }
+  std::string text() {
+    const std::uint64_t n = u64();
+    need(n);
+    std::string s(bytes_.substr(at_, n));
+    at_ += n;
+    return s;
+  }
+  // A count of records of at least `record` bytes each: it must fit in what is left.
+  std::uint64_t count(std::uint64_t record) {
+    const std::uint64_t n = u64();
+    if (n > (bytes_.size() - at_) / record) fail("a count larger than the file");
+    return n;
+  }
+  // Enters the section `tag`; returns where it ends.
+  std::size_t section(const char (&tag)[5]) {
+    need(4);
+    if (bytes_.substr(at_, 4) != std::string_view(tag, 4)) fail(std::string("expected section ") + tag);
+    at_ += 4;
+    const std::uint64_t length = u64();
+    need(length);
+    return at_ + length;
+  }
+  void close(std::size_t end, const char* tag) {
+    if (at_ != end) fail(std::string("section ") + tag + " has the wrong length");
+  }
+  std::size_t position() const { return at_; }
+
+ private:
+  void need(std::uint64_t n) const {
+    if (n > bytes_.size() - at_) fail("it ends early");
+  }
+  std::string_view bytes_;
+  std::string name_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes) noexcept {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : bytes) {
+    h ^= static_cast<std::uint8_t>(c);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uint64_t fingerprint) {
+  Out o;
+  std::size_t s = o.begin("INFO");
+  o.bytes().append(kInfo);
+  o.end(s);
+  s = o.begin("RUN ");
+  o.real(c.run.dt), o.u64(c.run.steps_total), o.u64(c.run.steps_per_output), o.u64(c.run.step), o.u64(c.run.outputs);
+  o.real(c.run.initial_energy), o.real(w.time);
+  o.end(s);
+  s = o.begin("STAT");
+  o.u8(w.forces_current ? 1 : 0), o.real(w.stats.elastic_energy);
+  o.u64(static_cast<std::uint64_t>(w.stats.contacts)), o.u64(static_cast<std::uint64_t>(w.stats.wall_contacts));
+  o.end(s);
+  s = o.begin("BODY");
+  o.u64(w.bodies.size());
+  for (const dem::Body& b : w.bodies) {
+    o.u64(b.id), o.vec(b.position), o.quat(b.orientation), o.vec(b.velocity), o.vec(b.angular_momentum);
+    o.vec(b.force), o.vec(b.torque);
+  }
+  o.end(s);
+  s = o.begin("BOXS");
+  const dem::BoxCache& boxes = w.work.boxes;
+  const bool has_boxes = boxes.anchor_position.size() == w.bodies.size();
+  o.u64(has_boxes ? w.bodies.size() : 0);
+  if (has_boxes)
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) o.vec(boxes.anchor_position[i]), o.quat(boxes.anchor_orientation[i]);
+  o.end(s);
+  s = o.begin("PAIR");
+  o.u64(w.pairs.size());
+  for (const dem::PairState& p : w.pairs) {
+    o.u64(p.key.lo), o.u64(p.key.hi);
+    for (const Vec3& d : p.gjk.dirs) o.vec(d);
+    o.u32(static_cast<std::uint32_t>(p.gjk.size)), o.u32(static_cast<std::uint32_t>(p.gjk.hint_a));
+    o.u32(static_cast<std::uint32_t>(p.gjk.hint_b));
+    o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll);
+  }
+  o.end(s);
+  s = o.begin("LOGS");
+  o.u64(c.logs.trace_bytes), o.u64(c.logs.energy_bytes), o.real(c.logs.wall_seconds);
+  o.u64(c.logs.frames.size());
+  for (const auto& [name, time] : c.logs.frames) o.text(name), o.real(time);
+  o.end(s);
+
+  Out head;
+  head.bytes().append(kMagic, sizeof kMagic);
+  head.u32(kCheckpointVersion), head.u32(kHeaderBytes);
+  head.u64(o.bytes().size()), head.u64(fnv1a64(o.bytes())), head.u64(fingerprint);
+  return head.bytes() + o.bytes();
+}
+
+Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_t fingerprint, const std::string& name) {
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    if (bytes.size() >= 7 && bytes.substr(0, 7) == "gjkdckp")
+      throw CheckpointError(name + " is a checkpoint of an older gjkdem format; this gjkdem reads format " +
+                           std::to_string(kCheckpointVersion) + " (restart the run without --resume)");
+    throw CheckpointError(name + " is not a gjkdem checkpoint");
+  }
+  In head(bytes.substr(sizeof kMagic), name);
+  const std::uint32_t version = head.u32();
+  if (version != kCheckpointVersion)
+    throw CheckpointError(name + " has checkpoint format " + std::to_string(version) + "; this gjkdem reads format " +
+                          std::to_string(kCheckpointVersion) + " (restart the run without --resume)");
+  if (head.u32() != kHeaderBytes) head.fail("header length");
+  const std::uint64_t length = head.u64(), checksum = head.u64(), scene = head.u64();
+  const std::string_view payload = bytes.substr(kHeaderBytes);
+  if (payload.size() != length) head.fail("its length does not match its header: truncated or extended");
+  if (fnv1a64(payload) != checksum) head.fail("its checksum does not match");
+  if (scene != fingerprint)
+    throw CheckpointError(name + " was written for another scene (or the scene file changed since): refusing to "
+                          "continue it");
+
+  In in(payload, name);
+  Checkpoint c;
+  std::size_t end = in.section("INFO");
+  while (in.position() < end) in.u8();
+  end = in.section("RUN ");
+  c.run.dt = in.real(), c.run.steps_total = in.u64(), c.run.steps_per_output = in.u64(), c.run.step = in.u64();
+  c.run.outputs = in.u64(), c.run.initial_energy = in.real();
+  const Real time = in.real();
+  in.close(end, "RUN");
+  if (!(c.run.dt > 0) || !std::isfinite(c.run.dt) || !std::isfinite(time) || !std::isfinite(c.run.initial_energy) ||
+      c.run.steps_per_output == 0 || c.run.step > c.run.steps_total)
+    in.fail("the run's clock is not valid");
+  end = in.section("STAT");
+  const bool forces_current = in.u8() != 0;
+  dem::StepStats stats;
+  stats.elastic_energy = in.real();
+  stats.contacts = static_cast<int>(in.u64());
+  stats.wall_contacts = static_cast<int>(in.u64());
+  in.close(end, "STAT");
+
+  // Into a copy: the world is changed only once everything has been read.
+  std::vector<dem::Body> bodies = w.bodies;
+  end = in.section("BODY");
+  if (in.count(8 + 19 * 8) != bodies.size())
+    throw CheckpointError(name + ": the scene has a different number of bodies than the checkpoint");
+  for (dem::Body& b : bodies) {
+    if (in.u64() != b.id) throw CheckpointError(name + ": body ids differ from the scene's");
+    b.position = in.vec(), b.orientation = in.quat(), b.velocity = in.vec(), b.angular_momentum = in.vec();
+    b.force = in.vec(), b.torque = in.vec();
+  }
+  in.close(end, "BODY");
+  end = in.section("BOXS");
+  const std::uint64_t anchors = in.count(7 * 8);
+  if (anchors != 0 && anchors != bodies.size()) in.fail("box anchors do not match the bodies");
+  dem::BoxCache boxes;
+  for (std::uint64_t i = 0; i < anchors; ++i) {
+    boxes.anchor_position.push_back(in.vec());
+    boxes.anchor_orientation.push_back(in.quat());
+  }
+  in.close(end, "BOXS");
+  end = in.section("PAIR");
+  std::vector<dem::PairState> pairs(in.count(2 * 8 + 12 * 8 + 3 * 4 + 7 * 8));
+  for (dem::PairState& p : pairs) {
+    p.key.lo = in.u64(), p.key.hi = in.u64();
+    for (Vec3& d : p.gjk.dirs) d = in.vec();
+    p.gjk.size = static_cast<int>(in.u32()), p.gjk.hint_a = static_cast<int>(in.u32());
+    p.gjk.hint_b = static_cast<int>(in.u32());
+    if (p.gjk.size < 0 || p.gjk.size > 4) in.fail("a warm start out of range");
+    p.history.spring = in.vec(), p.history.twist = in.real(), p.history.roll = in.vec();
+  }
+  for (std::size_t k = 1; k < pairs.size(); ++k)
+    if (!(pairs[k - 1].key < pairs[k].key)) in.fail("pairs out of order");
+  in.close(end, "PAIR");
+  end = in.section("LOGS");
+  c.logs.trace_bytes = in.u64(), c.logs.energy_bytes = in.u64(), c.logs.wall_seconds = in.real();
+  c.logs.frames.resize(in.count(16));
+  for (auto& [frame, t] : c.logs.frames) frame = in.text(), t = in.real();
+  in.close(end, "LOGS");
+  if (in.position() != payload.size()) in.fail("bytes after the last section");
+
+  w.bodies = std::move(bodies);
+  w.pairs = std::move(pairs);
+  w.time = time;
+  w.forces_current = forces_current;
+  w.stats = stats;
+  w.work = {};
+  if (anchors > 0) {
+    w.work.boxes = std::move(boxes);
+    dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.work.boxes);
+  }
+  return c;
+}
+
+void save_checkpoint(const std::filesystem::path& file, const dem::World& w, const Checkpoint& c,
+                     std::uint64_t fingerprint) {
+  const std::string bytes = encode_checkpoint(w, c, fingerprint);
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write checkpoint " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw CheckpointError("cannot read checkpoint " + file.string());
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw CheckpointError("cannot read checkpoint " + file.string());
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return decode_checkpoint(bytes.str(), w, fingerprint, file.string());
+}
+
+}  // namespace gjkdem::io

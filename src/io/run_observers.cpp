@@ -1,0 +1,130 @@
+#include "gjkdem/io/run_observers.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+namespace gjkdem::io {
+
+namespace fs = std::filesystem;
+
+void write_file_atomically(const fs::path& file, const std::string& text) {
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, file);
+}
+
+FrameWriter::FrameWriter(fs::path dir, const dem::World& world, bool enabled) : dir_(std::move(dir)), enabled_(enabled) {
+  if (enabled_)
+    for (const dem::ShapeTemplate& t : world.templates) meshes_.push_back(display_mesh(t.shape));
+}
+
+void FrameWriter::on_output(const dem::World& w, const dem::RunState& state) {
+  if (!enabled_) return;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06llu.vtk", static_cast<unsigned long long>(state.outputs - 1));
+  write_vtk_frame(dir_ / name, w, meshes_);
+  frames.emplace_back(name, w.time);
+  write_frame_series(dir_ / "frames.vtk.series", frames);
+}
+
+void CsvLog::start(const fs::path& file, const std::string& header) {
+  file_ = file;
+  out_.open(file, std::ios::binary | std::ios::trunc);
+  bytes_ = 0;
+  append(header);
+}
+
+void CsvLog::resume(const fs::path& file, std::uint64_t bytes) {
+  file_ = file;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec || size < bytes)
+    throw CheckpointError(file.string() + " is shorter than the checkpoint says it was: the run folder was changed");
+  fs::resize_file(file, bytes);
+  out_.open(file, std::ios::binary | std::ios::app);
+  bytes_ = bytes;
+  if (!out_) throw std::runtime_error("cannot open " + file.string());
+}
+
+void CsvLog::append(const std::string& rows) {
+  out_ << rows;
+  out_.flush();
+  if (!out_) throw std::runtime_error("cannot write " + file_.string());
+  bytes_ += rows.size();
+}
+
+void TraceWriter::on_output(const dem::World& w, const dem::RunState&) {
+  std::string rows;
+  for (const Traced& t : traced_) rows += trace_row(w, t.name, w.bodies[t.body]);
+  if (!rows.empty()) append(rows);
+}
+
+void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
+  const dem::EnergyBalance e = dem::energy_balance(w, state.initial_energy);
+  append(energy_row(w.time, e.kinetic, e.potential, e.elastic, e.dissipated, w.stats.contacts));
+}
+
+Checkpointer::Checkpointer(fs::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,
+                           const CsvLog& trace, const CsvLog& energy, double wall_before)
+    : file_(std::move(file)), every_(every), fingerprint_(fingerprint), frames_(frames), trace_(trace),
+      energy_(energy), wall_before_(wall_before), started_(std::chrono::steady_clock::now()) {}
+
+double Checkpointer::wall_seconds() const {
+  return wall_before_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+}
+
+void Checkpointer::save(const dem::World& w, const dem::RunState& state) {
+  Checkpoint c;
+  c.run = state;
+  c.logs = {trace_.bytes(), energy_.bytes(), wall_seconds(), frames_.frames};
+  save_checkpoint(file_, w, c, fingerprint_);
+}
+
+void Checkpointer::on_output(const dem::World& w, const dem::RunState& state) {
+  if (every_ > 0 && state.outputs % static_cast<std::uint64_t>(every_) == 0) save(w, state);
+}
+
+void Checkpointer::on_stop(const dem::World& w, const dem::RunState& state, const dem::RunOutcome& outcome) {
+  if (outcome.status == dem::RunStatus::Stopped) save(w, state);
+}
+
+RunInfoWriter::RunInfoWriter(fs::path file, const std::string& info_json, const Checkpointer& clock)
+    : file_(std::move(file)), info_json_(info_json), clock_(clock) {}
+
+void RunInfoWriter::started(const dem::World& w, const dem::RunState& state) { write("running", w, state, ""); }
+
+void RunInfoWriter::on_stop(const dem::World& w, const dem::RunState& state, const dem::RunOutcome& outcome) {
+  switch (outcome.status) {
+    case dem::RunStatus::Completed:
+      write("completed", w, state, "");
+      break;
+    case dem::RunStatus::Stopped:
+      write("interrupted", w, state, "");
+      break;
+    case dem::RunStatus::Failed:
+      write("failed", w, state, outcome.error);
+      break;
+  }
+}
+
+void RunInfoWriter::write(const std::string& status, const dem::World& w, const dem::RunState& state,
+                          const std::string& error) {
+  nlohmann::ordered_json info = nlohmann::ordered_json::parse(info_json_);
+  info["status"] = status;
+  if (status == "interrupted" && !stopped_by.empty()) info["stopped_by"] = stopped_by;
+  if (!error.empty()) info["error"] = error;
+  info["steps"] = state.step;
+  info["steps_total"] = state.steps_total;
+  info["simulated_time"] = w.time;
+  info["frames"] = state.outputs;
+  info["wall_time_s"] = clock_.wall_seconds();
+  write_file_atomically(file_, info.dump(2) + "\n");
+}
+
+}  // namespace gjkdem::io
