@@ -65,10 +65,13 @@ struct BlockBody {
 // box of plane walls: built with the bodies anywhere, then set to the states
 // (a settled bed overlaps, so the builder is told to accept that). Sides of
 // 0: no walls.
+Real g_skin = WorldSettings{}.box_skin;  // --skin
+
 World bed(bool cubes, int threads, const std::vector<BlockBody>& bodies, Real x_side, Real y_side) {
   WorldSettings settings;
   settings.model = ContactModel::Volume;
   settings.threads = threads;
+  settings.box_skin = g_skin;
   WorldBuilder b(settings);
   b.accept_initial_overlaps();
   const std::uint32_t rock = b.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
@@ -225,11 +228,14 @@ int main(int argc, char** argv) {
     else if (a == "--export" && i + 1 < argc) export_prefix = argv[++i];
     else if (a == "--block" && i + 1 < argc) block_cache = argv[++i];
     else if (a == "--free-fall") free_fall_steps = 2000;
+    else if (a == "--skin" && i + 1 < argc) g_skin = std::atof(argv[++i]);
     else if (std::atoi(a.c_str()) >= kBlockCount && std::atoi(a.c_str()) % kBlockCount == 0) counts.push_back(std::atoi(a.c_str()));
     else {
       std::fprintf(stderr,
-                   "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE] N [N ...]\n"
-                   "       %s --free-fall [--threads T] [--steps S]\n"
+                   "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE]\n"
+                   "          [--skin S] N [N ...]\n"
+                   "       %s --free-fall [--threads T] [--steps S] [--skin S]\n"
+                   "  --skin: box skin, relative to each grain's reach (WorldSettings::box_skin)\n"
                    "  N: multiples of 1000 (default 1000 10000 100000)\n",
                    argv[0], argv[0]);
       return 2;

@@ -27,7 +27,7 @@ inline std::vector<DivergenceSample> divergence_sweep(double max_shift, int samp
   const Shape cube{Box{{0.5, 0.5, 0.5}}};
   OverlapWorkspace work;
   std::vector<DivergenceSample> out;
-  const double deg = 180 / 3.14159265358979323846;
+  const double deg = 180 / kPi;
   for (int i = 0; i < samples; ++i) {
     const double s = -max_shift + 2 * max_shift * i / (samples - 1);
     const Transform pa = Transform::identity(), pb = Transform::from({0.9 + s, 0.9 - s, 0}, {});

@@ -3,7 +3,10 @@
 # every output of scene-format.md is written and readable (VTK's own reader
 # when python3-vtk9 is installed), a run stopped part-way and resumed gives
 # the same bytes as an uninterrupted one, so do 1 and 2 threads, SIGTERM stops
-# cleanly, and an existing run is not overwritten.
+# cleanly, and an existing run is not overwritten. Run folders (issue 11):
+# files that are not the run's survive --overwrite, a folder in use is locked,
+# a killed run leaves run.json counting its last checkpoint and the stale
+# temporary files go on resume, and an edited scene.toml is not continued.
 set -euo pipefail
 gjkdem="$1"
 scene_dir="$(cd "$(dirname "$2")" && pwd)"
@@ -70,6 +73,31 @@ rc=$?
 set -e
 [ "$rc" -eq 2 ] && grep -q "already holds a run" refused.txt || fail "an existing run was not protected"
 
+# A folder holding a run's files but no run.json is still refused, and with
+# --overwrite only the run's own files go: not unrelated files, in frames/ or not.
+mkdir -p mine/frames
+echo keep > mine/notes.txt
+echo keep > mine/frames/photo.png
+cp full/trace.csv mine/trace.csv
+set +e
+"$gjkdem" run "$scene" --out mine --quiet 2> refused.txt
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q "already holds a run (trace.csv)" refused.txt || fail "a folder with a trace.csv was not protected"
+"$gjkdem" run "$scene" --out mine --overwrite --quiet || fail "--overwrite did not run"
+[ -s mine/notes.txt ] && [ -s mine/frames/photo.png ] || fail "--overwrite removed files that are not the run's"
+
+# An edited scene.toml is not continued from a checkpoint of the old one.
+set +e
+"$gjkdem" run "$scene" --out edited --threads 1 --quiet --stop-after 150
+set -e
+sed -i 's/^friction = 0.5/friction = 0.3/' edited/scene.toml
+set +e
+"$gjkdem" run --resume edited --quiet 2> refused.txt
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q "another scene" refused.txt || fail "a checkpoint was continued under an edited scene"
+
 # SIGTERM: a long run stops cleanly and keeps what it wrote.
 cp "$scene_dir/chute.obj" .
 sed 's/^duration = 0.06/duration = 50.0/' "$scene" > long.toml
@@ -85,4 +113,29 @@ set -e
 grep -q '"status": "interrupted"' long/run.json || fail "run.json after SIGTERM does not say interrupted"
 grep -q '"stopped_by": "SIGTERM"' long/run.json || fail "run.json does not name the signal"
 [ -s long/checkpoint.bin ] && [ -s long/frames/frame_000002.vtk ] || fail "outputs lost after SIGTERM"
+
+# A folder in use is locked: a second run (or resume) on it is refused.
+"$gjkdem" run --resume long --threads 1 --quiet &
+pid=$!
+for _ in $(seq 1 100); do grep -q '"status": "running"' long/run.json && break; sleep 0.1; done
+set +e
+"$gjkdem" run --resume long --quiet 2> refused.txt
+rc=$?
+"$gjkdem" run long.toml --out long --overwrite --quiet 2>> refused.txt
+rc2=$?
+set -e
+[ "$rc" -eq 2 ] && [ "$rc2" -eq 2 ] && grep -q "another gjkdem run is using" refused.txt ||
+  { kill -TERM "$pid"; fail "a folder in use was not locked"; }
+
+# SIGKILL: run.json counts the steps of the last checkpoint; a stale
+# temporary file goes on resume.
+for _ in $(seq 1 100); do [ -s long/frames/frame_000012.vtk ] && break; sleep 0.1; done
+kill -KILL "$pid"
+wait "$pid" 2>/dev/null || true
+grep -q '"status": "running"' long/run.json || fail "run.json after SIGKILL should still say running"
+steps=$(sed -nE 's/^  "steps": ([0-9]+),/\1/p' long/run.json)
+[ "$steps" -gt 0 ] || fail "run.json after SIGKILL counts no steps"
+echo junk > long/checkpoint.bin.tmp
+"$gjkdem" run --resume long --threads 1 --quiet --stop-after $((steps + 10)) || [ $? -eq 130 ]
+[ ! -e long/checkpoint.bin.tmp ] || fail "the stale checkpoint.bin.tmp stayed"
 echo "cli_run: all checks passed"

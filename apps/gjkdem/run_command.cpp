@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -60,6 +61,9 @@ class Progress : public dem::RunObserver {
   void on_output(const dem::World&, const dem::RunState&) override {}
   void on_step(const dem::World& w, const dem::RunState& s) override { update(w, s, false); }
   void on_stop(const dem::World& w, const dem::RunState& s, const dem::RunOutcome&) override { update(w, s, true); }
+  void on_warning(const dem::World&, const dem::RunState&, const std::string& message) override {
+    std::cerr << (tty_ ? "\n" : "") << "gjkdem: warning: " << message << "\n";
+  }
 
  private:
   void update(const dem::World& w, const dem::RunState& s, bool final) {
@@ -160,15 +164,16 @@ int run_simulation(const RunOptions& opt) {
     } catch (const std::invalid_argument& e) {
       throw io::SceneError(source + ": " + e.what());
     }
+    std::optional<io::RunFolderLock> lock;
     if (opt.resume.empty()) {
       folder.dir = opt.out.empty() ? fs::path(scene.output_dir) : fs::path(opt.out);
-      if (fs::exists(folder.run_json()) && !(opt.overwrite || scene.overwrite))
-        throw io::SceneError(folder.dir.string() + " already holds a run; choose another [output].dir or --out, "
-                             "or set [output].overwrite = true (or --overwrite)");
-      for (const fs::path& p : {folder.frames(), folder.checkpoint(), folder.trace(), folder.energy()})
-        fs::remove_all(p);
-      fs::create_directories(folder.frames());
+      fs::create_directories(folder.dir);
+      lock.emplace(folder.dir);
+      io::prepare_run_folder(folder, opt.overwrite || scene.overwrite);
       io::write_file_atomically(folder.scene(), text);
+    } else {
+      lock.emplace(folder.dir);
+      io::remove_stale_temporaries(folder);
     }
     const std::uint64_t fingerprint = io::fnv1a64(text);
     std::vector<io::TraceWriter::Traced> traced;
@@ -194,6 +199,8 @@ int run_simulation(const RunOptions& opt) {
     io::Checkpointer checkpoints(folder.checkpoint(), scene.checkpoint_every, fingerprint, frames, trace, energy,
                                  wall_before);
     io::RunInfoWriter info(folder.run_json(), base_info(scene, scene_file, base).dump(), checkpoints);
+    // After a kill, run.json tells how far the last checkpoint got.
+    checkpoints.saved = [&](const dem::World& w, const dem::RunState& s) { info.started(w, s); };
     Progress progress(opt.quiet, state.step, scene.duration);
     dem::RunObserver* observers[] = {&frames, &trace, &energy, &checkpoints, &info, &progress};
     if (!opt.quiet)
@@ -213,7 +220,7 @@ int run_simulation(const RunOptions& opt) {
       }
       return false;
     };
-    const dem::RunOutcome outcome = dem::run(scene.world, state, observers, stop);
+    const dem::RunOutcome outcome = dem::run(scene.world, state, observers, stop, scene.guards);
     switch (outcome.status) {
       case dem::RunStatus::Completed:
         if (!opt.quiet)
@@ -235,6 +242,9 @@ int run_simulation(const RunOptions& opt) {
     std::cerr << "gjkdem: error: " << e.what() << "\n";
     return 2;
   } catch (const io::CheckpointError& e) {
+    std::cerr << "gjkdem: error: " << e.what() << "\n";
+    return 2;
+  } catch (const io::RunFolderError& e) {
     std::cerr << "gjkdem: error: " << e.what() << "\n";
     return 2;
   } catch (const fs::filesystem_error& e) {

@@ -102,6 +102,16 @@ inline constexpr Real kContactMergeCos = 0.999;
 /// a body straddling two coplanar triangles tilt near the shared edge.
 inline constexpr Real kWallMergeCos = 0.9;
 
+/// DEM worlds: an explicit body may start touching another body or a wall
+/// (stacks do), but not overlapping it by more than this times its bounding
+/// radius (relative): WorldBuilder refuses that start, naming the two.
+inline constexpr Real kStartOverlapRelTol = 1e-9;
+
+/// A run of duration T in steps of dt takes ceil(T / dt - kStepCountRelTol)
+/// steps (relative, in steps): a duration that is a whole number of steps up
+/// to round-off does not get one step more.
+inline constexpr Real kStepCountRelTol = 1e-9;
+
 /// Polytopes with more hull vertices than this hill-climb over the vertex
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include "parallel.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
-// Below this many bodies the loop runs on one thread: waking the team costs more.
-constexpr std::int64_t kMinParallelBodies = 512;
+using detail::kMinParallelBodies;
+
 // Boxes at least this far out (in skins) are made again with one that left.
 constexpr Real kBatchFraction = 0.5;
 
@@ -23,6 +24,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     cache.anchor_position.assign(n, Vec3{});
     cache.anchor_orientation.assign(n, Quat{});
     cache.stale.assign(n, 0);
+    cache.moved.assign(n, 0);
   }
   // How far each moving body's points may have moved since its box was made,
   // in units of its skin (> 1: it may have left the box).
@@ -45,8 +47,10 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
   if (!all) {
     int any = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : any) if (count >= kMinParallelBodies)
-    for (std::int64_t i = 0; i < count; ++i)
-      if (!bodies[i].fixed && !(moved(i) <= 1)) any = 1;
+    for (std::int64_t i = 0; i < count; ++i) {
+      cache.moved[i] = bodies[i].fixed ? 0 : moved(i);
+      if (!(cache.moved[i] <= 1)) any = 1;
+    }
     if (!any) {
       std::fill(cache.stale.begin(), cache.stale.end(), 0);
       return 0;
@@ -59,7 +63,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
     cache.stale[i] = 0;
-    if (!all && (b.fixed || moved(i) <= threshold)) continue;
+    if (!all && (b.fixed || cache.moved[i] <= threshold)) continue;
     cache.boxes[i] = aabb(t.shape, shape_pose(t, b), b.fixed ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;
@@ -73,6 +77,7 @@ void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const Shap
                               BoxCache& cache) {
   cache.boxes.resize(bodies.size());
   cache.stale.assign(bodies.size(), 1);
+  cache.moved.assign(bodies.size(), 0);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Body at = bodies[i];
     at.position = cache.anchor_position[i];

@@ -3,18 +3,21 @@
 #include <cstdint>
 
 #include "gjkdem/dem/rigid_rotation.hpp"
+#include "parallel.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
-// Below this many bodies the loop runs on one thread: waking the team costs more.
-constexpr std::int64_t kMinParallelBodies = 512;
+using detail::kMinParallelBodies;
 
 }  // namespace
 
 void kick(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
-          Real h) noexcept {
-  for (Body& b : bodies) {
+          Real h, int threads) noexcept {
+  const std::int64_t n = static_cast<std::int64_t>(bodies.size());
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Body& b = bodies[i];
     if (b.fixed) continue;
     const Real mass = materials[b.material].density * templates[b.shape].unit_mass.volume;
     b.velocity += b.force * (h / mass);
@@ -25,7 +28,7 @@ void kick(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std:
 void drift(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
            Real dt, int threads) noexcept {
   const std::int64_t n = static_cast<std::int64_t>(bodies.size());
-#pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= detail::kMinParallelRotations)
   for (std::int64_t i = 0; i < n; ++i) {
     Body& b = bodies[i];
     if (b.fixed) continue;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gjkdem/tolerances.hpp"
+
 namespace gjkdem::dem {
 namespace {
 
@@ -27,12 +29,56 @@ const Body* non_finite_body(const World& w) {
 
 }  // namespace
 
+Real stable_time_step(const World& w) {
+  // critical_time_step is pi sqrt(m / k) / 20 (contact duration / 20) for
+  // the linear and volume laws, and a fifth of the Rayleigh step for Hertz.
+  const Real safe = critical_time_step(w);
+  return w.settings.model == ContactModel::Hertz ? 5 * safe : safe * 20 * 2 / kPi;
+}
+
+std::string check_guards(const World& w, const RunState& state, const RunGuards& g) {
+  if (g.action == GuardAction::Off) return "";
+  const Real limit = stable_time_step(w);
+  if (state.dt > limit)
+    return "the time step " + number_text(state.dt) + " s is above the stability limit " + number_text(limit) +
+           " s of the stiffest contact: contacts would blow up (use dt = \"auto\" or a smaller dt)";
+  for (const Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const Real reach = w.templates[b.shape].reach;
+    const Real travel = length(b.velocity) * state.dt + length(angular_velocity_of(w, b)) * state.dt * reach;
+    if (travel > g.max_travel * reach)
+      return "body " + std::to_string(b.id) + " moves " + number_text(travel / reach) +
+             " of its size in one step (speed " + number_text(length(b.velocity)) + " m/s, dt " +
+             number_text(state.dt) + " s) at t = " + number_text(w.time) +
+             " s: it can pass through other bodies unseen (lower dt or the speeds)";
+  }
+  if (state.outputs > 0) {
+    // Kinetic + elastic energy can come only from the start and from falling:
+    // at most `available`. Round-off and the integrator's O(dt^2) wobble stay
+    // far below max_energy_gain of that, and below `floor`, the energy of
+    // lifting every body by 1e-9 of its size.
+    const EnergyBalance e = energy_balance(w, state.initial_energy);
+    const Real moving = e.kinetic + e.elastic, available = moving + e.dissipated, excess = -e.dissipated;
+    Real floor = 0;
+    for (const Body& b : w.bodies)
+      if (!b.fixed) floor += 1e-9 * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
+    if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
+      return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start and "
+             "gravity supply " + number_text(available) + " J, at t = " + number_text(w.time) +
+             " s (a blow-up: lower dt, or check the stiffness)";
+  }
+  return "";
+}
+
 RunState plan_run(Real duration, Real dt, Real output_every) {
   if (!(std::isfinite(duration) && duration > 0)) throw std::invalid_argument("the duration must be > 0 and finite");
   if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("the time step must be > 0 and finite");
+  if (dt > duration)
+    throw std::invalid_argument("the time step (" + number_text(dt) + " s) is longer than the duration (" +
+                                number_text(duration) + " s)");
   if (!(std::isfinite(output_every) && output_every > 0))
     throw std::invalid_argument("the output interval must be > 0 and finite");
-  const Real steps = std::ceil(duration / dt - 1e-9);
+  const Real steps = std::ceil(duration / dt - kStepCountRelTol);
   if (!(steps < 9007199254740992.0))
     throw std::invalid_argument("the run would take " + number_text(steps) + " steps (more than 2^53)");
   RunState s;
@@ -64,12 +110,27 @@ std::string describe_failure(const World& w, const StepReport& r) {
 }
 
 RunOutcome run(World& w, RunState& state, std::span<RunObserver* const> observers,
-               const std::function<bool()>& stop_requested) {
+               const std::function<bool()>& stop_requested, const RunGuards& guards) {
   RunOutcome outcome;
+  std::string last_warning;
   auto finish = [&](RunStatus status, std::string error = {}) {
     outcome = {status, std::move(error)};
     for (RunObserver* o : observers) o->on_stop(w, state, outcome);
     return outcome;
+  };
+  // False when a guard stops the run; a warning is told once until it changes kind.
+  auto guard = [&]() -> bool {
+    const std::string trouble = check_guards(w, state, guards);
+    if (trouble.empty()) return true;
+    if (guards.action == GuardAction::Stop) {
+      finish(RunStatus::Failed, trouble);
+      return false;
+    }
+    const std::string kind = trouble.substr(0, trouble.find(' ', 4));
+    if (kind != last_warning)
+      for (RunObserver* o : observers) o->on_warning(w, state, trouble);
+    last_warning = kind;
+    return true;
   };
   auto output = [&]() -> bool {
     if (const Body* b = non_finite_body(w)) {
@@ -77,16 +138,24 @@ RunOutcome run(World& w, RunState& state, std::span<RunObserver* const> observer
                                     number_text(w.time) + " s (time step too large for the stiffness?)");
       return false;
     }
+    if (!std::isfinite(kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy)) {
+      finish(RunStatus::Failed, "the energy is not finite at t = " + number_text(w.time) +
+                                    " s: speeds or positions beyond what double precision squares (a non-finite "
+                                    "state ahead)");
+      return false;
+    }
     ++state.outputs;
     for (RunObserver* o : observers) o->on_output(w, state);
-    return true;
+    return guard();
   };
   try {
     if (state.step == 0 && state.outputs == 0) {
       const StepReport r = compute_forces_now(w);
       if (r.status != StepStatus::Ok) return finish(RunStatus::Failed, describe_failure(w, r));
       state.initial_energy = kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy;
-      if (!output()) return outcome;
+      if (!guard() || !output()) return outcome;
+    } else if (!guard()) {
+      return outcome;
     }
     while (state.step < state.steps_total) {
       if (stop_requested && stop_requested()) return finish(RunStatus::Stopped);

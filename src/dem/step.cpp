@@ -8,35 +8,17 @@
 #include "gjkdem/dem/integrator.hpp"
 #include "gjkdem/dem/narrow_phase.hpp"
 #include "gjkdem/dem/world.hpp"
+#include "parallel.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace gjkdem::dem {
 namespace {
 
 constexpr Real kInf = std::numeric_limits<Real>::infinity();
-// Below these sizes a loop runs on one thread: waking the team costs more.
-constexpr std::int64_t kMinParallelBodies = 512;
-constexpr std::int64_t kMinParallelContacts = 64;
-
-int thread_count(int requested) {
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
-
-int thread_id() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
+using detail::kMinParallelBodies;
+using detail::kMinParallelContacts;
+using detail::thread_count;
+using detail::thread_id;
 
 // Candidate body pairs: moving against moving by the sweep, moving against
 // fixed from the static tree (built again when the boxes were all made anew).
@@ -228,14 +210,14 @@ StepReport step(World& w, Real dt) {
     if (r.status != StepStatus::Ok) return r;
   }
   const int threads = thread_count(w.settings.threads);
-  kick(w.bodies, w.templates, w.materials, dt / 2);
+  kick(w.bodies, w.templates, w.materials, dt / 2, threads);
   drift(w.bodies, w.templates, w.materials, dt, threads);
   const StepReport r = compute_forces(w, dt);
   if (r.status != StepStatus::Ok) {
     w.forces_current = false;
     return r;
   }
-  kick(w.bodies, w.templates, w.materials, dt / 2);
+  kick(w.bodies, w.templates, w.materials, dt / 2, threads);
   w.time += dt;
   return r;
 }

@@ -228,6 +228,10 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   std::vector<std::pair<Vec3, Quat>> spots;
   const Vec3 size = f.hi - f.lo;
   const Real nx = std::floor(size.x / diameter), ny = std::floor(size.y / diameter), nz = std::floor(size.z / diameter);
+  // A region far larger than its bodies (or mostly outside the walls) would
+  // be scanned cell by cell for nothing: visit at most this many cells.
+  const Real cell_budget = 64 * static_cast<Real>(f.count) + 1e6;
+  Real visited = 0;
   if (nx >= 1 && ny >= 1 && nz >= 1) {
     const Vec3 cell{size.x / nx, size.y / ny, size.z / nz};
     const Vec3 slack = (cell - Vec3{diameter, diameter, diameter}) * 0.5;
@@ -236,6 +240,10 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
         for (Real i = 0; i < nx && spots.size() < f.count; ++i) {
+          if (++visited > cell_budget)
+            throw BuildError(label + ": found room for only " + std::to_string(spots.size()) + " of the " +
+                             std::to_string(f.count) + " bodies in the first " + number_text(cell_budget) +
+                             " cells of the region; make the region smaller or closer to the bodies' size");
           const Vec3 centre = f.lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
                               Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
           const Quat q = random_rotation(rng);
@@ -290,7 +298,7 @@ void WorldBuilder::check_explicit_bodies() const {
   for (std::uint32_t i : explicit_) {
     const Body& a = w.bodies[i];
     const Shape& sa = given_shapes_[a.shape];
-    const Real tol = 1e-9 * bounding_radius(sa);
+    const Real tol = kStartOverlapRelTol * bounding_radius(sa);
     for (const PlaneWall& p : w.planes)
       if (!a.fixed && half_space_contact(sa, poses[i], p.point, p.normal).depth > tol)
         throw BuildError(labels_[i] + " starts inside a plane wall (point " + number_text(p.point.x) + ", " +
@@ -306,7 +314,7 @@ void WorldBuilder::check_explicit_bodies() const {
     if (a.fixed && b.fixed) continue;
     const Shape& sa = given_shapes_[a.shape];
     const Shape& sb = given_shapes_[b.shape];
-    const Real tol = 1e-9 * bounding_radius(is_explicit[i] ? sa : sb);
+    const Real tol = kStartOverlapRelTol * bounding_radius(is_explicit[i] ? sa : sb);
     const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
     if (pr.intersect && pr.depth > tol) {
       const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;

@@ -17,11 +17,46 @@ using Json = nlohmann::json;
 
 [[noreturn]] void fail(const std::string& msg) { throw QueryFormatError(msg); }
 
+// Lengths and coordinates beyond this cannot be answered in double precision
+// (squared distances overflow near 1e154): such lines are refused.
+constexpr Real kMaxCoordinate = 1e100;
+// Deeper JSON is refused before parsing (the parser recurses per level).
+constexpr int kMaxJsonDepth = 64;
+
 Real number(const Json& j, const std::string& what) {
   if (!j.is_number()) fail(what + " must be a number");
   const Real v = j.get<Real>();
   if (!std::isfinite(v)) fail(what + " must be finite");
+  if (std::fabs(v) > kMaxCoordinate) fail(what + " is outside the supported range [-1e100, 1e100]");
   return v;
+}
+
+// Refuses text nesting arrays and objects deeper than kMaxJsonDepth.
+void check_depth(std::string_view text) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) fail("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// Ratios of a shape's sizes beyond this cannot be resolved in double
+// precision (the thin direction vanishes in the round-off of the long one).
+constexpr Real kMaxAspectRatio = 1e12;
+
+void check_aspect(Real smallest, Real largest, const std::string& what) {
+  if (smallest > 0 && largest / smallest > kMaxAspectRatio)
+    fail(what + " spans more than 1e12 between its smallest and largest size: not resolvable in double precision");
 }
 
 Vec3 vec3(const Json& j, const std::string& what) {
@@ -134,15 +169,19 @@ PlacedInput shape_from_json(const Json& s, const std::string& where) {
     out.shape.core = Box{h};
   } else if (type == "ellipsoid") {
     check_keys(s, {"type", "center", "radii", "rotation", "margin"}, where);
-    out.shape.core = Ellipsoid{positive_vec(s, "radii", where)};
+    const Vec3 radii = positive_vec(s, "radii", where);
+    check_aspect(std::fmin(radii.x, std::fmin(radii.y, radii.z)), max_abs(radii), where + ".radii");
+    out.shape.core = Ellipsoid{radii};
   } else if (type == "cylinder" || type == "cone") {
     check_keys(s, {"type", "center", "radius", "half_height", "rotation", "margin"}, where);
     const Real r = positive(s, "radius", where), h = positive(s, "half_height", where);
+    check_aspect(std::fmin(r, h), std::fmax(r, h), where);
     if (type == "cylinder") out.shape.core = Cylinder{r, h};
     else out.shape.core = Cone{r, h};
   } else if (type == "superellipsoid") {
     check_keys(s, {"type", "center", "radii", "exponents", "rotation", "margin"}, where);
     const Vec3 radii = positive_vec(s, "radii", where);
+    check_aspect(std::fmin(radii.x, std::fmin(radii.y, radii.z)), max_abs(radii), where + ".radii");
     const Json& e = field(s, "exponents", where);
     if (!e.is_array() || e.size() != 2) fail(where + ".exponents must be [e1, e2]");
     const Real e1 = number(e[0], where + ".exponents[0]"), e2 = number(e[1], where + ".exponents[1]");
@@ -180,12 +219,14 @@ bool is_skipped_line(std::string_view line) {
 }
 
 PlacedInput parse_shape(std::string_view json_text) {
+  check_depth(json_text);
   Json j = Json::parse(json_text, nullptr, false);
   if (j.is_discarded()) fail("shape is not valid JSON");
   return shape_from_json(j, "shape");
 }
 
 PairInput parse_pair(std::string_view line, std::string& id_json) {
+  check_depth(line);
   Json j = Json::parse(line, nullptr, false);
   if (j.is_discarded()) fail("not valid JSON");
   if (!j.is_object()) fail("a pair must be a JSON object");
@@ -205,6 +246,11 @@ PairInput parse_pair(std::string_view line, std::string& id_json) {
 }
 
 std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& o) {
+  // Never write nan or inf (not JSON): such an answer is an error line.
+  const bool finite = std::isfinite(r.distance) && std::isfinite(r.depth) && is_finite(r.witness_a) &&
+                      is_finite(r.witness_b) && is_finite(r.normal) && (!o.computed || std::isfinite(o.volume)) &&
+                      (!o.has_centroid || is_finite(o.centroid)) && (!o.has_normal || is_finite(o.contact_normal));
+  if (!finite) return format_error(id_json, "the answer is not finite (the pair is beyond what double precision resolves)");
   std::string s;
   s.reserve(400);
   s += "{\"id\":" + id_json + ",\"intersect\":" + (r.intersect ? "true" : "false") + ",\"distance\":";

@@ -1,6 +1,11 @@
 #include "gjkdem/io/run_observers.hpp"
 
 #include <cstdio>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +22,49 @@ void write_file_atomically(const fs::path& file, const std::string& text) {
     if (!out) throw std::runtime_error("cannot write " + tmp.string());
   }
   fs::rename(tmp, file);
+}
+
+void prepare_run_folder(const RunPaths& paths, bool overwrite) {
+  std::error_code ec;
+  if (fs::exists(paths.dir, ec) && !fs::is_directory(paths.dir, ec))
+    throw RunFolderError(paths.dir.string() + " exists and is not a folder");
+  std::vector<fs::path> ours;
+  for (const fs::path& p : {paths.run_json(), paths.scene(), paths.trace(), paths.energy(), paths.checkpoint(),
+                            fs::path(paths.checkpoint().string() + ".tmp"), fs::path(paths.run_json().string() + ".tmp")})
+    if (fs::exists(p, ec)) ours.push_back(p);
+  if (fs::is_directory(paths.frames(), ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(paths.frames(), ec)) {
+      const std::string name = e.path().filename().string();
+      if ((name.rfind("frame_", 0) == 0 && e.path().extension() == ".vtk") || name == "frames.vtk.series")
+        ours.push_back(e.path());
+    }
+  if (!ours.empty() && !overwrite)
+    throw RunFolderError(paths.dir.string() + " already holds a run (" + ours.front().filename().string() +
+                             "); choose another [output].dir or --out, or set [output].overwrite = true (or "
+                             "--overwrite) to replace it");
+  for (const fs::path& p : ours) fs::remove(p);
+  fs::create_directories(paths.frames());
+}
+
+void remove_stale_temporaries(const RunPaths& paths) {
+  std::error_code ec;
+  fs::remove(paths.checkpoint().string() + ".tmp", ec);
+  fs::remove(paths.run_json().string() + ".tmp", ec);
+}
+
+RunFolderLock::RunFolderLock(const fs::path& dir) {
+  const fs::path file = dir / ".gjkdem.lock";
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw RunFolderError("cannot open " + file.string() + ": " + std::strerror(errno));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw RunFolderError("another gjkdem run is using " + dir.string() + " (it holds " + file.string() + ")");
+  }
+}
+
+RunFolderLock::~RunFolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
 FrameWriter::FrameWriter(fs::path dir, const dem::World& world, bool enabled) : dir_(std::move(dir)), enabled_(enabled) {
@@ -87,7 +135,10 @@ void Checkpointer::save(const dem::World& w, const dem::RunState& state) {
 }
 
 void Checkpointer::on_output(const dem::World& w, const dem::RunState& state) {
-  if (every_ > 0 && state.outputs % static_cast<std::uint64_t>(every_) == 0) save(w, state);
+  if (every_ > 0 && state.outputs % static_cast<std::uint64_t>(every_) == 0) {
+    save(w, state);
+    if (saved) saved(w, state);
+  }
 }
 
 void Checkpointer::on_stop(const dem::World& w, const dem::RunState& state, const dem::RunOutcome& outcome) {
@@ -113,12 +164,18 @@ void RunInfoWriter::on_stop(const dem::World& w, const dem::RunState& state, con
   }
 }
 
+void RunInfoWriter::on_warning(const dem::World& w, const dem::RunState& state, const std::string& message) {
+  warnings_.push_back("t = " + std::to_string(w.time) + " s: " + message);
+  write("running", w, state, "");
+}
+
 void RunInfoWriter::write(const std::string& status, const dem::World& w, const dem::RunState& state,
                           const std::string& error) {
   nlohmann::ordered_json info = nlohmann::ordered_json::parse(info_json_);
   info["status"] = status;
   if (status == "interrupted" && !stopped_by.empty()) info["stopped_by"] = stopped_by;
   if (!error.empty()) info["error"] = error;
+  for (const std::string& warning : warnings_) info["warnings"].push_back(warning);
   info["steps"] = state.step;
   info["steps_total"] = state.steps_total;
   info["simulated_time"] = w.time;

@@ -4,6 +4,7 @@
 #include "gjkdem/io/scene.hpp"
 
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <random>
@@ -26,6 +27,19 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+
+// A TOML number as a double: integers of any size convert (rounded to the
+// nearest double), so 9007199254740993 is read, not refused obscurely.
+Real as_real(const toml::node& n) {
+  if (const auto i = n.value_exact<std::int64_t>()) return static_cast<Real>(*i);
+  return n.value_exact<double>().value_or(std::numeric_limits<Real>::quiet_NaN());
+}
+
+// Limits of generators, checked before anything is drawn: each body costs
+// about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
+constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
+constexpr std::int64_t kMaxVariants = 100'000;
+constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
 
 std::string line_of(const toml::node& n) {
   const auto line = n.source().begin.line;
@@ -52,7 +66,7 @@ class TableReader {
     const toml::node* n = find(key);
     if (!n) return std::nullopt;
     if (!n->is_number()) fail(key, "must be a number");
-    const Real v = n->value<double>().value();
+    const Real v = as_real(*n);
     if (!std::isfinite(v)) fail(key, "must be finite");
     return v;
   }
@@ -100,7 +114,7 @@ class TableReader {
     std::vector<Real> out;
     for (const toml::node& e : *a) {
       if (!e.is_number()) fail(key, "must hold numbers only");
-      out.push_back(e.value<double>().value());
+      out.push_back(as_real(e));
       if (!std::isfinite(out.back())) fail(key, "must be finite");
     }
     return out;
@@ -221,12 +235,17 @@ class SceneBuilder {
     const std::int64_t threads = r.integer("threads").value_or(0);
     if (threads < 0 || threads > 4096) r.fail("threads", "must be 0 (all cores) or a thread count");
     settings_.threads = static_cast<int>(threads);
+    const std::string guards = r.string("guards").value_or("stop");
+    if (guards == "stop") scene_.guards.action = dem::GuardAction::Stop;
+    else if (guards == "warn") scene_.guards.action = dem::GuardAction::Warn;
+    else if (guards == "off") scene_.guards.action = dem::GuardAction::Off;
+    else r.fail("guards", "must be \"stop\", \"warn\" or \"off\", not \"" + guards + "\"");
     const std::int64_t seed = r.integer("seed").value_or(1);
     if (seed < 0) r.fail("seed", "must be >= 0");
     scene_.seed = static_cast<std::uint64_t>(seed);
     r.finish();
     resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
-                               {"threads", threads}, {"seed", seed}};
+                               {"threads", threads}, {"seed", seed}, {"guards", guards}};
   }
 
   void read_output(TableReader& top) {
@@ -376,6 +395,9 @@ class SceneBuilder {
     if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
       r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0)");
     if (name && names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
+    if (name && (name->empty() || name->find_first_of(",\"\r\n") != std::string::npos ||
+                 std::any_of(name->begin(), name->end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })))
+      r.fail("name", "must be a non-empty name without commas, quotes or control characters (it is a trace.csv field)");
     const std::uint32_t index = building(r.table_node(), [&] { return builder_->add_body(d); });
     if (name) {
       names_.insert(*name);
@@ -390,7 +412,8 @@ class SceneBuilder {
 
   void read_generator(TableReader& r) {
     const std::int64_t count = r.integer("count").value_or(-1);
-    if (count <= 0 || count > 100'000'000) r.fail("count", "must be a positive integer");
+    if (count <= 0 || count > kMaxGeneratorCount)
+      r.fail("count", "must be a positive integer up to " + std::to_string(kMaxGeneratorCount));
     dem::RegionFill fill;
     fill.label = r.where();
     fill.count = static_cast<std::size_t>(count);
@@ -405,7 +428,8 @@ class SceneBuilder {
     region.finish();
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
     const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
-    if (variants <= 0) r.fail("variants", "must be a positive integer");
+    if (variants <= 0 || variants > std::min<std::int64_t>(count, kMaxVariants))
+      r.fail("variants", "must be a positive integer up to the count and " + std::to_string(kMaxVariants));
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
 
     // The shapes: random polyhedra come in `variants` draws, shared by the bodies.
@@ -417,6 +441,9 @@ class SceneBuilder {
       s.required_string("type");
       const std::int64_t vertices = s.integer("vertices").value_or(12);
       if (vertices < 4 || vertices > 10000) s.fail("vertices", "must be between 4 and 10000");
+      if (vertices * variants > kMaxGeneratorVertices)
+        s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices) +
+                               " (memory for the shapes)");
       Real size_lo, size_hi;
       if (const toml::node* n = s.find("size"); n && n->is_number()) {
         size_lo = size_hi = s.positive("size");

@@ -19,7 +19,7 @@ TEST(Divergence, EpaNormalJumpsVolumeNormalDoesNot) {
   EXPECT_LT(vol_jump, 0.05);
   // Closed form of the volume normal: S_A = (w_y, w_x, 0) with w_x = 0.1 - s, w_y = 0.1 + s.
   for (const auto& s : sweep) {
-    const double expected = std::atan2(0.1 - s.shift, 0.1 + s.shift) * 180 / 3.14159265358979323846;
+    const double expected = std::atan2(0.1 - s.shift, 0.1 + s.shift) * 180 / kPi;
     EXPECT_NEAR(s.volume_deg, expected, 1e-9);
     EXPECT_NEAR(s.volume, (0.1 - s.shift) * (0.1 + s.shift), 1e-14);
   }

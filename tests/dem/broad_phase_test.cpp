@@ -126,7 +126,9 @@ TEST(BroadPhase, StaticTreeMatchesBruteForce) {
       EXPECT_EQ(found, expected) << "n = " << n << ", query " << q;
       hits += static_cast<int>(expected.size());
     }
-    if (n == 300) EXPECT_GT(hits, 200);  // the queries do meet boxes
+    if (n == 300) {
+      EXPECT_GT(hits, 200);  // the queries do meet boxes
+    }
   }
 }
 

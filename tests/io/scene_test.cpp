@@ -10,6 +10,7 @@
 #include <string>
 
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/run.hpp"
 
 namespace gjkdem::io {
 namespace {
@@ -134,6 +135,35 @@ TEST(Scene, VolumeFormIsRead) {
   EXPECT_NE(s.resolved_json.find("\"volume_form\": \"potential\""), std::string::npos) << s.resolved_json;
 }
 
+// Issue 11: an integer beyond 2^53 in a number key is read (rounded), and the
+// run it asks for is refused by the planner with the range it supports; a
+// time step longer than the run is refused; a plane normal with huge
+// components is normalised, not turned into zero.
+TEST(Scene, ExtremeNumbersAreReadOrRefusedWithTheirRange) {
+  const Scene s = load_scene("[simulation]\nduration = 9007199254740993\ndt = 1e-5\n" +
+                                 kHead.substr(kHead.find("[[material]]")) + kCube,
+                             "x", ".");
+  EXPECT_EQ(s.duration, 9007199254740992.0);
+  try {
+    dem::plan_run(s.duration, s.dt, s.output_every);
+    ADD_FAILURE() << "planned";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 2^53"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(dem::plan_run(0.01, 1.0, 0.001), std::invalid_argument);  // dt longer than the run
+  EXPECT_THROW(dem::plan_run(1.0, 0.0, 0.1), std::invalid_argument);
+  const Scene p = load_scene(kHead + kCube + R"(
+[[wall]]
+type = "plane"
+point = [0.0, 0.0, -1.0]
+normal = [0.0, 1e200, 1e200]
+material = "rock"
+)", "x", ".");
+  ASSERT_EQ(p.world.planes.size(), 1u);
+  EXPECT_NEAR(p.world.planes[0].normal.y, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(p.world.planes[0].normal.z, std::sqrt(0.5), 1e-15);
+}
+
 struct Bad {
   std::string name, toml, expected;  // expected: a piece of the message
 };
@@ -250,7 +280,44 @@ fixed = true
             "no moving body"},
         Bad{"gravity_length", "[simulation]\nduration = 1.0\ngravity = [0.0, -9.81]\n" + kNoSim + kCube,
             "gravity: must have 3 numbers"},
-        Bad{"body_not_array", kHead + "[body]\nmaterial = \"rock\"\n", "write [[body]]"}),
+        Bad{"body_not_array", kHead + "[body]\nmaterial = \"rock\"\n", "write [[body]]"},
+        // Issue 11: limits stated and checked before anything is drawn.
+        Bad{"huge_variants", kHead + R"([[generator]]
+count = 100
+variants = 1000000000000
+shape = { type = "random_polyhedron", vertices = 12, size = 0.01 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }
+)",
+            "variants: must be a positive integer up to the count"},
+        Bad{"huge_count", kHead + R"([[generator]]
+count = 100000000
+shape = { type = "platonic", name = "cube", size = 0.02 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+)",
+            "count: must be a positive integer up to 10000000"},
+        Bad{"huge_empty_region", kHead + R"([[wall]]
+type = "plane"
+point = [0.0, 0.0, 1000.0]
+normal = [0.0, 0.0, 1.0]
+material = "rock"
+[[generator]]
+count = 10
+shape = { type = "platonic", name = "cube", size = 0.001 }
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [100.0, 100.0, 100.0] }
+)",
+            "found room for only 0 of the 10 bodies"},
+        Bad{"name_with_comma", kHead + R"([[body]]
+name = "a,b"
+shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+)",
+            "name: must be a non-empty name without commas"},
+        Bad{"name_with_newline", kHead + "[[body]]\nname = \"a\\nb\"\nshape = { type = \"sphere\", radius = 0.01 }\n"
+                                           "material = \"rock\"\n",
+            "without commas, quotes or control characters"}),
     [](const ::testing::TestParamInfo<Bad>& param_info) { return param_info.param.name; });
 
 }  // namespace

@@ -25,6 +25,7 @@ struct BoxCache {
   std::vector<Vec3> anchor_position;     ///< centre of mass when the box was made
   std::vector<Quat> anchor_orientation;  ///< orientation then
   std::vector<std::uint8_t> stale;       ///< per body: recomputed in the last update
+  std::vector<Real> moved;               ///< per body: how far it may have moved, in skins (scratch)
 };
 
 /// Brings the boxes of `bodies` up to date: every box when the cache does not

@@ -12,7 +12,7 @@
 namespace gjkdem::dem {
 
 void kick(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
-          Real h) noexcept;
+          Real h, int threads) noexcept;
 
 void drift(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
            Real dt, int threads) noexcept;

@@ -25,8 +25,8 @@ struct RunState {
 
 /// A run of `duration` seconds in steps of dt, an output every `output_every`
 /// seconds (rounded to whole steps, at least one). Throws std::invalid_argument
-/// unless 0 < dt, 0 < duration, 0 < output_every, all finite, and the run
-/// takes fewer than 2^53 steps.
+/// unless 0 < dt <= duration, 0 < output_every, all finite, and the run takes
+/// fewer than 2^53 steps.
 RunState plan_run(Real duration, Real dt, Real output_every);
 
 /// Where the energy went (J): dissipated = initial - kinetic - potential -
@@ -36,6 +36,28 @@ struct EnergyBalance {
 };
 
 EnergyBalance energy_balance(const World& world, Real initial_energy) noexcept;
+
+/// What the run loop does when it sees a run blowing up.
+enum class GuardAction {
+  Stop,  ///< fail the run with the guard's message (the default)
+  Warn,  ///< tell the observers (on_warning) once per guard and go on
+  Off,   ///< check nothing but finiteness
+};
+
+/// The physics guards, checked before the first step and at every output:
+/// - the time step against the stability limit of the stiffest contact
+///   (stable_time_step, the Rayleigh step for Hertz);
+/// - a body travelling more than `max_travel` of its reach in one step (a
+///   fast body tunnels through others: contacts are missed);
+/// - energy appearing from nowhere: kinetic + elastic energy exceeding what
+///   the start and the loss of potential energy can supply by more than
+///   `max_energy_gain` of that supply (1: the energy doubled).
+/// Whatever the action, a run whose state or energy is not finite fails.
+struct RunGuards {
+  GuardAction action = GuardAction::Stop;
+  Real max_travel = 0.5;       ///< fraction of a body's reach per step
+  Real max_energy_gain = 1.0;  ///< unexplained energy, relative to what the start and gravity supply
+};
 
 enum class RunStatus {
   Completed,  ///< all steps done
@@ -59,6 +81,8 @@ class RunObserver {
   virtual void on_output(const World& world, const RunState& state) = 0;
   /// After every step (keep it cheap).
   virtual void on_step(const World& /*world*/, const RunState& /*state*/) {}
+  /// A guard saw trouble and the run goes on (GuardAction::Warn).
+  virtual void on_warning(const World& /*world*/, const RunState& /*state*/, const std::string& /*message*/) {}
   /// When run() returns.
   virtual void on_stop(const World& /*world*/, const RunState& /*state*/, const RunOutcome& /*outcome*/) {}
 };
@@ -68,7 +92,18 @@ class RunObserver {
 /// (state.step == 0 and no output yet) the forces are evaluated, the initial
 /// energy recorded and the first output made before the first step.
 RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
-               const std::function<bool()>& stop_requested = {});
+               const std::function<bool()>& stop_requested = {}, const RunGuards& guards = {});
+
+/// The longest stable time step (s) of the world's stiffest contact: 2 / omega
+/// of the stiffest linear or volume contact (for the volume law, a face of
+/// the body's cross-section pressed in), the Rayleigh time step for Hertz.
+/// Infinite without moving bodies. (critical_time_step is a safe fraction
+/// of it.)
+Real stable_time_step(const World& world);
+
+/// What the guards find in the world's state now (empty: nothing), given the
+/// run's time step and initial energy.
+std::string check_guards(const World& world, const RunState& state, const RunGuards& guards);
 
 /// A message for a failed step, naming the pair.
 std::string describe_failure(const World& world, const StepReport& report);

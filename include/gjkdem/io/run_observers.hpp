@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,6 +89,8 @@ class Checkpointer : public dem::RunObserver {
                const CsvLog& trace, const CsvLog& energy, double wall_before);
   void on_output(const dem::World& world, const dem::RunState& state) override;
   void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
+  /// Called after each checkpoint (run.json then records how far the run got).
+  std::function<void(const dem::World&, const dem::RunState&)> saved;
   /// Wall time of the run so far (s), earlier sessions included.
   double wall_seconds() const;
 
@@ -110,6 +114,8 @@ class RunInfoWriter : public dem::RunObserver {
   /// status "running" (steps so far).
   void started(const dem::World& world, const dem::RunState& state);
   void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
+  /// Guard warnings go into run.json's "warnings".
+  void on_warning(const dem::World& world, const dem::RunState& state, const std::string& message) override;
   /// What stopped a run that was stopped ("SIGINT", "--stop-after", ...).
   std::string stopped_by;
 
@@ -118,7 +124,38 @@ class RunInfoWriter : public dem::RunObserver {
              const std::string& error);
   std::filesystem::path file_;
   std::string info_json_;
+  std::vector<std::string> warnings_;
   const Checkpointer& clock_;
+};
+
+/// A run folder that cannot be used (refused before a run starts).
+struct RunFolderError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Makes `paths.dir` ready for a new run. A folder holding a run's files
+/// (run.json, scene.toml, the logs, a checkpoint or frames) is refused
+/// unless `overwrite`; then only those files are removed (frames/frame_*.vtk
+/// and frames.vtk.series, never anything else in the folder or in frames/).
+/// Throws RunFolderError naming the folder.
+void prepare_run_folder(const RunPaths& paths, bool overwrite);
+
+/// Removes what a killed run may leave behind: temporary files of atomic
+/// writes (checkpoint.bin.tmp, run.json.tmp).
+void remove_stale_temporaries(const RunPaths& paths);
+
+/// An exclusive lock on a run folder (flock on DIR/.gjkdem.lock), held while
+/// a run uses it, so that two runs or resumes never write into one folder.
+class RunFolderLock {
+ public:
+  /// Throws RunFolderError when another process holds the lock.
+  explicit RunFolderLock(const std::filesystem::path& dir);
+  ~RunFolderLock();
+  RunFolderLock(const RunFolderLock&) = delete;
+  RunFolderLock& operator=(const RunFolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
 };
 
 /// Writes `text` to `file` through a temporary file and a rename.

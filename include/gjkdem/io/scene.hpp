@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::io {
@@ -34,6 +35,7 @@ struct Scene {
   bool overwrite = false;
   int checkpoint_every = 10;    ///< frames between checkpoints (0: none)
   bool write_frames = true;
+  dem::RunGuards guards;        ///< [simulation].guards: "stop" (default), "warn" or "off"
   std::vector<TracedBody> traced;
   std::string resolved_json;    ///< the scene with its defaults filled in (JSON object)
   std::vector<std::string> warnings;  ///< meshes convexified and the like

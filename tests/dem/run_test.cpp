@@ -1,0 +1,107 @@
+// The run loop (dem::run): observers see every output, a stop request stops
+// between steps, and the physics guards of issue 11 catch what users call a
+// blow-up (a time step above the stability limit, a body crossing its own
+// size in a step, energy from nowhere, a non-finite state) and stop the run
+// with a message, or warn and go on, as asked. Each case fails on the engine
+// before the guards: those runs said "completed".
+#include "gjkdem/dem/run.hpp"
+
+#include <gtest/gtest.h>
+
+#include "gjkdem/dem/world_builder.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+// A cube of the given half size dropped from just above a plane floor.
+World cube_over_floor(Real half, const Vec3& velocity = {}, const Vec3& gravity = {0, 0, -9.81}) {
+  WorldSettings s;
+  s.gravity = gravity;
+  WorldBuilder b(s);
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+  b.add_plane({}, {0, 0, 1}, rock, "floor");
+  b.add_body({.shape = {Shape{Box{{half, half, half}}}, {}}, .material = rock, .position = {0, 0, 1.5 * half},
+              .velocity = velocity, .label = "cube"});
+  return b.build();
+}
+
+struct Recorder : RunObserver {
+  int outputs = 0, steps = 0;
+  std::vector<std::string> warnings;
+  void on_output(const World&, const RunState&) override { ++outputs; }
+  void on_step(const World&, const RunState&) override { ++steps; }
+  void on_warning(const World&, const RunState&, const std::string& m) override { warnings.push_back(m); }
+};
+
+TEST(Run, ObserversSeeEveryOutputAndStopRequestsStop) {
+  World w = cube_over_floor(0.01);
+  RunState run = plan_run(0.01, critical_time_step(w), 0.001);
+  Recorder r;
+  RunObserver* observers[] = {&r};
+  EXPECT_EQ(dem::run(w, run, observers, [&] { return run.step == 7; }).status, RunStatus::Stopped);
+  EXPECT_EQ(r.steps, 7);
+  EXPECT_EQ(dem::run(w, run, observers).status, RunStatus::Completed);
+  EXPECT_EQ(run.step, run.steps_total);
+  EXPECT_EQ(static_cast<std::uint64_t>(r.outputs), run.outputs);
+  EXPECT_GE(run.outputs, 11u);  // step 0, every 0.001 s, the end
+}
+
+// 1e-9 m flakes at a fixed dt of 2e-5 s (issue 11: 2.5e-9 J became 6.5e44 J).
+TEST(Run, GuardStopsATimeStepAboveTheStabilityLimit) {
+  World w = cube_over_floor(1e-9);
+  RunState run = plan_run(0.01, 2e-5, 0.001);
+  const RunOutcome o = dem::run(w, run, {});
+  ASSERT_EQ(o.status, RunStatus::Failed);
+  EXPECT_NE(o.error.find("above the stability limit"), std::string::npos) << o.error;
+  EXPECT_EQ(run.step, 0u);  // refused before the first step
+}
+
+// A cube at 1,000 m/s with dt = "auto" tunnels through a floor (issue 11).
+TEST(Run, GuardStopsABodyCrossingItsSizeInAStep) {
+  World w = cube_over_floor(0.01, {0, 0, -1000});
+  RunState run = plan_run(0.01, critical_time_step(w), 0.001);
+  const RunOutcome o = dem::run(w, run, {});
+  ASSERT_EQ(o.status, RunStatus::Failed);
+  EXPECT_NE(o.error.find("of its size in one step"), std::string::npos) << o.error;
+}
+
+TEST(Run, GuardSeesEnergyFromNowhere) {
+  World w = cube_over_floor(0.01);
+  RunState run = plan_run(0.01, critical_time_step(w), 0.001);
+  run.outputs = 1;
+  run.initial_energy = kinetic_energy(w) + potential_energy(w);
+  EXPECT_EQ(check_guards(w, run, {}), "");
+  w.bodies[0].velocity = {0.5, 0, 0};  // kinetic energy nothing supplied
+  EXPECT_NE(check_guards(w, run, {}).find("energy grew from nowhere"), std::string::npos);
+  RunGuards off;
+  off.action = GuardAction::Off;
+  EXPECT_EQ(check_guards(w, run, off), "");
+}
+
+TEST(Run, WarnModeGoesOnAndWarnsOnce) {
+  World w = cube_over_floor(0.01, {0, 0, -1000});
+  RunState run = plan_run(0.001, critical_time_step(w), 0.0001);
+  Recorder r;
+  RunObserver* observers[] = {&r};
+  RunGuards warn;
+  warn.action = GuardAction::Warn;
+  const RunOutcome o = dem::run(w, run, observers, {}, warn);
+  EXPECT_NE(o.status, RunStatus::Stopped);
+  EXPECT_GT(r.steps, 0);
+  ASSERT_GE(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("of its size in one step"), std::string::npos);
+}
+
+// Gravity of 1e308 m/s^2 (issue 11: inf and nan were written to energy.csv).
+TEST(Run, NonFiniteStateFailsTheRun) {
+  World w = cube_over_floor(0.01, {}, {0, 0, -1e308});
+  RunState run = plan_run(0.01, 1e-5, 0.001);
+  RunGuards off;
+  off.action = GuardAction::Off;  // only the finiteness check is left
+  const RunOutcome o = dem::run(w, run, {}, {}, off);
+  ASSERT_EQ(o.status, RunStatus::Failed);
+  EXPECT_NE(o.error.find("not finite"), std::string::npos) << o.error;
+}
+
+}  // namespace
+}  // namespace gjkdem::dem

@@ -1,0 +1,132 @@
+// Checkpoints (docs/checkpoints.md): a world saved and restored continues
+// with the same bits as one that never stopped; every damaged, foreign or
+// edited checkpoint is refused with a message saying why, and nothing in
+// the world changes then.
+#include "gjkdem/io/checkpoint.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+// 40 random polyhedra poured into a box of plane walls, run for a while so
+// that contacts, springs and warm starts exist.
+dem::World pour(std::uint64_t seed, int grains = 40) {
+  dem::WorldBuilder b;
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, 0.5});
+  b.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  b.add_plane({-0.04, 0, 0}, {1, 0, 0}, rock, "-x");
+  b.add_plane({0.04, 0, 0}, {-1, 0, 0}, rock, "+x");
+  std::mt19937_64 rng(seed);
+  dem::RegionFill fill;
+  for (int k = 0; k < 5; ++k) fill.variants.push_back({random_polyhedron(10, 0.015, rng), {}});
+  fill.count = static_cast<std::size_t>(grains);
+  fill.lo = {-0.04, -0.04, 0};
+  fill.hi = {0.04, 0.04, 0.12};
+  fill.material = rock;
+  b.fill_region(fill, rng);
+  return b.build();
+}
+
+bool same_state(const dem::World& a, const dem::World& b) {
+  if (a.bodies.size() != b.bodies.size() || a.time != b.time) return false;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i)
+    if (std::memcmp(&a.bodies[i], &b.bodies[i], sizeof(dem::Body)) != 0) return false;
+  return true;
+}
+
+TEST(Checkpoint, RestoredWorldContinuesWithTheSameBits) {
+  dem::World straight = pour(1);
+  const dem::RunState plan = dem::plan_run(0.08, 1e-4, 0.01);
+  dem::RunState run = plan;
+  ASSERT_EQ(dem::run(straight, run, {}).status, dem::RunStatus::Completed);
+
+  dem::World first = pour(1);
+  dem::RunState part = plan;
+  dem::run(first, part, {}, [&] { return part.step == 500; });
+  ASSERT_EQ(part.step, 500u);
+  ASSERT_GT(first.stats.contacts, 10);  // springs and warm starts to carry
+  const std::string bytes = encode_checkpoint(first, {part, {}}, 42);
+  dem::World resumed = pour(1);  // a world rebuilt from the same "scene"
+  const Checkpoint c = decode_checkpoint(bytes, resumed, 42, "memory");
+  dem::RunState rest = c.run;
+  ASSERT_EQ(dem::run(resumed, rest, {}).status, dem::RunStatus::Completed);
+  EXPECT_TRUE(same_state(straight, resumed));
+}
+
+std::string refusal(const std::string& bytes, dem::World& w, std::uint64_t fingerprint = 42) {
+  const dem::World before = w;
+  try {
+    decode_checkpoint(bytes, w, fingerprint, "ck");
+  } catch (const CheckpointError& e) {
+    EXPECT_TRUE(same_state(before, w)) << "the world changed on a refused checkpoint";
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Checkpoint, DamagedForeignAndEditedCheckpointsAreRefused) {
+  dem::World w = pour(2);
+  dem::RunState run = dem::plan_run(0.02, 1e-4, 0.01);
+  dem::run(w, run, {});
+  const std::string good = encode_checkpoint(w, {run, {}}, 42);
+  dem::World target = pour(2);
+  EXPECT_EQ(refusal(good, target), "(accepted)");
+
+  dem::World fresh = pour(2);
+  EXPECT_NE(refusal(good, fresh, 43).find("another scene"), std::string::npos);
+  dem::World other = pour(3);  // same body count, other shapes and places
+  EXPECT_NE(refusal(encode_checkpoint(w, {run, {}}, 7), other, 42).find("another scene"), std::string::npos);
+  dem::World fewer = pour(2, 30);
+  EXPECT_NE(refusal(good, fewer).find("number of bodies"), std::string::npos);
+
+  // Every single-bit flip is caught: by the checksum, or the header's checks.
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::string bad = good;
+    const std::size_t at = rng() % bad.size();
+    bad[at] = static_cast<char>(bad[at] ^ (1 << (rng() % 8)));
+    dem::World t = pour(2);
+    const std::string why = refusal(bad, t);
+    EXPECT_NE(why, "(accepted)") << "flip at byte " << at;
+  }
+  // Truncated anywhere, extended, another version, another program's file.
+  for (std::size_t keep : {std::size_t{0}, std::size_t{7}, std::size_t{20}, std::size_t{40}, good.size() / 2,
+                           good.size() - 1}) {
+    dem::World t = pour(2);
+    EXPECT_NE(refusal(good.substr(0, keep), t), "(accepted)") << keep;
+  }
+  dem::World t = pour(2);
+  EXPECT_NE(refusal(good + "x", t).find("length"), std::string::npos);
+  std::string v2 = good;
+  v2[8] = 2;
+  EXPECT_NE(refusal(v2, t).find("format 2"), std::string::npos);
+  EXPECT_NE(refusal("gjkdckp2 old bytes", t).find("older gjkdem format"), std::string::npos);
+  EXPECT_NE(refusal("hello", t).find("not a gjkdem checkpoint"), std::string::npos);
+}
+
+// A count that claims more records than the file holds is refused before
+// anything is allocated for it (a checksum made to match the damage).
+TEST(Checkpoint, HugeCountsAreRefusedWithoutAllocating) {
+  dem::World w = pour(2);
+  dem::RunState run = dem::plan_run(0.01, 1e-4, 0.01);
+  dem::run(w, run, {});
+  std::string bytes = encode_checkpoint(w, {run, {}}, 42);
+  const std::size_t pair = bytes.rfind("PAIR");  // the section's tag (the INFO text names it too)
+  ASSERT_NE(pair, std::string::npos);
+  for (int k = 0; k < 8; ++k) bytes[pair + 12 + k] = static_cast<char>(k == 7 ? 0x7f : 0xff);  // count ~ 2^63
+  const std::string payload = bytes.substr(40);
+  const std::uint64_t sum = fnv1a64(payload);
+  for (int k = 0; k < 8; ++k) bytes[24 + k] = static_cast<char>(sum >> (8 * k));
+  dem::World t = pour(2);
+  EXPECT_NE(refusal(bytes, t).find("count larger than the file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gjkdem::io
