@@ -15,7 +15,15 @@ int main(int argc, char** argv) {
   q->add_option("--out", query.out, "output file (default: standard output)");
   q->add_option("--tessellate", query.tessellate,
                 "compute curved overlaps on tessellations with N support directions (approximate; 0: leave them null)")
-      ->check(CLI::Range(0, 1000000));
+      ->check([](const std::string& v) -> std::string {
+        // 0 (off), or enough directions for a solid tessellation.
+        try {
+          const long n = std::stol(v);
+          if (n == 0 || (n >= 8 && n <= 1000000)) return "";
+        } catch (const std::exception&) {
+        }
+        return "must be 0 or between 8 and 1000000";
+      });
 
   gjkdem::app::BenchOptions bench;
   CLI::App* b = app.add_subcommand("bench", "time one query type over every pair of a file");
@@ -34,8 +42,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0LL, 1LL << 60));
   r->add_flag("--quiet", run.quiet, "no progress output");
   r->get_option("--resume")->excludes(r->get_option("scene"));
+  r->get_option("--resume")->excludes(r->get_option("--out"));  // a resumed run writes where it ran
+  r->get_option("--resume")->excludes(r->get_option("--overwrite"));
 
-  CLI11_PARSE(app, argc, argv);
+  // Bad options exit 2 like any refused input (CLI11's own codes are 100+).
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success) ? code : 2;
+  }
   try {
     if (q->parsed()) return gjkdem::app::run_query(query);
     if (b->parsed()) return gjkdem::app::run_bench(bench);

@@ -114,12 +114,14 @@ void overlapping_pairs(std::span<const Aabb> boxes, SweepWorkspace& work, std::v
   const int sweep = axes[0], across = axes[1], third = axes[2];
 
   std::vector<std::uint32_t>& order = work.order;
-  if (order.size() != n) {
+  auto key = [&](std::uint32_t i) { return boxes[i].lo[sweep]; };
+  if (order.size() != n || work.axis != sweep) {  // a new order: sorted outright (insertion sort is n^2 here)
     order.resize(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) { return key(p) < key(q); });
+    work.axis = sweep;
   }
   // Insertion sort: linear when the order from the last step is nearly right.
-  auto key = [&](std::uint32_t i) { return boxes[i].lo[sweep]; };
   for (std::size_t i = 1; i < n; ++i) {
     const std::uint32_t v = order[i];
     std::size_t j = i;

@@ -20,7 +20,8 @@ MaterialTable make_material_table(const std::vector<Material>& materials, Contac
       p.youngs_modulus = effective_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
       p.shear_modulus = effective_shear_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
       p.friction = std::sqrt(a.friction * b.friction);
-      p.restitution = std::sqrt(a.restitution * b.restitution);
+      // The product of square roots: e = 1e-162 on both sides must not underflow to 0.
+      p.restitution = std::sqrt(a.restitution) * std::sqrt(b.restitution);
       const auto [it, inserted] = damping.try_emplace(p.restitution, 0);
       if (inserted)
         it->second = model == ContactModel::Hertz ? hertz_damping_for_restitution(p.restitution)

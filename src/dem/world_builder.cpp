@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/contact/half_space.hpp"
@@ -232,11 +233,55 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   // be scanned cell by cell for nothing: visit at most this many cells.
   const Real cell_budget = 64 * static_cast<Real>(f.count) + 1e6;
   Real visited = 0;
+  // Cells are counted in doubles: beyond 2^53 of them, neighbours share a number.
+  if (nx * ny * nz > 1e15)
+    throw BuildError(label + ": the region spans more than 1e15 cells of the bodies' size (" + number_text(diameter) +
+                     " m); make it smaller");
   if (nx >= 1 && ny >= 1 && nz >= 1) {
     const Vec3 cell{size.x / nx, size.y / ny, size.z / nz};
     const Vec3 slack = (cell - Vec3{diameter, diameter, diameter}) * 0.5;
     std::uniform_real_distribution<double> u(-1, 1);
     const Shape ball = make_sphere(diameter / 2);
+    // The bodies already there: small ones in a hash grid of the region's
+    // cells (each in the cells its bounding sphere, grown by a ball, meets),
+    // large ones (walls) checked against every cell. Bodies placed now sit in
+    // cells of their own and never meet each other.
+    struct Near {
+      std::uint32_t body;
+      Transform pose;
+      Real radius;
+      Aabb box;  // large bodies: their tight box, a cheaper first test than the bounding sphere
+    };
+    std::vector<Near> large;
+    std::unordered_map<std::uint64_t, std::vector<Near>> grid;
+    const auto key = [&](Real i, Real j, Real k) {
+      return static_cast<std::uint64_t>(i) + static_cast<std::uint64_t>(nx) *
+                                                 (static_cast<std::uint64_t>(j) + static_cast<std::uint64_t>(ny) *
+                                                                                      static_cast<std::uint64_t>(k));
+    };
+    for (std::uint32_t b = 0; b < world_.bodies.size(); ++b) {
+      Near n{b, shape_pose(world_.templates[world_.bodies[b].shape], world_.bodies[b]),
+             bounding_radius(given_shapes_[world_.bodies[b].shape]), {}};
+      const Vec3 reach{n.radius + diameter, n.radius + diameter, n.radius + diameter};
+      const Vec3 lo = hadamard(n.pose.translation - reach - f.lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
+      const Vec3 hi = hadamard(n.pose.translation + reach - f.lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
+      const Vec3 first{std::fmax(0, std::floor(lo.x)), std::fmax(0, std::floor(lo.y)), std::fmax(0, std::floor(lo.z))};
+      const Vec3 last{std::fmin(nx - 1, std::floor(hi.x)), std::fmin(ny - 1, std::floor(hi.y)),
+                      std::fmin(nz - 1, std::floor(hi.z))};
+      if (!(first.x <= last.x && first.y <= last.y && first.z <= last.z)) continue;  // away from the region
+      if ((last.x - first.x + 1) * (last.y - first.y + 1) * (last.z - first.z + 1) > 64) {
+        n.box = aabb(given_shapes_[world_.bodies[b].shape], n.pose);
+        large.push_back(n);
+        continue;
+      }
+      for (Real k = first.z; k <= last.z; ++k)  // at most 64 cells, counted exactly below 2^53
+        for (Real j = first.y; j <= last.y; ++j)
+          for (Real i = first.x; i <= last.x; ++i) grid[key(i, j, k)].push_back(n);
+    }
+    const auto meets = [&](const Near& n, const Vec3& centre, const Transform& ball_pose) {
+      return length(centre - n.pose.translation) <= n.radius + diameter / 2 &&
+             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose);
+    };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
         for (Real i = 0; i < nx && spots.size() < f.count; ++i) {
@@ -251,12 +296,14 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
           for (const PlaneWall& p : world_.planes)
             if (dot(centre - p.point, p.normal) < diameter / 2) free = false;
           const Transform ball_pose = Transform::from(centre, Quat{});
-          for (std::size_t b = 0; free && b < world_.bodies.size(); ++b) {
-            const Shape& s = given_shapes_[world_.bodies[b].shape];
-            const Transform pose = shape_pose(world_.templates[world_.bodies[b].shape], world_.bodies[b]);
-            if (length(centre - pose.translation) > bounding_radius(s) + diameter / 2) continue;
-            if (intersect(s, pose, ball, ball_pose)) free = false;
-          }
+          const Vec3 half{diameter / 2, diameter / 2, diameter / 2};
+          for (std::size_t b = 0; free && b < large.size(); ++b)
+            if (overlaps(large[b].box, Aabb{centre - half, centre + half}) && meets(large[b], centre, ball_pose))
+              free = false;
+          if (free)
+            if (const auto it = grid.find(key(i, j, k)); it != grid.end())
+              for (std::size_t b = 0; free && b < it->second.size(); ++b)
+                if (meets(it->second[b], centre, ball_pose)) free = false;
           if (free) spots.emplace_back(centre, q);
         }
   }
@@ -302,7 +349,8 @@ void WorldBuilder::check_explicit_bodies() const {
     for (const PlaneWall& p : w.planes)
       if (!a.fixed && half_space_contact(sa, poses[i], p.point, p.normal).depth > tol)
         throw BuildError(labels_[i] + " starts inside a plane wall (point " + number_text(p.point.x) + ", " +
-                         number_text(p.point.y) + ", " + number_text(p.point.z) + ")");
+                             number_text(p.point.y) + ", " + number_text(p.point.z) + ")",
+                         {i});
   }
   SweepWorkspace sweep;
   std::vector<BodyPair> pairs;
@@ -319,7 +367,8 @@ void WorldBuilder::check_explicit_bodies() const {
     if (pr.intersect && pr.depth > tol) {
       const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;
       throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(pr.depth) +
-                       " m at the start");
+                           " m at the start",
+                       {first, second});
     }
   }
 }
@@ -340,7 +389,8 @@ void WorldBuilder::prepare_shapes() {
                           std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
                           std::holds_alternative<Box>(s.core)))
       throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
-                             "thickness, or use model \"hertz\" or \"linear\")");
+                             "thickness, or use model \"hertz\" or \"linear\")",
+                       {static_cast<std::uint32_t>(user[t])});
     Tessellation tess = tessellate(s, settings_.tessellation);
     if (!solid_polytope(Shape{tess.polytope}))
       throw BuildError(who + ": the tessellation of this shape for the volume law is flat");

@@ -17,6 +17,9 @@
 namespace gjkdem::io {
 namespace {
 
+// Mesh files above this are refused (a million triangles of binary STL is 50 MB).
+constexpr std::uintmax_t kMaxMeshBytes = std::uintmax_t{1} << 30;
+
 [[noreturn]] void fail(const std::string& file, const std::string& what) { throw MeshError(file + ": " + what); }
 
 Vec3 finite_point(const std::string& file, const std::string& where, Real x, Real y, Real z) {
@@ -55,12 +58,17 @@ TriangleMesh read_obj(std::istream& in, const std::string& file) {
       std::vector<std::uint32_t> poly;
       std::string item;
       while (ls >> item) {
+        // The whole vertex field must be an integer ("1.9" or "2x" are not).
+        const std::string field = item.substr(0, item.find('/'));
         long idx = 0;
+        std::size_t used = 0;
         try {
-          idx = std::stol(item.substr(0, item.find('/')));
+          idx = std::stol(field, &used);
         } catch (const std::exception&) {
-          fail(file, "line " + std::to_string(line_no) + ": bad face index '" + item + "'");
+          used = 0;
         }
+        if (used == 0 || used != field.size())
+          fail(file, "line " + std::to_string(line_no) + ": bad face index '" + item + "'");
         const long n = static_cast<long>(m.vertices.size());
         const long k = idx < 0 ? n + idx : idx - 1;  // OBJ: 1-based, negative = relative
         if (idx == 0 || k < 0 || k >= n)
@@ -134,6 +142,15 @@ TriangleMesh read_stl_binary(const std::string& bytes, const std::string& file) 
 
 TriangleMesh read_mesh(const std::filesystem::path& path) {
   const std::string file = path.string();
+  // Only regular files of a sane size: a directory, a FIFO or /dev/zero would
+  // fail late, block, or read until memory runs out.
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec) fail(file, "cannot open the file (" + ec.message() + ")");
+  if (!std::filesystem::is_regular_file(status)) fail(file, "is not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxMeshBytes)
+    fail(file, "is larger than " + std::to_string(kMaxMeshBytes >> 20) + " MiB (or its size cannot be read)");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(file, "cannot open the file");
   std::string ext = path.extension().string();

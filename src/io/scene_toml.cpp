@@ -177,7 +177,11 @@ class SceneBuilder {
     try {
       scene_.world = builder_->build();
     } catch (const dem::BuildError& e) {
-      throw SceneError(source_ + ": " + e.what());
+      std::string lines;  // of the bodies at fault, when the scene gave them
+      for (const std::uint32_t b : e.bodies)
+        if (const auto it = body_lines_.find(b); it != body_lines_.end())
+          lines += (lines.empty() ? " (line " : ", line ") + std::to_string(it->second);
+      throw SceneError(source_ + ": " + e.what() + (lines.empty() ? "" : lines + ")"));
     }
     if (scene_.dt_auto) scene_.dt = dem::critical_time_step(scene_.world);
     resolved_["simulation"]["dt"] = scene_.dt;
@@ -324,7 +328,12 @@ class SceneBuilder {
 
   std::filesystem::path file_of(TableReader& r, const std::string& key) {
     const std::filesystem::path f = base_ / r.required_string(key);
-    if (!std::filesystem::exists(f)) r.fail(key, "file not found: " + f.string());
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(f, ec);
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      r.fail(key, "cannot read " + f.string() + " (" + ec.message() + ")");
+    if (!std::filesystem::exists(status)) r.fail(key, "file not found: " + f.string());
+    if (!std::filesystem::is_regular_file(status)) r.fail(key, f.string() + " is not a regular file");
     return f;
   }
 
@@ -399,6 +408,7 @@ class SceneBuilder {
                  std::any_of(name->begin(), name->end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })))
       r.fail("name", "must be a non-empty name without commas, quotes or control characters (it is a trace.csv field)");
     const std::uint32_t index = building(r.table_node(), [&] { return builder_->add_body(d); });
+    body_lines_[index] = r.table_node().source().begin.line;
     if (name) {
       names_.insert(*name);
       scene_.traced.push_back({*name, index});
@@ -535,6 +545,7 @@ class SceneBuilder {
   std::optional<dem::WorldBuilder> builder_;
   Json resolved_;
   std::set<std::string> names_;
+  std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
   std::uint64_t generator_count_ = 0;
 };
 

@@ -164,6 +164,15 @@ material = "rock"
   EXPECT_NEAR(p.world.planes[0].normal.z, std::sqrt(0.5), 1e-15);
 }
 
+// Issue 11: restitutions of 1e-162 passed the check and failed mid-run (the
+// pair's sqrt(e_a e_b) underflowed to 0). They now calibrate like any small e.
+TEST(Scene, TinyRestitutionCalibrates) {
+  const Scene s = load_scene(kHead + "restitution = 1e-200\n" + kCube, "x", ".");
+  const dem::MaterialPair& p = s.world.material_pairs(0, 0);
+  EXPECT_GT(p.restitution, 0);
+  EXPECT_TRUE(std::isfinite(p.damping) && p.damping > 0);
+}
+
 struct Bad {
   std::string name, toml, expected;  // expected: a piece of the message
 };

@@ -36,6 +36,7 @@ using BodyPair = std::pair<std::uint32_t, std::uint32_t>;
 /// Working memory of the sweep, kept between calls (any content is accepted).
 struct SweepWorkspace {
   std::vector<std::uint32_t> order;        ///< boxes by lower bound on the sweep axis (rebuilt when the count changes)
+  int axis = -1;                           ///< the sweep axis `order` was sorted on
   std::vector<std::uint32_t> strip_begin;  ///< per strip, its first slot in `entries`
   std::vector<std::uint32_t> cursor;       ///< filling position per strip
   std::vector<std::uint32_t> entries;      ///< box indices, strip after strip, each strip in sweep order

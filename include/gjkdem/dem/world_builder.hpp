@@ -23,7 +23,9 @@ namespace gjkdem::dem {
 
 /// What the builder refuses; the message names the body, wall or material.
 struct BuildError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit BuildError(const std::string& what, std::vector<std::uint32_t> at = {})
+      : std::runtime_error(what), bodies(std::move(at)) {}
+  std::vector<std::uint32_t> bodies;  ///< indices of the bodies at fault, when there are
 };
 
 /// Plane walls get ids from here up, above every body's.

@@ -24,7 +24,8 @@ struct TriangleMesh {
 
 /// Reads .obj or .stl (by extension, case-insensitive; STL ASCII or binary by
 /// content). Throws MeshError for a missing, unreadable, malformed or empty
-/// file, or a non-finite coordinate.
+/// file, a non-finite coordinate, something other than a regular file (a
+/// directory, a FIFO, a device) or a file above 1 GiB.
 TriangleMesh read_mesh(const std::filesystem::path& file);
 
 struct ConvexMesh {
