@@ -64,4 +64,18 @@ mkdir stopped
 expect2 run --resume stopped --out elsewhere
 expect2 bogus-command
 "$gjkdem" --help > /dev/null || fail "--help should exit 0"
+# 5. Runs that would do nothing and say "completed" (issue 11) are refused.
+scene() {  # duration, dt, Young's modulus
+  printf '[simulation]\nduration = %s\ndt = %s\n[[material]]\nname = "rock"\ndensity = 2500.0\nyoungs_modulus = %s\n[[body]]\nshape = { type = "box", half_extents = [0.01, 0.01, 0.01] }\nmaterial = "rock"\n' "$1" "$2" "$3"
+}
+scene 1e30 1e-5 1e7 > long.toml
+scene 1.0 1e-30 1e7 > tiny_dt.toml
+scene 0.01 1.0 1e7 > big_dt.toml
+scene 0.01 '"auto"' 1e308 > stiff.toml
+scene 0.01 '"auto"' 1e-308 > soft.toml
+for f in long tiny_dt big_dt stiff soft; do
+  expect2 run "$f.toml" --out "out_$f" --quiet
+  grep -qE "2\^53|longer than the duration|must be > 0" opt.err || fail "$f.toml: $(cat opt.err)"
+done
+
 echo "cli_limits: all checks passed"

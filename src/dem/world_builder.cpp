@@ -190,7 +190,9 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
                                   std::span<const std::array<std::uint32_t, 3>> triangles, Real thick,
                                   std::uint32_t material, const std::string& label) {
   check_material(material, label);
-  if (!(thick > 0) || !std::isfinite(thick)) throw BuildError(label + ": the thickness must be > 0");
+  for (const Vec3& v : vertices)
+    if (!is_finite(v)) throw BuildError(label + ": vertices must be finite (a scale beyond double precision?)");
+  if (!(thick > 0) || !std::isfinite(thick)) throw BuildError(label + ": the thickness must be > 0 and finite");
   const std::uint32_t group = ++groups_;
   std::size_t index = 0;
   for (const auto& tri : triangles) {
@@ -198,7 +200,6 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
     for (std::uint32_t v : tri)
       if (v >= vertices.size()) throw BuildError(piece + ": vertex index out of range");
     const Vec3 a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
-    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) throw BuildError(piece + ": vertices must be finite");
     const Vec3 n3 = cross(b - a, c - a);
     if (!(length(n3) > 0)) continue;  // degenerate triangles hold nothing
     const Vec3 centre = (a + b + c) / 3.0, n = normalized(n3) * (thick / 2);

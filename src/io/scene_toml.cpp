@@ -38,6 +38,8 @@ Real as_real(const toml::node& n) {
 // Limits of generators, checked before anything is drawn: each body costs
 // about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
 constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
+// Coordinates beyond this cannot be squared in double precision.
+constexpr Real kMaxSceneCoordinate = 1e100;
 constexpr std::int64_t kMaxVariants = 100'000;
 constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
 
@@ -523,6 +525,7 @@ class SceneBuilder {
         v = apply(Transform::from(position, rotation), v * scale);
         lo = min(lo, v);
         hi = max(hi, v);
+        if (!(max_abs(v) <= kMaxSceneCoordinate)) r.fail("scale", "puts the mesh beyond 1e100 m (not resolvable)");
       }
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),

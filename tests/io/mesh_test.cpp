@@ -1,6 +1,7 @@
 #include "gjkdem/io/mesh.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstring>
 #include <fstream>
@@ -136,6 +137,27 @@ TEST_F(MeshTest, BadFilesAreRefusedWithTheirNameAndProblem) {
   EXPECT_NE(error_of(write("short.stl", "abc")).find("short.stl: binary STL shorter"), std::string::npos);
   EXPECT_NE(error_of(write("bad.stl", "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0\n")).find("bad.stl: line 4"),
             std::string::npos);
+}
+
+// Issue 11: face indices that are not integers were read as their integer
+// part; a directory, a FIFO or /dev/zero named as a mesh hung or read until
+// memory ran out; a symlink loop gave no file name.
+TEST_F(MeshTest, NotIntegersAndNotFilesAreRefused) {
+  EXPECT_NE(error_of(write("frac.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1.9 2 3\n")).find("bad face index '1.9'"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2x 3\n")).find("bad face index '2x'"),
+            std::string::npos);
+  fs::create_directories(dir / "folder.stl");
+  EXPECT_NE(error_of(dir / "folder.stl").find("is not a regular file"), std::string::npos);
+  const fs::path fifo = dir / "pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(error_of(fifo).find("is not a regular file"), std::string::npos);  // returns at once, no reader needed
+  fs::create_symlink(dir / "zero.stl", dir / "zero.stl.link");
+  fs::create_symlink("/dev/zero", dir / "zero.stl");
+  EXPECT_NE(error_of(dir / "zero.stl").find("is not a regular file"), std::string::npos);
+  fs::create_symlink(dir / "loop_b.obj", dir / "loop_a.obj");
+  fs::create_symlink(dir / "loop_a.obj", dir / "loop_b.obj");
+  EXPECT_NE(error_of(dir / "loop_a.obj").find("loop_a.obj: cannot open"), std::string::npos);
 }
 
 }  // namespace

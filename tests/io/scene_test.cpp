@@ -173,6 +173,36 @@ TEST(Scene, TinyRestitutionCalibrates) {
   EXPECT_TRUE(std::isfinite(p.damping) && p.damping > 0);
 }
 
+// Issue 11: a mesh scaled by 1e300 was accepted: refused, naming the key and line.
+TEST(Scene, MeshScaledBeyondDoublesIsRefused) {
+  const std::filesystem::path obj = std::filesystem::temp_directory_path() / "gjkdem_scene_test_tetra.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string message = refusal(kHead + kCube + "[[wall]]\ntype = \"mesh\"\nfile = \"" + obj.string() +
+                                      "\"\nscale = 1e300\nmaterial = \"rock\"\n");
+  EXPECT_NE(message.find("wall[0].scale: puts the mesh beyond 1e100 m"), std::string::npos) << message;
+  std::filesystem::remove(obj);
+}
+
+// Issue 11: these messages named neither key nor line.
+TEST(Scene, BuildMessagesNameTheirLines) {
+  const std::string overlap = refusal(kHead + kCube + R"(
+[[body]]
+shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+position = [0.0, 0.0, 0.055]
+)");
+  EXPECT_NE(overlap.find("body[0] overlaps body[1] by 0.015 m at the start (line 11, line 17)"), std::string::npos)
+      << overlap;
+  const std::string inside = refusal(kHead + kCube + "[[wall]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.1]\n"
+                                                     "normal = [0.0, 0.0, 1.0]\nmaterial = \"rock\"\n");
+  EXPECT_NE(inside.find("body[0] starts inside a plane wall (point 0, 0, 0.1) (line 11)"), std::string::npos) << inside;
+  for (const std::string& missing :
+       {refusal(kHead + "[[body]]\nmaterial = \"rock\"\n"), refusal(kHead + "[[wall]]\ntype = \"plane\"\nmaterial = \"rock\"\n"),
+        refusal(kHead + "[[wall]]\ntype = \"box\"\nmaterial = \"rock\"\n"),
+        refusal(kHead + "[[generator]]\ncount = 3\nmaterial = \"rock\"\nshape = { type = \"sphere\", radius = 0.01 }\n")})
+    EXPECT_NE(missing.find("(line 10)"), std::string::npos) << missing;
+}
+
 struct Bad {
   std::string name, toml, expected;  // expected: a piece of the message
 };
@@ -318,6 +348,12 @@ material = "rock"
 region = { min = [0.0, 0.0, 0.0], max = [100.0, 100.0, 100.0] }
 )",
             "found room for only 0 of the 10 bodies"},
+        Bad{"mesh_is_a_folder", kHead + kCube + R"([[wall]]
+type = "mesh"
+file = "/tmp"
+material = "rock"
+)",
+            "file: /tmp is not a regular file"},
         Bad{"name_with_comma", kHead + R"([[body]]
 name = "a,b"
 shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
