@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <fstream>
@@ -13,7 +14,11 @@ namespace fs = std::filesystem;
 
 class MeshTest : public ::testing::Test {
  protected:
-  fs::path dir = fs::temp_directory_path() / ("gjkdem_mesh_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  // One folder per test and process: ctest runs the tests side by side, and
+  // one test's TearDown must not remove another's files.
+  fs::path dir = fs::temp_directory_path() /
+                 ("gjkdem_mesh_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                  "_" + std::to_string(::getpid()));
   void SetUp() override { fs::create_directories(dir); }
   void TearDown() override { fs::remove_all(dir); }
   fs::path write(const std::string& name, const std::string& text) {

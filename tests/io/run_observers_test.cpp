@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace gjkdem::io {
 namespace {
 
@@ -21,7 +23,10 @@ std::string read(const fs::path& f) {
 }
 
 struct RunFolderTest : ::testing::Test {
-  fs::path dir = fs::temp_directory_path() / ("gjkdem_run_folder_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  // One folder per test and process: ctest runs the tests side by side.
+  fs::path dir = fs::temp_directory_path() /
+                 ("gjkdem_run_folder_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                  "_" + std::to_string(::getpid()));
   void SetUp() override { fs::remove_all(dir), fs::create_directories(dir); }
   void TearDown() override { fs::remove_all(dir); }
 };
