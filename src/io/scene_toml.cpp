@@ -169,6 +169,7 @@ class SceneBuilder {
     read_output(top);
     read_contact(top);
     builder_.emplace(settings_);
+    if (accept_overlaps_) builder_->accept_initial_overlaps();
     for_each_table(top, "material", [&](TableReader& r) { read_material(r); });
     for_each_table(top, "wall", [&](TableReader& r) { read_wall(r); });
     for_each_table(top, "body", [&](TableReader& r) { read_body(r); });
@@ -241,6 +242,10 @@ class SceneBuilder {
     const std::int64_t threads = r.integer("threads").value_or(0);
     if (threads < 0 || threads > 4096) r.fail("threads", "must be 0 (all cores) or a thread count");
     settings_.threads = static_cast<int>(threads);
+    const std::string overlaps = r.string("initial_overlaps").value_or("refuse");
+    if (overlaps != "refuse" && overlaps != "accept")
+      r.fail("initial_overlaps", "must be \"refuse\" or \"accept\", not \"" + overlaps + "\"");
+    accept_overlaps_ = overlaps == "accept";
     const std::string guards = r.string("guards").value_or("stop");
     if (guards == "stop") scene_.guards.action = dem::GuardAction::Stop;
     else if (guards == "warn") scene_.guards.action = dem::GuardAction::Warn;
@@ -251,7 +256,8 @@ class SceneBuilder {
     scene_.seed = static_cast<std::uint64_t>(seed);
     r.finish();
     resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
-                               {"threads", threads}, {"seed", seed}, {"guards", guards}};
+                               {"threads", threads}, {"seed", seed}, {"guards", guards},
+                               {"initial_overlaps", overlaps}};
   }
 
   void read_output(TableReader& top) {
@@ -549,6 +555,7 @@ class SceneBuilder {
   Json resolved_;
   std::set<std::string> names_;
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
+  bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;
 };
 

@@ -183,6 +183,26 @@ TEST(Scene, MeshScaledBeyondDoublesIsRefused) {
   std::filesystem::remove(obj);
 }
 
+// A stack may start at its resting overlap when the scene says so.
+TEST(Scene, InitialOverlapsCanBeAccepted) {
+  const std::string stack = kCube + R"(
+[[body]]
+shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+position = [0.0, 0.0, 0.0699999]
+)";
+  EXPECT_NE(refusal(kHead + stack).find("overlaps"), std::string::npos);
+  const Scene s = load_scene("[simulation]\nduration = 0.1\ninitial_overlaps = \"accept\"\n" +
+                                 kHead.substr(kHead.find("[[material]]")) + stack,
+                             "x", ".");
+  EXPECT_EQ(s.world.bodies.size(), 2u);
+  EXPECT_NE(s.resolved_json.find("\"initial_overlaps\": \"accept\""), std::string::npos);
+  EXPECT_NE(refusal("[simulation]\nduration = 0.1\ninitial_overlaps = \"maybe\"\n" +
+                    kHead.substr(kHead.find("[[material]]")) + kCube)
+                .find("initial_overlaps: must be"),
+            std::string::npos);
+}
+
 // Issue 11: these messages named neither key nor line.
 TEST(Scene, BuildMessagesNameTheirLines) {
   const std::string overlap = refusal(kHead + kCube + R"(
