@@ -172,7 +172,7 @@ Footprint footprint(const World& w) {
   double bodies = static_cast<double>(
       w.bodies.capacity() * sizeof(Body) + k.boxes.boxes.capacity() * sizeof(Aabb) +
       k.boxes.anchor_position.capacity() * sizeof(Vec3) + k.boxes.anchor_orientation.capacity() * sizeof(Quat) +
-      k.boxes.stale.capacity() + k.moving.capacity() * sizeof(std::uint32_t) + k.moving_boxes.capacity() * sizeof(Aabb) +
+      k.boxes.moved.capacity() * sizeof(Real) + k.moving.capacity() * sizeof(std::uint32_t) + k.moving_boxes.capacity() * sizeof(Aabb) +
       (k.sweep.order.capacity() + k.sweep.entries.capacity() + k.sweep.strip_begin.capacity() +
        k.sweep.cursor.capacity()) * sizeof(std::uint32_t));
   double contacts = static_cast<double>(w.pairs.capacity() * sizeof(PairState) +

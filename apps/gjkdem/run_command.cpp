@@ -176,10 +176,8 @@ int run_simulation(const RunOptions& opt) {
       io::remove_stale_temporaries(folder);
     }
     const std::uint64_t fingerprint = io::fnv1a64(text);
-    std::vector<io::TraceWriter::Traced> traced;
-    for (const io::TracedBody& t : scene.traced) traced.push_back({t.name, t.body});
     io::FrameWriter frames(folder.frames(), scene.world, scene.write_frames);
-    io::TraceWriter trace(traced);
+    io::TraceWriter trace(scene.traced);
     io::EnergyWriter energy;
     double wall_before = 0;
     if (opt.resume.empty()) {

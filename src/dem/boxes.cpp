@@ -23,7 +23,6 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     cache.boxes.assign(n, Aabb{});
     cache.anchor_position.assign(n, Vec3{});
     cache.anchor_orientation.assign(n, Quat{});
-    cache.stale.assign(n, 0);
     cache.moved.assign(n, 0);
   }
   // How far each moving body's points may have moved since its box was made,
@@ -51,10 +50,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
       cache.moved[i] = bodies[i].fixed ? 0 : moved(i);
       if (!(cache.moved[i] <= 1)) any = 1;
     }
-    if (!any) {
-      std::fill(cache.stale.begin(), cache.stale.end(), 0);
-      return 0;
-    }
+    if (!any) return 0;
     threshold = kBatchFraction;
   }
   std::int64_t updated = 0;
@@ -62,12 +58,10 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
   for (std::int64_t i = 0; i < count; ++i) {
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
-    cache.stale[i] = 0;
     if (!all && (b.fixed || cache.moved[i] <= threshold)) continue;
     cache.boxes[i] = aabb(t.shape, shape_pose(t, b), b.fixed ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;
-    cache.stale[i] = 1;
     ++updated;
   }
   return static_cast<std::size_t>(updated);
@@ -76,7 +70,6 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
 void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
                               BoxCache& cache) {
   cache.boxes.resize(bodies.size());
-  cache.stale.assign(bodies.size(), 1);
   cache.moved.assign(bodies.size(), 0);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     Body at = bodies[i];

@@ -4,15 +4,12 @@
 #include <stdexcept>
 
 #include "gjkdem/tolerances.hpp"
+#include "number_text.hpp"
 
 namespace gjkdem::dem {
 namespace {
 
-std::string number_text(Real v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
+std::string number_text(Real v) { return detail::number_text(v, 9); }
 
 std::string name_of(const World& w, std::uint64_t id) {
   for (std::size_t p = 0; p < w.planes.size(); ++p)

@@ -91,12 +91,16 @@ void list_contacts(World& w) {
   }
 }
 
-ContactSide side_of(const World& w, const Body& b) {
+// A plane wall or a fixed body: infinite mass, radius and volume, no motion.
+ContactSide fixed_side() {
   ContactSide s;
-  if (b.fixed) {
-    s.mass = s.curvature_radius = s.volume = kInf;
-    return s;
-  }
+  s.mass = s.curvature_radius = s.volume = kInf;
+  return s;
+}
+
+ContactSide side_of(const World& w, const Body& b) {
+  if (b.fixed) return fixed_side();
+  ContactSide s;
   const ShapeTemplate& t = w.templates[b.shape];
   s.moving = true;
   s.position = b.position;
@@ -153,15 +157,8 @@ StepReport compute_forces(World& w, Real dt) {
     StepContact& c = contacts[k];
     if (!c.active) continue;
     const Body& b = w.bodies[c.b];
-    ContactSide side_a;
-    std::uint32_t material_a;
-    if (c.a_is_plane) {
-      side_a.mass = side_a.curvature_radius = side_a.volume = kInf;
-      material_a = w.planes[c.a].material;
-    } else {
-      side_a = side_of(w, w.bodies[c.a]);
-      material_a = w.bodies[c.a].material;
-    }
+    const ContactSide side_a = c.a_is_plane ? fixed_side() : side_of(w, w.bodies[c.a]);
+    const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
                                          side_of(w, b), w.pairs[k].history, w.settings, dt);
     c.force = f.force;

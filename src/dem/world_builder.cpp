@@ -10,9 +10,12 @@
 #include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 #include "gjkdem/tolerances.hpp"
+#include "number_text.hpp"
 
 namespace gjkdem::dem {
 namespace {
+
+using detail::number_text;
 
 // A solid polytope or box without margin: what the volume law clips.
 bool solid_polytope(const Shape& s) {
@@ -21,12 +24,6 @@ bool solid_polytope(const Shape& s) {
     return b->half_extents.x > 0 && b->half_extents.y > 0 && b->half_extents.z > 0;
   if (const auto* p = std::get_if<Polytope>(&s.core)) return !p->data->triangles.empty();
   return false;
-}
-
-std::string number_text(Real v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 }  // namespace

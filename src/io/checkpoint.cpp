@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::io {
 namespace {
@@ -277,15 +278,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
 
 void save_checkpoint(const std::filesystem::path& file, const dem::World& w, const Checkpoint& c,
                      std::uint64_t fingerprint) {
-  const std::string bytes = encode_checkpoint(w, c, fingerprint);
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write checkpoint " + tmp.string());
-  }
-  std::filesystem::rename(tmp, file);
+  write_file_atomically(file, encode_checkpoint(w, c, fingerprint));
 }
 
 Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint) {

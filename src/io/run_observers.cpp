@@ -13,17 +13,6 @@ namespace gjkdem::io {
 
 namespace fs = std::filesystem;
 
-void write_file_atomically(const fs::path& file, const std::string& text) {
-  const fs::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, file);
-}
-
 void prepare_run_folder(const RunPaths& paths, bool overwrite) {
   std::error_code ec;
   if (fs::exists(paths.dir, ec) && !fs::is_directory(paths.dir, ec))
@@ -109,7 +98,7 @@ void CsvLog::append(const std::string& rows) {
 
 void TraceWriter::on_output(const dem::World& w, const dem::RunState&) {
   std::string rows;
-  for (const Traced& t : traced_) rows += trace_row(w, t.name, w.bodies[t.body]);
+  for (const TracedBody& t : traced_) rows += trace_row(w, t.name, w.bodies[t.body]);
   if (!rows.empty()) append(rows);
 }
 

@@ -43,6 +43,17 @@ void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
 
 }  // namespace
 
+void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::filesystem::rename(tmp, file);
+}
+
 DisplayMesh display_mesh(const Shape& shape) {
   DisplayMesh m;
   if (shape.margin == 0) {

@@ -499,10 +499,9 @@ class SceneBuilder {
       const Vec3 point = r.vec3("point").value_or(Vec3{});
       const std::optional<Vec3> normal = r.vec3("normal");
       if (!normal) throw SceneError(r.where() + ": missing required key 'normal'" + line_of(r.table_node()));
-      if (!(max_abs(*normal) > 0)) r.fail("normal", "must not be zero");
       building(r.table_node(), [&] { builder_->add_plane(point, *normal, material, r.where()); });
       j["point"] = to_json(point);
-      j["normal"] = to_json(normalized(*normal / max_abs(*normal)));
+      j["normal"] = to_json(*normal);  // as given; the builder makes it unit
     } else if (type == "box") {
       const std::optional<Vec3> lo = r.vec3("min"), hi = r.vec3("max");
       if (!lo || !hi) throw SceneError(r.where() + ": a box wall needs 'min' and 'max'" + line_of(r.table_node()));

@@ -24,7 +24,6 @@ struct BoxCache {
   std::vector<Aabb> boxes;          ///< per body, world
   std::vector<Vec3> anchor_position;     ///< centre of mass when the box was made
   std::vector<Quat> anchor_orientation;  ///< orientation then
-  std::vector<std::uint8_t> stale;       ///< per body: recomputed in the last update
   std::vector<Real> moved;               ///< per body: how far it may have moved, in skins (scratch)
 };
 

@@ -64,15 +64,11 @@ class CsvLog : public dem::RunObserver {
 /// trace.csv: one row per traced body per output.
 class TraceWriter : public CsvLog {
  public:
-  struct Traced {
-    std::string name;
-    std::uint32_t body = 0;  ///< index into world.bodies
-  };
-  explicit TraceWriter(std::vector<Traced> traced) : traced_(std::move(traced)) {}
+  explicit TraceWriter(std::vector<TracedBody> traced) : traced_(std::move(traced)) {}
   void on_output(const dem::World& world, const dem::RunState& state) override;
 
  private:
-  std::vector<Traced> traced_;
+  std::vector<TracedBody> traced_;
 };
 
 /// energy.csv: the energy balance at every output.
@@ -157,8 +153,5 @@ class RunFolderLock {
  private:
   int fd_ = -1;
 };
-
-/// Writes `text` to `file` through a temporary file and a rename.
-void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 
 }  // namespace gjkdem::io

@@ -33,6 +33,17 @@ void write_vtk_frame(const std::filesystem::path& file, const dem::World& world,
 /// The index ParaView reads to give each frame its simulated time.
 void write_frame_series(const std::filesystem::path& file, std::span<const std::pair<std::string, Real>> frames);
 
+/// Writes `text` to `file` through a temporary file (FILE.tmp), flushed, and
+/// a rename: a crash or a full disk leaves the previous file whole. Throws
+/// std::runtime_error when it cannot be written.
+void write_file_atomically(const std::filesystem::path& file, const std::string& text);
+
+/// A body written to trace.csv every output, under its name.
+struct TracedBody {
+  std::string name;
+  std::uint32_t body = 0;  ///< index into world.bodies
+};
+
 std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);

@@ -12,16 +12,12 @@
 
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
+#include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::io {
 
 struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-struct TracedBody {
-  std::string name;
-  std::uint32_t body = 0;  ///< index into world.bodies
 };
 
 struct Scene {
