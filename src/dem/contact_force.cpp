@@ -109,22 +109,39 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
       twisting = g.normal * couple;
     }
   }
-  if (s.model == ContactModel::Volume && s.rocking_resistance && !a_is_plane && magnitude > 0) {
-    // Rocking stiffness of the contact area. Any potential of V alone leaves
-    // two flat faces free to rock about the middle of their contact (a wedge
-    // has the volume of the slab it tilts from), so a stack of cubes is an
-    // inverted pendulum. Seen as a disc of radius r of normal springs and
-    // dashpots, the area resists a relative rocking angle theta with
-    // k r^2 / 4 theta (k, c of the normal law), up to the moment F_n r at
-    // which all the pressure sits on the rim. (Plane walls need none: their
-    // force through the centroid of the part below the plane rocks back.)
+  // One rolling spring, slider and dashpot on the relative rolling angle
+  // theta, made of two resistances in parallel (they share theta; their
+  // limits add):
+  // - the volume law's rocking of the contact area (between bodies). Any
+  //   potential of V alone leaves two flat faces free to rock about the
+  //   middle of their contact (a wedge has the volume of the slab it tilts
+  //   from), so a stack of cubes is an inverted pendulum. Seen as a disc of
+  //   radius r of normal springs and dashpots, the area resists theta with
+  //   k r^2 / 4 (k, c of the normal law), up to the moment F_n r at which all
+  //   the pressure sits on the rim. Plane walls need none: their force through
+  //   the centroid of the part below the plane rocks back.
+  // - the material's rolling resistance (Ai et al. 2011, type C): stiffness
+  //   2.25 k mu_r^2 R*^2, limit mu_r R* F_n, dashpot eta_r 2 sqrt(I_r k_r)
+  //   with I_r = 7/5 m* R*^2 (a sphere about its contact point). It is what
+  //   stops a ball rolling on a plane, or a grain rocking on a curved top:
+  //   rolling without slip loses nothing to the normal or tangential dashpots.
+  const bool rocks = s.model == ContactModel::Volume && s.rocking_resistance && !a_is_plane;
+  const Real mu_roll = mp.rolling_friction;
+  if ((rocks || mu_roll > 0) && magnitude > 0) {
+    const Real arm_area = rocks ? std::sqrt(r2) : 0;
+    const Real arm_rolling = mu_roll * r_star;
+    // Hertz has no constant k: its tangent stiffness dF/d(delta).
+    const Real k_contact = s.model == ContactModel::Hertz ? 2 * e_star * std::sqrt(r_star * g.depth) : k_normal;
+    const Real k_rolling = 2.25 * k_contact * arm_rolling * arm_rolling;
+    const Real inertia = 1.4 * m_eff * r_star * r_star;
+    const Real k_roll = (rocks ? k_contact * r2 / 4 : 0) + k_rolling;
+    const Real c_roll = (rocks ? c_normal * r2 / 4 : 0) + mp.rolling_damping * 2 * std::sqrt(inertia * k_rolling);
     const Vec3 roll_rate = spin - g.normal * dot(spin, g.normal);
     Vec3 roll = into_tangent_plane(before.roll, g.normal) + roll_rate * dt;
-    const Real k_rock = k_normal * r2 / 4, c_rock = c_normal * r2 / 4;
-    Vec3 couple = roll * -k_rock - roll_rate * c_rock;
-    cap_spring(couple, roll, k_rock, magnitude * std::sqrt(r2));
+    Vec3 couple = roll * -k_roll - roll_rate * c_roll;
+    cap_spring(couple, roll, k_roll, magnitude * (arm_area + arm_rolling));
     out.history.roll = roll;
-    out.elastic += 0.5 * k_rock * dot(roll, roll);
+    out.elastic += 0.5 * k_roll * dot(roll, roll);
     twisting += couple;
   }
   out.force = g.normal * magnitude + ft;

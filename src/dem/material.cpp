@@ -20,6 +20,8 @@ MaterialTable make_material_table(const std::vector<Material>& materials, Contac
       p.youngs_modulus = effective_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
       p.shear_modulus = effective_shear_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
       p.friction = std::sqrt(a.friction * b.friction);
+      p.rolling_friction = std::sqrt(a.rolling_friction * b.rolling_friction);
+      p.rolling_damping = (a.rolling_damping + b.rolling_damping) / 2;
       // The product of square roots: e = 1e-162 on both sides must not underflow to 0.
       p.restitution = std::sqrt(a.restitution) * std::sqrt(b.restitution);
       const auto [it, inserted] = damping.try_emplace(p.restitution, 0);

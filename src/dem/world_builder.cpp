@@ -52,6 +52,9 @@ std::uint32_t WorldBuilder::add_material(const Material& m) {
   if (!(m.poisson_ratio > -1 && m.poisson_ratio < 0.5)) throw BuildError(what + "poisson_ratio must lie in (-1, 0.5)");
   if (!(m.restitution > 0 && m.restitution <= 1)) throw BuildError(what + "restitution must lie in (0, 1]");
   if (!(m.friction >= 0)) throw BuildError(what + "friction must be >= 0");
+  if (!(m.rolling_friction >= 0 && std::isfinite(m.rolling_friction)))
+    throw BuildError(what + "rolling_friction must be finite and >= 0");
+  if (!(m.rolling_damping >= 0 && m.rolling_damping <= 1)) throw BuildError(what + "rolling_damping must lie in [0, 1]");
   world_.materials.push_back(m);
   return static_cast<std::uint32_t>(world_.materials.size() - 1);
 }

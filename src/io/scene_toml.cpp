@@ -320,10 +320,15 @@ class SceneBuilder {
     if (!(m.restitution > 0 && m.restitution <= 1)) r.fail("restitution", "must lie in (0, 1]");
     m.friction = r.number("friction").value_or(0.5);
     if (!(m.friction >= 0)) r.fail("friction", "must be >= 0");
+    m.rolling_friction = r.number("rolling_friction").value_or(0);
+    if (!(m.rolling_friction >= 0)) r.fail("rolling_friction", "must be >= 0");  // numbers are finite
+    m.rolling_damping = r.number("rolling_damping").value_or(0.3);
+    if (!(m.rolling_damping >= 0 && m.rolling_damping <= 1)) r.fail("rolling_damping", "must lie in [0, 1]");
     building(r.table_node(), [&] { return builder_->add_material(m); });
     resolved_["material"].push_back({{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
                                      {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution},
-                                     {"friction", m.friction}});
+                                     {"friction", m.friction}, {"rolling_friction", m.rolling_friction},
+                                     {"rolling_damping", m.rolling_damping}});
   }
 
   std::uint32_t material_of(TableReader& r) {
@@ -571,12 +576,16 @@ Scene load_scene(std::string_view toml_text, const std::string& source, const st
   return SceneBuilder(source, base_dir).build(root);
 }
 
-Scene load_scene_file(const std::filesystem::path& file) {
+std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError("cannot read scene file " + file.string());
+  if (!in) throw SceneError("cannot read " + file.string());
   std::stringstream text;
   text << in.rdbuf();
-  return load_scene(text.str(), file.string(), file.has_parent_path() ? file.parent_path() : ".");
+  return text.str();
+}
+
+Scene load_scene_file(const std::filesystem::path& file) {
+  return load_scene(read_text_file(file), file.string(), file.has_parent_path() ? file.parent_path() : ".");
 }
 
 }  // namespace gjkdem::io

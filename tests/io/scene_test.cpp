@@ -261,6 +261,10 @@ INSTANTIATE_TEST_SUITE_P(
             "material[0].density: must be > 0 (line 5)"},
         Bad{"restitution_zero", kHead + "restitution = 0.0\n" + kCube, "restitution: must lie in (0, 1]"},
         Bad{"negative_friction", kHead + "friction = -0.1\n" + kCube, "friction: must be >= 0"},
+        Bad{"negative_rolling_friction", kHead + "rolling_friction = -0.1\n" + kCube, "rolling_friction: must be >= 0"},
+        Bad{"infinite_rolling_friction", kHead + "rolling_friction = inf\n" + kCube, "rolling_friction: must be finite"},
+        Bad{"rolling_damping_above_one", kHead + "rolling_damping = 1.5\n" + kCube,
+            "rolling_damping: must lie in [0, 1]"},
         Bad{"unknown_material", kHead + kCube + "\n" + R"([[body]]
 shape = { type = "box", center = [0.0, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] }
 material = "wood"

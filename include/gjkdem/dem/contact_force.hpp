@@ -10,7 +10,9 @@
 // (sliding). Under the volume law the contact area also resists relative
 // spin about the normal (a twisting spring capped by 2/3 mu F_n r, r the
 // radius of a disc of the contact's area) and, between bodies, relative
-// rocking (k r^2 / 4, capped at F_n r).
+// rocking (k r^2 / 4, capped at F_n r). Under every law a material's rolling
+// friction mu_r resists relative rolling (Ai et al. 2011, type C: capped at
+// mu_r R* F_n); it shares the rocking spring.
 #include "gjkdem/dem/contact_geometry.hpp"
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/dem/pair_state.hpp"

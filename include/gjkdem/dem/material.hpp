@@ -18,6 +18,13 @@ struct Material {
   Real poisson_ratio = 0.25;    ///< in (-1, 0.5)
   Real restitution = 0.5;       ///< normal coefficient of restitution, (0, 1]
   Real friction = 0.5;          ///< Coulomb coefficient, >= 0
+  /// Rolling resistance (Ai et al. 2011's elastic-plastic model, type C):
+  /// the contact resists relative rolling with a moment of at most
+  /// mu_r R* F_n. Dimensionless, >= 0; 0 lets round grains roll forever.
+  Real rolling_friction = 0;
+  /// Damping ratio of the rolling spring below its limit, in [0, 1]
+  /// (Ai et al.'s eta_r; 0.3 is their suggestion).
+  Real rolling_damping = 0.3;
 };
 
 /// The contact law between bodies (docs/dem.md).
@@ -33,6 +40,8 @@ struct MaterialPair {
   Real shear_modulus = 0;   ///< Mindlin's G* (Pa)
   Real friction = 0;        ///< sqrt(mu_a mu_b)
   Real restitution = 0;     ///< sqrt(e_a e_b)
+  Real rolling_friction = 0;  ///< sqrt(mu_r,a mu_r,b)
+  Real rolling_damping = 0;   ///< (eta_a + eta_b) / 2
   /// The law's calibrated damping for that restitution: beta for Hertz,
   /// the damping ratio zeta for the linear and volume laws.
   Real damping = 0;

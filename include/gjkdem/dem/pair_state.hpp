@@ -1,7 +1,7 @@
 #pragma once
 // The one store of what a contact remembers from step to step, keyed by the
 // pair of global ids: the GJK warm start while the pair's boxes overlap, and
-// the tangential, twisting and rocking springs while it touches. Keyed by
+// the tangential, twisting and rolling springs while it touches. Keyed by
 // ids, not indices, so the state follows the bodies through a checkpoint, a
 // reordering or (later) a move between MPI domains.
 #include <compare>
@@ -27,7 +27,7 @@ constexpr PairKey pair_key(std::uint64_t a, std::uint64_t b) noexcept { return a
 struct PairHistory {
   Vec3 spring;   ///< tangential displacement (m)
   Real twist = 0;  ///< relative spin about the normal (rad), volume law
-  Vec3 roll;     ///< relative rocking (rad), volume law between bodies
+  Vec3 roll;     ///< relative rolling (rad): the volume law's rocking, rolling friction
 };
 
 struct PairState {

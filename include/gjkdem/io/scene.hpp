@@ -41,6 +41,9 @@ struct Scene {
 /// file names (meshes) are taken from `base_dir`.
 Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir);
 
+/// The text of a file (SceneError "cannot read FILE" when it cannot be read).
+std::string read_text_file(const std::filesystem::path& file);
+
 /// Reads a scene file (throws SceneError when it cannot be read).
 Scene load_scene_file(const std::filesystem::path& file);
 

@@ -21,6 +21,11 @@ constexpr Vec3 apply_inverse(const Transform& t, const Vec3& p) noexcept {
 constexpr Vec3 apply_inverse_rotation(const Transform& t, const Vec3& d) noexcept {
   return transpose_mul(t.rotation, d);
 }
+/// A frame placed in `parent`'s frame, placed in the world: parent * child.
+constexpr Transform compose(const Transform& parent, const Transform& child) noexcept {
+  return {parent.rotation * child.rotation, apply(parent, child.translation)};
+}
+
 /// The transform taking b's local coordinates into a's local frame: a^-1 * b.
 constexpr Transform relative(const Transform& a, const Transform& b) noexcept {
   return {transpose(a.rotation) * b.rotation, apply_inverse(a, b.translation)};

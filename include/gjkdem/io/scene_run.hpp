@@ -1,0 +1,70 @@
+#pragma once
+// A run of a scene into its run folder, the one way `gjkdem run` and
+// Python's gjkdem.run_scene do it: the folder locked and prepared, the scene
+// text saved beside the outputs, every writer of run_observers.hpp set up
+// (frames, trace, energy, checkpoints, run.json), or all of it taken up
+// again from the folder's checkpoint. The caller adds its own observers
+// (a progress bar, Python callbacks) and its stop condition.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "gjkdem/io/run_observers.hpp"
+#include "gjkdem/io/scene.hpp"
+
+namespace gjkdem::io {
+
+struct SceneRunOptions {
+  std::filesystem::path out;  ///< run folder; empty: the scene's output.directory
+  bool overwrite = false;     ///< replace an earlier run's files (the scene's output.overwrite also does)
+  int threads = -1;           ///< < 0: the scene's simulation.threads; 0: every core
+};
+
+/// The library's version ("0.1.0"), written into run.json.
+const char* version() noexcept;
+
+class SceneRun {
+ public:
+  /// A new run of the scene in `scene_file` (empty: the built-in default
+  /// scene). Throws SceneError (the scene), RunFolderError (the folder).
+  static std::unique_ptr<SceneRun> start(const std::string& scene_file, const SceneRunOptions& options);
+  /// Takes up the run in `dir` from its checkpoint (SceneError when the
+  /// folder holds none, CheckpointError when it does not match the scene).
+  static std::unique_ptr<SceneRun> resume(const std::filesystem::path& dir, int threads = -1);
+  /// True when run.json in `dir` says the run completed.
+  static bool completed(const std::filesystem::path& dir);
+
+  SceneRun(const SceneRun&) = delete;
+  SceneRun& operator=(const SceneRun&) = delete;
+  ~SceneRun();
+
+  /// Runs to the end, or until `stop` (asked after every step) returns a
+  /// reason, which run.json records as `stopped_by`; "" goes on. `extra`
+  /// observers are called after the writers.
+  dem::RunOutcome run(std::span<dem::RunObserver* const> extra = {},
+                      const std::function<std::string()>& stop = {});
+
+  Scene scene;
+  dem::RunState state;
+  RunPaths folder;
+  /// Wall time of the run so far, earlier sittings included (s).
+  double wall_seconds() const;
+
+ private:
+  SceneRun() = default;
+  void open_writers(const std::string& text, const std::string& scene_file, const std::filesystem::path& base,
+                    bool resuming);
+
+  std::optional<RunFolderLock> lock_;
+  std::unique_ptr<FrameWriter> frames_;
+  std::unique_ptr<TraceWriter> trace_;
+  std::unique_ptr<EnergyWriter> energy_;
+  std::unique_ptr<Checkpointer> checkpoints_;
+  std::unique_ptr<RunInfoWriter> info_;
+};
+
+}  // namespace gjkdem::io

@@ -1,0 +1,160 @@
+#include "gjkdem/io/scene_run.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "gjkdem/io/checkpoint.hpp"
+
+namespace gjkdem::io {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+int resolve_threads(int requested) {
+#ifdef _OPENMP
+  if (requested <= 0) return omp_get_max_threads();
+#endif
+  return requested <= 0 ? 1 : requested;
+}
+
+Json read_run_json(const RunPaths& folder) {
+  std::string text;
+  try {
+    text = read_text_file(folder.run_json());
+  } catch (const SceneError&) {
+    throw SceneError(folder.run_json().string() + " is missing or unreadable");
+  }
+  Json j = Json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("scene_base") || !j["scene_base"].is_string())
+    throw SceneError(folder.run_json().string() + " is missing or unreadable");
+  return j;
+}
+
+}  // namespace
+
+const char* version() noexcept { return GJKDEM_VERSION; }
+
+SceneRun::~SceneRun() = default;
+
+bool SceneRun::completed(const fs::path& dir) {
+  RunPaths folder{dir};
+  std::error_code ec;
+  if (!fs::exists(folder.run_json(), ec)) return false;
+  const Json j = Json::parse(read_text_file(folder.run_json()), nullptr, false);
+  return j.is_object() && j.value("status", "") == "completed";
+}
+
+std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const SceneRunOptions& options) {
+  std::unique_ptr<SceneRun> r(new SceneRun);
+  std::string text, source;
+  fs::path base;
+  if (scene_file.empty()) {
+    text = default_scene_toml();
+    source = "(built-in default scene)";
+    base = fs::current_path();
+  } else {
+    text = read_text_file(scene_file);
+    source = scene_file;
+    base = fs::path(scene_file).parent_path();
+    if (base.empty()) base = ".";
+  }
+  r->scene = load_scene(text, source, base);
+  if (options.threads >= 0) r->scene.world.settings.threads = options.threads;
+  try {
+    r->state = dem::plan_run(r->scene.duration, r->scene.dt, r->scene.output_every);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(source + ": " + e.what());
+  }
+  r->folder.dir = options.out.empty() ? fs::path(r->scene.output_dir) : options.out;
+  fs::create_directories(r->folder.dir);
+  r->lock_.emplace(r->folder.dir);
+  prepare_run_folder(r->folder, options.overwrite || r->scene.overwrite);
+  write_file_atomically(r->folder.scene(), text);
+  r->open_writers(text, scene_file, base, false);
+  return r;
+}
+
+std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
+  std::unique_ptr<SceneRun> r(new SceneRun);
+  r->folder.dir = dir;
+  if (!fs::exists(r->folder.checkpoint()))
+    throw SceneError(dir.string() + " holds no checkpoint.bin to resume from");
+  const Json previous = read_run_json(r->folder);
+  const std::string text = read_text_file(r->folder.scene());
+  const fs::path base = previous["scene_base"].get<std::string>();
+  r->scene = load_scene(text, r->folder.scene().string(), base);
+  if (threads >= 0) r->scene.world.settings.threads = threads;
+  try {
+    r->state = dem::plan_run(r->scene.duration, r->scene.dt, r->scene.output_every);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(r->folder.scene().string() + ": " + e.what());
+  }
+  r->lock_.emplace(r->folder.dir);
+  remove_stale_temporaries(r->folder);
+  r->open_writers(text, previous.value("scene_file", ""), base, true);
+  return r;
+}
+
+void SceneRun::open_writers(const std::string& text, const std::string& scene_file, const fs::path& base,
+                            bool resuming) {
+  dem::World& world = scene.world;
+  world.settings.threads = resolve_threads(world.settings.threads);
+  const std::uint64_t fingerprint = fnv1a64(text);
+  frames_ = std::make_unique<FrameWriter>(folder.frames(), world, scene.write_frames);
+  trace_ = std::make_unique<TraceWriter>(scene.traced);
+  energy_ = std::make_unique<EnergyWriter>();
+  double wall_before = 0;
+  if (!resuming) {
+    trace_->start(folder.trace(), trace_header());
+    energy_->start(folder.energy(), energy_header());
+  } else {
+    const Checkpoint c = load_checkpoint(folder.checkpoint(), world, fingerprint);
+    if (c.run.steps_total != state.steps_total || c.run.dt != state.dt ||
+        c.run.steps_per_output != state.steps_per_output)
+      throw CheckpointError(folder.checkpoint().string() + " does not match the scene's duration and steps");
+    state = c.run;
+    frames_->frames = c.logs.frames;
+    trace_->resume(folder.trace(), c.logs.trace_bytes);
+    energy_->resume(folder.energy(), c.logs.energy_bytes);
+    wall_before = c.logs.wall_seconds;
+  }
+  checkpoints_ = std::make_unique<Checkpointer>(folder.checkpoint(), scene.checkpoint_every, fingerprint, *frames_,
+                                                *trace_, *energy_, wall_before);
+  Json info;
+  info["version"] = version();
+  info["status"] = "starting";
+  info["scene_file"] = scene_file;
+  info["scene_base"] = fs::absolute(base).string();
+  info["scene"] = Json::parse(scene.resolved_json);
+  info["bodies"] = world.bodies.size();
+  info["shape_templates"] = world.templates.size();
+  info["threads"] = world.settings.threads;
+  info["warnings"] = scene.warnings;
+  info["dt"] = scene.dt;
+  info_ = std::make_unique<RunInfoWriter>(folder.run_json(), info.dump(), *checkpoints_);
+  // After a kill, run.json tells how far the last checkpoint got.
+  checkpoints_->saved = [this](const dem::World& w, const dem::RunState& s) { info_->started(w, s); };
+}
+
+double SceneRun::wall_seconds() const { return checkpoints_->wall_seconds(); }
+
+dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop) {
+  std::vector<dem::RunObserver*> observers = {frames_.get(), trace_.get(), energy_.get(), checkpoints_.get(),
+                                              info_.get()};
+  observers.insert(observers.end(), extra.begin(), extra.end());
+  info_->started(scene.world, state);
+  const auto stop_and_say = [&] {
+    if (!stop) return false;
+    info_->stopped_by = stop();
+    return !info_->stopped_by.empty();
+  };
+  return dem::run(scene.world, state, observers, stop_and_say, scene.guards);
+}
+
+}  // namespace gjkdem::io
