@@ -10,8 +10,10 @@ cd "$(dirname "$0")"
 
 mode="${1:-run}"
 base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libtomlplusplus-dev
-           python3 python3-numpy python3-scipy)
-test_pkgs=(python3-vtk9)  # VTK's own reader checks the frames in tests/cli_run.sh
+           python3 python3-dev pybind11-dev python3-numpy python3-scipy)
+# VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
+# example plots with matplotlib.
+test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib)
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev)
 
 install_missing() {

@@ -1,0 +1,8 @@
+"""gjkdem: exact convex collision queries and a DEM engine for non-spherical grains.
+
+Shapes and queries (intersect, distance, penetration, overlap and their
+batches), worlds built with WorldBuilder or read from TOML scenes, runs with
+Python observers, zero-copy NumPy views of the bodies. docs/python.md.
+"""
+from ._core import *  # noqa: F401,F403
+from ._core import __version__  # noqa: F401

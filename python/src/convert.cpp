@@ -1,0 +1,86 @@
+#include "convert.hpp"
+
+#include <cmath>
+
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem::py_bind {
+
+void fail(const std::string& what, const std::string& message) { throw py::value_error(what + ": " + message); }
+
+namespace {
+
+std::string shape_text(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t k = 0; k < a.ndim(); ++k) s += (k ? ", " : "") + std::to_string(a.shape(k));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+py::array_t<double, py::array::c_style | py::array::forcecast> numbers(const py::handle& value, const std::string& what) {
+  if (value.is_none()) fail(what, "expected numbers, got None");
+  try {
+    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  fail(what, "expected numbers");
+}
+
+std::vector<double> fixed_numbers(const py::handle& value, py::ssize_t count, const std::string& what) {
+  const auto a = numbers(value, what);
+  if (!a) fail(what, "expected " + std::to_string(count) + " numbers");
+  if (a.ndim() != 1 || a.shape(0) != count)
+    fail(what, "expected " + std::to_string(count) + " numbers, got an array of shape " + shape_text(a));
+  std::vector<double> out(a.data(), a.data() + count);
+  for (double x : out)
+    if (!std::isfinite(x)) fail(what, "NaN or infinite number");
+  return out;
+}
+
+Quat unit_quat(double w, double x, double y, double z, const std::string& what) {
+  const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+  if (!(std::fabs(norm - 1) <= kUnitQuaternionTol))
+    fail(what, "quaternion [w, x, y, z] must be unit (norm " + std::to_string(norm) + ")");
+  return {w / norm, x / norm, y / norm, z / norm};
+}
+
+}  // namespace
+
+Vec3 to_vec3(const py::handle& value, const std::string& what) {
+  const std::vector<double> v = fixed_numbers(value, 3, what);
+  return {v[0], v[1], v[2]};
+}
+
+Quat to_quat(const py::handle& value, const std::string& what) {
+  const std::vector<double> q = fixed_numbers(value, 4, what);
+  return unit_quat(q[0], q[1], q[2], q[3], what);
+}
+
+Transform pose_from_row(const double* r, const std::string& what) {
+  for (int k = 0; k < 7; ++k)
+    if (!std::isfinite(r[k])) fail(what, "NaN or infinite number");
+  return Transform::from({r[0], r[1], r[2]}, unit_quat(r[3], r[4], r[5], r[6], what));
+}
+
+Transform to_pose(const py::handle& value, const std::string& what) {
+  if (value.is_none()) return Transform::identity();
+  const std::vector<double> p = fixed_numbers(value, 7, what + " [x, y, z, qw, qx, qy, qz]");
+  return pose_from_row(p.data(), what);
+}
+
+py::array_t<double, py::array::c_style | py::array::forcecast> to_matrix(const py::handle& value, py::ssize_t cols,
+                                                                          const std::string& what) {
+  auto a = numbers(value, what);
+  if (!a) fail(what, "expected an array of shape (N, " + std::to_string(cols) + ")");
+  if (a.ndim() != 2 || a.shape(1) != cols)
+    fail(what, "expected an array of shape (N, " + std::to_string(cols) + "), got " + shape_text(a));
+  return a;
+}
+
+py::array_t<double> from_vec3(const Vec3& v) {
+  py::array_t<double> a(3);
+  double* p = a.mutable_data();
+  p[0] = v.x, p[1] = v.y, p[2] = v.z;
+  return a;
+}
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,44 @@
+#pragma once
+// Python values in and out: the checks every binding makes on what it is
+// given (shapes of arrays, finite numbers, unit quaternions), with the
+// messages the user sees as ValueError. Nothing here holds state.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "gjkdem/math/transform.hpp"
+#include "gjkdem/shape/shape.hpp"
+
+namespace gjkdem::py_bind {
+
+namespace py = pybind11;
+
+/// A shape as Python holds it: the core in a frame centred on it, placed in
+/// the frame the user gave it in (so a polytope keeps its coordinates).
+struct PyShape {
+  Shape shape;
+  Transform offset;  ///< shape frame -> the user's frame
+  std::string type;
+};
+
+/// Raises ValueError("what: message").
+[[noreturn]] void fail(const std::string& what, const std::string& message);
+
+/// Three finite numbers.
+Vec3 to_vec3(const py::handle& value, const std::string& what);
+/// A unit quaternion [w, x, y, z] (to kUnitQuaternionTol), normalized.
+Quat to_quat(const py::handle& value, const std::string& what);
+/// None (identity) or 7 finite numbers [x, y, z, qw, qx, qy, qz] with a unit quaternion.
+Transform to_pose(const py::handle& value, const std::string& what);
+/// A pose from a row of 7 numbers (checked as to_pose).
+Transform pose_from_row(const double* row, const std::string& what);
+
+/// An (N, cols) C-ordered float64 array (a copy only when the input is not one).
+py::array_t<double, py::array::c_style | py::array::forcecast> to_matrix(const py::handle& value, py::ssize_t cols,
+                                                                          const std::string& what);
+
+py::array_t<double> from_vec3(const Vec3& v);
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,63 @@
+#include "py_run.hpp"
+
+#include <vector>
+
+namespace gjkdem::py_bind {
+
+void PyObserver::on_output(const dem::World&, const dem::RunState& state) {
+  if (callback_.is_none() || error_ || !stop_.empty()) return;
+  py::gil_scoped_acquire gil;
+  try {
+    const py::object answer = callback_(world_, state);
+    if (py::isinstance<py::bool_>(answer) && !answer.cast<bool>()) stop_ = "observer";
+  } catch (py::error_already_set& e) {
+    error_.emplace(std::move(e));
+    stop_ = "observer error";
+  }
+}
+
+void PyObserver::on_warning(const dem::World&, const dem::RunState&, const std::string& message) {
+  py::gil_scoped_acquire gil;
+  try {
+    py::module_::import("warnings").attr("warn")("gjkdem: " + message, py::handle(PyExc_RuntimeWarning));
+  } catch (py::error_already_set& e) {  // warnings turned into errors
+    if (!error_) error_.emplace(std::move(e));
+    stop_ = "warning";
+  }
+}
+
+std::string PyObserver::stop_reason() {
+  if (stop_.empty() && ++polls_ % 256 == 0) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      error_.emplace();  // takes the KeyboardInterrupt
+      stop_ = "KeyboardInterrupt";
+    }
+  }
+  return stop_;
+}
+
+void PyObserver::raise_if_failed() {
+  if (error_) {
+    error_->restore();
+    error_.reset();
+    throw py::error_already_set();
+  }
+}
+
+std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> extra,
+                     const std::function<dem::RunOutcome(std::span<dem::RunObserver* const>,
+                                                         const std::function<std::string()>&)>& loop) {
+  std::vector<dem::RunObserver*> observers(extra.begin(), extra.end());
+  observers.push_back(&observer);
+  dem::RunOutcome outcome;
+  {
+    py::gil_scoped_release release;
+    outcome = loop(observers, [&] { return observer.stop_reason(); });
+  }
+  observer.raise_if_failed();
+  if (outcome.status == dem::RunStatus::Failed) throw RunError(outcome.error);
+  return outcome.status == dem::RunStatus::Completed ? "completed" : "stopped";
+}
+
+}  // namespace gjkdem::py_bind

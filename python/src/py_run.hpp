@@ -1,0 +1,46 @@
+#pragma once
+// Running a world from Python: the run loop goes on with the GIL released;
+// observers, warnings and Ctrl-C come back to Python between steps.
+#include <functional>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "convert.hpp"
+#include "gjkdem/dem/run.hpp"
+
+namespace gjkdem::py_bind {
+
+/// A run or step that failed (guards, a pair without a computation):
+/// gjkdem.RunError, a RuntimeError.
+struct RunError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Calls a Python callable observer(world, state) at each output; a False
+/// return or a Python exception (kept, raised again after the run) stops it.
+class PyObserver : public dem::RunObserver {
+ public:
+  PyObserver(py::object world, py::object callback) : world_(std::move(world)), callback_(std::move(callback)) {}
+  void on_output(const dem::World&, const dem::RunState& state) override;
+  void on_warning(const dem::World&, const dem::RunState&, const std::string& message) override;
+  /// Asked between steps: an observer's stop, or Ctrl-C (checked every 256 steps).
+  std::string stop_reason();
+  /// Raises the observer's or the interrupt's Python exception, if any.
+  void raise_if_failed();
+
+ private:
+  py::object world_, callback_;
+  std::optional<py::error_already_set> error_;
+  std::string stop_;
+  unsigned polls_ = 0;
+};
+
+/// Runs `loop(observers, stop)` with the GIL released and maps the outcome:
+/// "completed" or "stopped", RunError on failure, the observer's exception.
+std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> extra,
+                     const std::function<dem::RunOutcome(std::span<dem::RunObserver* const>,
+                                                         const std::function<std::string()>&)>& loop);
+
+}  // namespace gjkdem::py_bind

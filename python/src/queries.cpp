@@ -1,0 +1,306 @@
+// Queries between two placed shapes, one pair at a time or in batches (an
+// (N, 7) array of poses per side, or lists of shapes) computed with the GIL
+// released and spread over threads. Poses are [x, y, z, qw, qx, qy, qz]:
+// position and unit quaternion of the shape's frame in the world.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "bindings.hpp"
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/contact/overlap.hpp"
+
+namespace gjkdem::py_bind {
+namespace {
+
+const char* gjk_status_name(GjkStatus s) {
+  switch (s) {
+    case GjkStatus::Separated: return "separated";
+    case GjkStatus::Intersecting: return "intersecting";
+    case GjkStatus::MaxIterations: return "max_iterations";
+  }
+  return "?";
+}
+
+const char* overlap_status_name(OverlapStatus s) {
+  switch (s) {
+    case OverlapStatus::Empty: return "empty";
+    case OverlapStatus::Overlapping: return "overlapping";
+    case OverlapStatus::Unsupported: return "unsupported";
+  }
+  return "?";
+}
+
+Transform placed(const PyShape& s, const Transform& pose) { return compose(pose, s.offset); }
+
+// One side of a batch: a shape for every pair, and their poses.
+struct Side {
+  std::vector<const PyShape*> shapes;  // one, or one per pair
+  std::vector<Transform> poses;        // empty (identity), or one per pair
+  const PyShape& shape(std::size_t k) const { return *shapes[shapes.size() == 1 ? 0 : k]; }
+  Transform pose(std::size_t k) const { return placed(shape(k), poses.empty() ? Transform{} : poses[k]); }
+};
+
+Side read_side(const py::handle& shapes, const py::handle& poses, const std::string& name) {
+  Side s;
+  if (py::isinstance<PyShape>(shapes)) {
+    s.shapes.push_back(&shapes.cast<const PyShape&>());
+  } else {
+    if (!py::isinstance<py::sequence>(shapes) || py::isinstance<py::str>(shapes))
+      fail(name, "expected a gjkdem.Shape or a list of them");
+    for (const auto& item : shapes.cast<py::sequence>()) {
+      if (!py::isinstance<PyShape>(item)) fail(name, "expected a gjkdem.Shape or a list of them");
+      s.shapes.push_back(&item.cast<const PyShape&>());
+    }
+    if (s.shapes.empty()) fail(name, "the list of shapes is empty");
+  }
+  if (!poses.is_none()) {
+    const std::string what = "poses_" + name.substr(name.size() - 1);
+    const auto rows = to_matrix(poses, 7, what);
+    s.poses.reserve(static_cast<std::size_t>(rows.shape(0)));
+    for (py::ssize_t k = 0; k < rows.shape(0); ++k)
+      s.poses.push_back(pose_from_row(rows.data(k, 0), what + "[" + std::to_string(k) + "]"));
+  }
+  return s;
+}
+
+// The number of pairs both sides agree on.
+std::size_t pair_count(const Side& a, const Side& b) {
+  std::size_t n = 1;
+  bool known = false;
+  for (const std::size_t count : {a.shapes.size() > 1 ? a.shapes.size() : 0, a.poses.size(),
+                                  b.shapes.size() > 1 ? b.shapes.size() : 0, b.poses.size()}) {
+    if (count == 0) continue;
+    if (known && count != n)
+      throw py::value_error("batch: the shape lists and pose arrays must have one entry per pair (got " +
+                            std::to_string(n) + " and " + std::to_string(count) + ")");
+    n = count, known = true;
+  }
+  if (!known) throw py::value_error("batch: give poses as (N, 7) arrays or shapes as lists to say how many pairs");
+  return n;
+}
+
+int thread_count(int requested) {
+  if (requested < 0) throw py::value_error("threads: must be >= 0 (0: every core)");
+#ifdef _OPENMP
+  return requested == 0 ? omp_get_max_threads() : requested;
+#else
+  return 1;
+#endif
+}
+
+// Row k of an (N, 3) array, by its raw pointer (written with the GIL released).
+void put(double* rows, std::size_t k, const Vec3& v) {
+  double* p = rows + 3 * k;
+  p[0] = v.x, p[1] = v.y, p[2] = v.z;
+}
+
+// What a batch is given, checked with the GIL held.
+struct Batch {
+  Side a, b;
+  std::size_t n;
+  int threads;
+
+  Batch(const py::handle& shapes_a, const py::handle& shapes_b, const py::handle& poses_a, const py::handle& poses_b,
+        int requested_threads)
+      : a(read_side(shapes_a, poses_a, "a")), b(read_side(shapes_b, poses_b, "b")), n(pair_count(a, b)),
+        threads(thread_count(requested_threads)) {}
+
+  // Runs `one(k, workspace)` for every pair with the GIL released.
+  template <class F>
+  void for_each(F&& one) const {
+    py::gil_scoped_release release;
+    const int t = std::max(1, std::min<int>(threads, static_cast<int>(n / 16 + 1)));
+    std::vector<OverlapWorkspace> work(static_cast<std::size_t>(t));
+#pragma omp parallel for num_threads(t) schedule(dynamic, 16)
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
+#ifdef _OPENMP
+      OverlapWorkspace& w = work[static_cast<std::size_t>(omp_get_thread_num())];
+#else
+      OverlapWorkspace& w = work[0];
+#endif
+      one(static_cast<std::size_t>(k), w);
+    }
+  }
+};
+
+// The arrays a batch returns, made before the GIL is released: each call
+// adds one under its name and gives its memory.
+struct Columns {
+  py::ssize_t n;
+  py::dict arrays;
+
+  explicit Columns(std::size_t count) : n(static_cast<py::ssize_t>(count)) {}
+  bool* flags(const char* name) { return add(py::array_t<bool>(n), name); }
+  double* numbers(const char* name) { return add(py::array_t<double>(n), name); }
+  double* rows(const char* name) { return add(py::array_t<double>({n, py::ssize_t{3}}), name); }
+
+ private:
+  template <class T>
+  T* add(py::array_t<T> a, const char* name) {
+    arrays[name] = a;
+    return a.mutable_data();
+  }
+};
+
+}  // namespace
+
+void bind_queries(py::module_& m) {
+  py::class_<DistanceResult>(m, "Distance", "distance(): separation and closest points (world frame).")
+      .def_readonly("intersect", &DistanceResult::intersect)
+      .def_readonly("distance", &DistanceResult::distance)
+      .def_property_readonly("witness_a", [](const DistanceResult& r) { return from_vec3(r.witness_a); })
+      .def_property_readonly("witness_b", [](const DistanceResult& r) { return from_vec3(r.witness_b); })
+      .def_property_readonly("normal", [](const DistanceResult& r) { return from_vec3(r.normal); },
+                             "Unit, A -> B; zero when intersecting.")
+      .def_property_readonly("status", [](const DistanceResult& r) { return gjk_status_name(r.status); })
+      .def_readonly("iterations", &DistanceResult::iterations)
+      .def("__repr__", [](const DistanceResult& r) {
+        return "<gjkdem.Distance intersect=" + std::string(r.intersect ? "True" : "False") +
+               " distance=" + std::to_string(r.distance) + ">";
+      });
+  py::class_<PenetrationResult>(m, "Penetration",
+                                "penetration(): distance when apart, depth and normal (EPA) when intersecting.")
+      .def_readonly("intersect", &PenetrationResult::intersect)
+      .def_readonly("distance", &PenetrationResult::distance)
+      .def_readonly("depth", &PenetrationResult::depth)
+      .def_property_readonly("witness_a", [](const PenetrationResult& r) { return from_vec3(r.witness_a); })
+      .def_property_readonly("witness_b", [](const PenetrationResult& r) { return from_vec3(r.witness_b); })
+      .def_property_readonly("normal", [](const PenetrationResult& r) { return from_vec3(r.normal); },
+                             "Unit, A -> B.")
+      .def_readonly("iterations", &PenetrationResult::iterations)
+      .def("__repr__", [](const PenetrationResult& r) {
+        return "<gjkdem.Penetration intersect=" + std::string(r.intersect ? "True" : "False") +
+               " distance=" + std::to_string(r.distance) + " depth=" + std::to_string(r.depth) + ">";
+      });
+  py::class_<OverlapResult>(m, "Overlap", "overlap(): the region the two shapes share (the volume contact model).")
+      .def_property_readonly("status", [](const OverlapResult& r) { return overlap_status_name(r.status); })
+      .def_readonly("volume", &OverlapResult::volume)
+      .def_property_readonly("centroid",
+                             [](const OverlapResult& r) -> py::object {
+                               if (r.status != OverlapStatus::Overlapping) return py::none();
+                               return from_vec3(r.centroid);
+                             })
+      .def_property_readonly("contact_normal",
+                             [](const OverlapResult& r) -> py::object {
+                               if (!r.has_normal) return py::none();
+                               return from_vec3(r.contact_normal);
+                             })
+      .def_readonly("contact_area", &OverlapResult::contact_area)
+      .def_property_readonly("area_a", [](const OverlapResult& r) { return from_vec3(r.area_a); })
+      .def_property_readonly("area_b", [](const OverlapResult& r) { return from_vec3(r.area_b); })
+      .def("__repr__", [](const OverlapResult& r) {
+        return "<gjkdem.Overlap " + std::string(overlap_status_name(r.status)) + " volume=" +
+               std::to_string(r.volume) + ">";
+      });
+
+  const char* pose_doc = "Poses are None (the shape as given) or [x, y, z, qw, qx, qy, qz].";
+  m.def(
+      "intersect",
+      [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
+        const Transform ta = placed(a, to_pose(pa, "pose_a")), tb = placed(b, to_pose(pb, "pose_b"));
+        return intersect(a.shape, ta, b.shape, tb);
+      },
+      py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
+  m.def(
+      "distance",
+      [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
+        return distance(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")));
+      },
+      py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
+  m.def(
+      "penetration",
+      [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
+        return penetration(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")));
+      },
+      py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
+  m.def(
+      "overlap",
+      [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
+        OverlapWorkspace work;
+        return overlap(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")), work);
+      },
+      py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
+
+  // Batches: a and b one shape or N, poses None or (N, 7), a dict of arrays back.
+  const auto def_batch = [&m](const char* name, auto batch, const char* doc) {
+    m.def(name, batch, py::arg("a"), py::arg("b"), py::arg("poses_a") = py::none(), py::arg("poses_b") = py::none(),
+          py::arg("threads") = 0, doc);
+  };
+  const char* batch_doc =
+      "Batched query: a and b are a Shape or a list of N shapes; poses_a and poses_b None or (N, 7) arrays.\n"
+      "Returns a dict of arrays, row k for pair k. threads = 0 uses every core.";
+  def_batch(
+      "intersect_batch",
+      [](const py::object& a, const py::object& b, const py::object& pa, const py::object& pb, int threads) {
+        const Batch in(a, b, pa, pb, threads);
+        Columns out(in.n);
+        bool* hit = out.flags("intersect");
+        in.for_each([&](std::size_t k, OverlapWorkspace&) {
+          hit[k] = intersect(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+        });
+        return out.arrays;
+      },
+      batch_doc);
+  def_batch(
+      "distance_batch",
+      [](const py::object& a, const py::object& b, const py::object& pa, const py::object& pb, int threads) {
+        const Batch in(a, b, pa, pb, threads);
+        Columns out(in.n);
+        bool* hit = out.flags("intersect");
+        double* dist = out.numbers("distance");
+        double *wa = out.rows("witness_a"), *wb = out.rows("witness_b"), *normal = out.rows("normal");
+        in.for_each([&](std::size_t k, OverlapWorkspace&) {
+          const DistanceResult r = distance(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+          hit[k] = r.intersect, dist[k] = r.distance;
+          put(wa, k, r.witness_a), put(wb, k, r.witness_b), put(normal, k, r.normal);
+        });
+        return out.arrays;
+      },
+      batch_doc);
+  def_batch(
+      "penetration_batch",
+      [](const py::object& a, const py::object& b, const py::object& pa, const py::object& pb, int threads) {
+        const Batch in(a, b, pa, pb, threads);
+        Columns out(in.n);
+        bool* hit = out.flags("intersect");
+        double *dist = out.numbers("distance"), *depth = out.numbers("depth");
+        double *wa = out.rows("witness_a"), *wb = out.rows("witness_b"), *normal = out.rows("normal");
+        in.for_each([&](std::size_t k, OverlapWorkspace&) {
+          const PenetrationResult r =
+              penetration(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+          hit[k] = r.intersect, dist[k] = r.distance, depth[k] = r.depth;
+          put(wa, k, r.witness_a), put(wb, k, r.witness_b), put(normal, k, r.normal);
+        });
+        return out.arrays;
+      },
+      batch_doc);
+  def_batch(
+      "overlap_batch",
+      [](const py::object& a, const py::object& b, const py::object& pa, const py::object& pb, int threads) {
+        const Batch in(a, b, pa, pb, threads);
+        Columns out(in.n);
+        double *volume = out.numbers("volume"), *centroid = out.rows("centroid");
+        double *normal = out.rows("contact_normal"), *area = out.numbers("contact_area");
+        std::atomic<bool> unsupported = false;
+        in.for_each([&](std::size_t k, OverlapWorkspace& w) {
+          const OverlapResult r = overlap(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k), w);
+          if (r.status == OverlapStatus::Unsupported) unsupported = true;
+          volume[k] = r.volume, area[k] = r.contact_area;
+          put(centroid, k, r.status == OverlapStatus::Overlapping ? r.centroid : Vec3{NAN, NAN, NAN});
+          put(normal, k, r.has_normal ? r.contact_normal : Vec3{NAN, NAN, NAN});
+        });
+        if (unsupported)
+          throw py::value_error("overlap_batch: a pair has no exact overlap computation (polytopes, boxes, "
+                                "triangles; tessellate curved shapes first)");
+        return out.arrays;
+      },
+      "Batched overlap; centroid and contact_normal rows are NaN where there is none. See intersect_batch.");
+}
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,80 @@
+// TOML scenes from Python: read one into a World, or run one into a run
+// folder exactly as `gjkdem run` does (io::SceneRun: the same files, the
+// same bytes), with Python observers beside the writers.
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "bindings.hpp"
+#include "gjkdem/io/scene.hpp"
+#include "gjkdem/io/scene_run.hpp"
+#include "py_run.hpp"
+
+namespace gjkdem::py_bind {
+
+void bind_scenes(py::module_& m) {
+  py::class_<io::Scene>(m, "Scene", "A scene read from TOML (docs/scenes.md): its world and its run settings.")
+      .def_property_readonly(
+          "world", [](io::Scene& s) -> dem::World& { return s.world; }, py::return_value_policy::reference_internal)
+      .def_readonly("duration", &io::Scene::duration)
+      .def_readonly("dt", &io::Scene::dt)
+      .def_readonly("output_every", &io::Scene::output_every)
+      .def_readonly("output_dir", &io::Scene::output_dir)
+      .def_readonly("warnings", &io::Scene::warnings)
+      .def_property_readonly(
+          "resolved", [](const io::Scene& s) { return py::module_::import("json").attr("loads")(s.resolved_json); },
+          "The scene with every default filled in (a dict).");
+  m.def(
+      "load_scene",
+      [](const std::string& path) { return io::load_scene_file(path); }, py::arg("path"),
+      "Reads a TOML scene file (SceneError, a ValueError, names the line at fault).");
+  m.def(
+      "load_scene_text",
+      [](const std::string& text, const std::string& base_dir) { return io::load_scene(text, "(scene text)", base_dir); },
+      py::arg("text"), py::arg("base_dir") = ".", "Reads a scene from TOML text; mesh files are found from base_dir.");
+  m.def("default_scene_text", [] { return std::string(io::default_scene_toml()); },
+        "The TOML of the built-in default scene.");
+
+  py::class_<io::SceneRun, std::unique_ptr<io::SceneRun>>(
+      m, "SceneRun",
+      "A scene run into its folder as `gjkdem run` does: frames, trace.csv, energy.csv, checkpoints, run.json.\n"
+      "SceneRun(scene=None, out=None, overwrite=False, threads=-1): a new run (scene None: the default scene;\n"
+      "out None: the scene's output.directory). SceneRun.resume(folder): takes a run up from its checkpoint.")
+      .def(py::init([](const std::optional<std::string>& scene, const std::optional<std::string>& out, bool overwrite,
+                       int threads) {
+             return io::SceneRun::start(scene.value_or(""),
+                                        {.out = out.value_or(""), .overwrite = overwrite, .threads = threads});
+           }),
+           py::arg("scene") = py::none(), py::arg("out") = py::none(), py::arg("overwrite") = false,
+           py::arg("threads") = -1)
+      .def_static(
+          "resume", [](const std::string& folder, int threads) { return io::SceneRun::resume(folder, threads); },
+          py::arg("folder"), py::arg("threads") = -1)
+      .def_static(
+          "completed", [](const std::string& folder) { return io::SceneRun::completed(folder); }, py::arg("folder"),
+          "True when the run in `folder` completed.")
+      .def_property_readonly(
+          "world", [](io::SceneRun& r) -> dem::World& { return r.scene.world; },
+          py::return_value_policy::reference_internal)
+      .def_property_readonly("scene", [](io::SceneRun& r) -> io::Scene& { return r.scene; },
+                             py::return_value_policy::reference_internal)
+      .def_property_readonly("state", [](const io::SceneRun& r) { return r.state; })
+      .def_property_readonly("folder", [](const io::SceneRun& r) { return r.folder.dir.string(); })
+      .def(
+          "run",
+          [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after) {
+            io::SceneRun& r = self.cast<io::SceneRun&>();
+            PyObserver o(self.attr("world"), observer);
+            return run_with(o, {}, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+              return r.run(obs, [&]() -> std::string {
+                if (stop_after && r.state.step >= *stop_after) return "stop_after";
+                return stop();
+              });
+            });
+          },
+          py::arg("observer") = py::none(), py::arg("stop_after") = py::none(),
+          "Runs to the end (or until step stop_after), calling observer(world, state) at each output.\n"
+          "Returns \"completed\" or \"stopped\" (resume with SceneRun.resume(folder)).");
+}
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,100 @@
+// gjkdem.Shape: made from the fields of the pair-query format
+// (../shared/spec/query-format.md), read by the same reader as `gjkdem
+// query`, so a shape means the same and is refused with the same message.
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "bindings.hpp"
+#include "gjkdem/io/query_jsonl.hpp"
+#include "gjkdem/shape/mass_properties.hpp"
+
+namespace gjkdem::py_bind {
+namespace {
+
+using Json = nlohmann::json;
+
+// Python numbers, strings, sequences, arrays and dicts as JSON.
+Json to_json(const py::handle& v, const std::string& what) {
+  if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
+  if (py::isinstance<py::int_>(v)) return v.cast<long long>();
+  if (py::isinstance<py::float_>(v) || py::isinstance(v, py::module_::import("numpy").attr("floating"))) {
+    const double x = v.cast<double>();
+    if (!std::isfinite(x)) fail(what, "NaN or infinite number");
+    return x;
+  }
+  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (py::isinstance<py::dict>(v)) {
+    Json o = Json::object();
+    for (const auto& [key, value] : v.cast<py::dict>()) {
+      const std::string k = py::str(key);
+      o[k] = to_json(value, k);
+    }
+    return o;
+  }
+  if (py::isinstance<py::array>(v)) return to_json(v.attr("tolist")(), what);
+  if (py::isinstance<py::sequence>(v)) {
+    Json a = Json::array();
+    for (const auto& item : v.cast<py::sequence>()) a.push_back(to_json(item, what));
+    return a;
+  }
+  fail(what, std::string("cannot be a ") + py::str(v.get_type().attr("__name__")).cast<std::string>());
+}
+
+PyShape make_shape(const Json& fields) {
+  try {
+    const io::PlacedInput placed = io::parse_shape(fields.dump());
+    return {placed.shape, placed.pose, fields.value("type", "")};
+  } catch (const io::QueryFormatError& e) {
+    throw py::value_error(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+}  // namespace
+
+void bind_shapes(py::module_& m) {
+  py::class_<PyShape>(m, "Shape", R"(A convex shape: a core and a margin (its Minkowski sum with a ball).
+
+Shape(type, **fields) takes the fields of the pair-query format
+(docs: ../shared/spec/query-format.md), in the shape's own frame:
+    Shape("sphere", radius=0.5)
+    Shape("box", half_extents=[1, 2, 3], margin=0.1)
+    Shape("polytope", vertices=points)           # an (N, 3) array
+    Shape("cylinder", radius=1, half_height=2)   # axis along z
+Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)")
+      .def(py::init([](const std::string& type, const py::kwargs& fields) {
+             Json j = to_json(fields, "shape");
+             j["type"] = type;
+             const bool placed = type == "polytope" || type == "triangle" || type == "capsule";
+             if (!placed && !j.contains("center")) j["center"] = {0.0, 0.0, 0.0};
+             return make_shape(j);
+           }),
+           py::arg("type"))
+      .def_static(
+          "from_json",
+          [](const py::object& value) {
+            if (py::isinstance<py::str>(value)) {
+              const Json j = Json::parse(value.cast<std::string>(), nullptr, false);
+              if (j.is_discarded()) throw py::value_error("shape is not valid JSON");
+              return make_shape(j);
+            }
+            return make_shape(to_json(value, "shape"));
+          },
+          py::arg("shape"))
+      .def_property_readonly("type", [](const PyShape& s) { return s.type; })
+      .def_property_readonly("margin", [](const PyShape& s) { return s.shape.margin; })
+      .def_property_readonly("volume", [](const PyShape& s) { return mass_properties(s.shape).volume; },
+                             "Volume (flat shapes: 0).")
+      .def_property_readonly(
+          "centroid",
+          [](const PyShape& s) { return from_vec3(apply(s.offset, mass_properties(s.shape).centroid)); },
+          "Centre of volume, in the shape's frame.")
+      .def_property_readonly(
+          "bounding_radius", [](const PyShape& s) { return bounding_radius(s.shape) + length(s.offset.translation); },
+          "Radius of a ball about the frame's origin that holds the shape.")
+      .def("__repr__", [](const PyShape& s) { return "<gjkdem.Shape " + s.type + ">"; });
+}
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,388 @@
+// Worlds from Python: settings, the builder, stepping and running with
+// Python observers, zero-copy NumPy views of the bodies, the contacts of the
+// last step, energies and checkpoints.
+//
+// Views alias World::bodies (an array of plain Body structs): each is an
+// (N, 3) or (N, 4) float64 array with a row stride of sizeof(Body) that keeps
+// the World alive. Positions, orientations, forces and torques are read-only
+// (set_positions / set_orientations check what they are given); velocities
+// and angular momenta may be written in place.
+#include <cstddef>
+#include <optional>
+
+#include "bindings.hpp"
+#include "gjkdem/dem/run.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/io/checkpoint.hpp"
+#include "py_run.hpp"
+
+namespace gjkdem::py_bind {
+namespace {
+
+using dem::Body;
+using dem::World;
+
+const char* model_name(dem::ContactModel m) {
+  switch (m) {
+    case dem::ContactModel::Hertz: return "hertz";
+    case dem::ContactModel::Linear: return "linear";
+    case dem::ContactModel::Volume: return "volume";
+  }
+  return "?";
+}
+
+dem::ContactModel model_from(const std::string& name) {
+  if (name == "hertz") return dem::ContactModel::Hertz;
+  if (name == "linear") return dem::ContactModel::Linear;
+  if (name == "volume") return dem::ContactModel::Volume;
+  fail("model", "must be \"volume\", \"hertz\" or \"linear\", not \"" + name + "\"");
+}
+
+// A view of one field of every body: rows of `cols` values of T, `offset`
+// bytes into each Body.
+template <class T>
+py::array body_view(World& w, const py::handle& owner, std::size_t offset, py::ssize_t cols, bool writeable) {
+  const auto n = static_cast<py::ssize_t>(w.bodies.size());
+  void* first = n ? reinterpret_cast<char*>(w.bodies.data()) + offset : nullptr;
+  std::vector<py::ssize_t> shape{n}, strides{static_cast<py::ssize_t>(sizeof(Body))};
+  if (cols > 0) shape.push_back(cols), strides.push_back(sizeof(T));
+  py::array a(py::dtype::of<T>(), shape, strides, first, owner);
+  if (!writeable) py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// Which bodies a setter changes: None (all) or an array of indices.
+std::vector<std::size_t> body_indices(const World& w, const py::object& indices, py::ssize_t rows) {
+  std::vector<std::size_t> out;
+  if (indices.is_none()) {
+    if (static_cast<std::size_t>(rows) != w.bodies.size())
+      fail("values", "expected one row per body (" + std::to_string(w.bodies.size()) + "), got " +
+                         std::to_string(rows) + "; pass indices= to set some");
+    for (std::size_t k = 0; k < w.bodies.size(); ++k) out.push_back(k);
+    return out;
+  }
+  const auto idx = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(indices);
+  if (!idx || idx.ndim() != 1) fail("indices", "expected a 1-D array of body indices");
+  if (idx.shape(0) != rows) fail("indices", "expected one index per row of values");
+  for (py::ssize_t k = 0; k < rows; ++k) {
+    const std::int64_t i = idx.data()[k];
+    if (i < 0 || static_cast<std::size_t>(i) >= w.bodies.size())
+      fail("indices", "body index " + std::to_string(i) + " out of range [0, " + std::to_string(w.bodies.size()) +
+                          ")");
+    out.push_back(static_cast<std::size_t>(i));
+  }
+  return out;
+}
+
+std::uint32_t material_index(const dem::WorldBuilder& b, const py::object& material) {
+  if (py::isinstance<py::str>(material)) {
+    const std::string name = material.cast<std::string>();
+    const std::optional<std::uint32_t> m = b.find_material(name);
+    if (!m) fail("material", "no material is named '" + name + "'");
+    return *m;
+  }
+  if (!py::isinstance<py::int_>(material)) fail("material", "expected a material's name or index");
+  const long long m = material.cast<long long>();
+  if (m < 0 || m > 0xffffffffLL) fail("material", "index " + std::to_string(m) + " out of range");
+  return static_cast<std::uint32_t>(m);
+}
+
+// A read-only or writable view property of the World class.
+template <class T>
+void def_view(py::class_<World>& c, const char* name, std::size_t offset, py::ssize_t cols, bool writeable,
+              const char* doc) {
+  c.def_property_readonly(
+      name, [=](py::object self) { return body_view<T>(self.cast<World&>(), self, offset, cols, writeable); }, doc);
+}
+
+py::dict contacts_of(const World& w) {
+  std::size_t n = 0;
+  for (const dem::StepContact& c : w.work.contacts) n += c.active;
+  py::array_t<std::uint64_t> ids({static_cast<py::ssize_t>(n), py::ssize_t{2}});
+  py::array_t<double> points({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  py::array_t<double> normals({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  py::array_t<double> forces({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  py::array_t<double> depth(static_cast<py::ssize_t>(n)), volume(static_cast<py::ssize_t>(n));
+  std::uint64_t* id = ids.mutable_data();
+  double *p = points.mutable_data(), *nn = normals.mutable_data(), *f = forces.mutable_data();
+  double *d = depth.mutable_data(), *v = volume.mutable_data();
+  std::size_t k = 0;
+  for (const dem::StepContact& c : w.work.contacts) {
+    if (!c.active) continue;
+    id[2 * k] = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
+    id[2 * k + 1] = w.bodies[c.b].id;
+    const Vec3 rows[3] = {c.geometry.point, c.geometry.normal, c.force};
+    double* outs[3] = {p, nn, f};
+    for (int r = 0; r < 3; ++r) outs[r][3 * k] = rows[r].x, outs[r][3 * k + 1] = rows[r].y, outs[r][3 * k + 2] = rows[r].z;
+    d[k] = c.geometry.depth, v[k] = c.geometry.volume;
+    ++k;
+  }
+  py::dict out;
+  out["ids"] = ids, out["points"] = points, out["normals"] = normals, out["forces"] = forces;
+  out["depth"] = depth, out["overlap_volume"] = volume;
+  return out;
+}
+
+}  // namespace
+
+void bind_world(py::module_& m) {
+  py::class_<dem::WorldSettings>(m, "Settings", "The settings of a world (docs/scenes.md, [contact] and [simulation]).")
+      .def(py::init<>())
+      .def_property(
+          "model", [](const dem::WorldSettings& s) { return model_name(s.model); },
+          [](dem::WorldSettings& s, const std::string& v) { s.model = model_from(v); },
+          "\"volume\" (default), \"hertz\" or \"linear\"")
+      .def_property(
+          "gravity", [](const dem::WorldSettings& s) { return from_vec3(s.gravity); },
+          [](dem::WorldSettings& s, const py::object& v) { s.gravity = to_vec3(v, "gravity"); }, "m/s^2")
+      .def_readwrite("linear_stiffness", &dem::WorldSettings::linear_stiffness, "N/m; 0: from the materials")
+      .def_readwrite("volume_stiffness", &dem::WorldSettings::volume_stiffness, "N/m^3; 0: from the materials")
+      .def_property(
+          "volume_form",
+          [](const dem::WorldSettings& s) {
+            return s.volume_form == dem::VolumeForm::Potential ? "potential" : "normalized";
+          },
+          [](dem::WorldSettings& s, const std::string& v) {
+            if (v != "normalized" && v != "potential") fail("volume_form", "must be \"normalized\" or \"potential\"");
+            s.volume_form = v == "potential" ? dem::VolumeForm::Potential : dem::VolumeForm::Normalized;
+          })
+      .def_readwrite("rocking_resistance", &dem::WorldSettings::rocking_resistance)
+      .def_readwrite("tessellation", &dem::WorldSettings::tessellation)
+      .def_readwrite("box_skin", &dem::WorldSettings::box_skin)
+      .def_readwrite("threads", &dem::WorldSettings::threads, "OpenMP threads of a step (0: every core)");
+
+  py::class_<dem::RunState>(m, "RunState", "Where a run stands (seen by observers).")
+      .def_readonly("dt", &dem::RunState::dt)
+      .def_readonly("steps_total", &dem::RunState::steps_total)
+      .def_readonly("steps_per_output", &dem::RunState::steps_per_output)
+      .def_readonly("step", &dem::RunState::step)
+      .def_readonly("outputs", &dem::RunState::outputs)
+      .def_readonly("initial_energy", &dem::RunState::initial_energy);
+
+  py::class_<dem::WorldBuilder>(m, "WorldBuilder", "Makes a World: materials, bodies, walls, generated regions.")
+      .def(py::init<const dem::WorldSettings&>(), py::arg("settings") = dem::WorldSettings{})
+      .def(
+          "add_material",
+          [](dem::WorldBuilder& b, const std::string& name, double density, double youngs_modulus,
+             double poisson_ratio, double restitution, double friction, double rolling_friction,
+             double rolling_damping) {
+            return b.add_material({name, density, youngs_modulus, poisson_ratio, restitution, friction,
+                                   rolling_friction, rolling_damping});
+          },
+          py::arg("name"), py::arg("density"), py::arg("youngs_modulus"), py::arg("poisson_ratio") = 0.25,
+          py::arg("restitution") = 0.5, py::arg("friction") = 0.5, py::arg("rolling_friction") = 0.0,
+          py::arg("rolling_damping") = 0.3, "Returns the material's index.")
+      .def(
+          "add_body",
+          [](dem::WorldBuilder& b, const PyShape& shape, const py::object& material, const py::object& position,
+             const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
+             const std::string& label) {
+            return b.add_body({.shape = {shape.shape, shape.offset},
+                               .material = material_index(b, material),
+                               .position = to_vec3(position, "position"),
+                               .rotation = to_quat(rotation, "rotation"),
+                               .velocity = to_vec3(velocity, "velocity"),
+                               .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
+                               .fixed = fixed,
+                               .label = label});
+          },
+          py::arg("shape"), py::arg("material"), py::arg("position") = std::array<double, 3>{0, 0, 0},
+          py::arg("rotation") = std::array<double, 4>{1, 0, 0, 0},
+          py::arg("velocity") = std::array<double, 3>{0, 0, 0},
+          py::arg("angular_velocity") = std::array<double, 3>{0, 0, 0}, py::arg("fixed") = false,
+          py::arg("label") = "",
+          "Adds a body whose frame (the shape's) is at `position`, turned by `rotation` [w, x, y, z]; returns its index.")
+      .def(
+          "add_plane",
+          [](dem::WorldBuilder& b, const py::object& point, const py::object& normal, const py::object& material,
+             const std::string& label) {
+            b.add_plane(to_vec3(point, "point"), to_vec3(normal, "normal"), material_index(b, material),
+                        label.empty() ? "plane" : label);
+          },
+          py::arg("point"), py::arg("normal"), py::arg("material"), py::arg("label") = "",
+          "An infinite plane wall; the material lies on the side opposite to `normal`.")
+      .def(
+          "add_box_walls",
+          [](dem::WorldBuilder& b, const py::object& lo, const py::object& hi, const py::object& material,
+             bool open_top, double thickness, const std::string& label) {
+            const Vec3 l = to_vec3(lo, "lo"), h = to_vec3(hi, "hi");
+            if (thickness <= 0) thickness = 0.5 * std::fmin(h.x - l.x, std::fmin(h.y - l.y, h.z - l.z));
+            b.add_box_walls(l, h, open_top, thickness, material_index(b, material), label.empty() ? "box" : label);
+          },
+          py::arg("lo"), py::arg("hi"), py::arg("material"), py::arg("open_top") = false, py::arg("thickness") = 0.0,
+          py::arg("label") = "", "A box container [lo, hi]; thickness 0: half its smallest side.")
+      .def(
+          "fill_region",
+          [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
+             const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
+             const std::string& label) {
+            dem::RegionFill f;
+            if (py::isinstance<PyShape>(shapes)) {
+              const PyShape& s = shapes.cast<const PyShape&>();
+              f.variants.push_back({s.shape, s.offset});
+            } else {
+              for (const auto& item : shapes.cast<py::sequence>()) {
+                if (!py::isinstance<PyShape>(item)) fail("shapes", "expected a gjkdem.Shape or a list of them");
+                const PyShape& s = item.cast<const PyShape&>();
+                f.variants.push_back({s.shape, s.offset});
+              }
+            }
+            f.count = count;
+            f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
+            f.material = material_index(b, material);
+            f.velocity = to_vec3(velocity, "velocity");
+            f.label = label.empty() ? "region" : label;
+            std::mt19937_64 rng(seed);
+            return b.fill_region(f, rng);
+          },
+          py::arg("shapes"), py::arg("count"), py::arg("lo"), py::arg("hi"), py::arg("material"),
+          py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1, py::arg("label") = "",
+          "Places `count` bodies, each one of `shapes` at random, without overlap in [lo, hi]; returns their indices.")
+      .def("accept_initial_overlaps", &dem::WorldBuilder::accept_initial_overlaps)
+      .def_property_readonly("body_count", &dem::WorldBuilder::body_count)
+      .def("build", &dem::WorldBuilder::build, "Checks and prepares everything; the builder is empty afterwards.");
+
+  py::class_<World> world(m, "World", "A DEM world: bodies, walls and their contacts. Made by WorldBuilder or a scene.");
+  def_view<std::uint64_t>(world, "ids", offsetof(Body, id), 0, false, "Global ids (N,), read-only view.");
+  def_view<std::uint32_t>(world, "fixed", offsetof(Body, fixed), 0, false, "1 for fixed bodies (N,), read-only view.");
+  def_view<double>(world, "positions", offsetof(Body, position), 3, false,
+           "Centres of mass (N, 3), read-only view; set_positions changes them.");
+  def_view<double>(world, "orientations", offsetof(Body, orientation), 4, false,
+           "Principal frames [w, x, y, z] (N, 4), read-only view; set_orientations changes them.");
+  def_view<double>(world, "velocities", offsetof(Body, velocity), 3, true,
+           "Velocities of the centres of mass (N, 3), writable view (fixed bodies ignore theirs).");
+  def_view<double>(world, "angular_momenta", offsetof(Body, angular_momentum), 3, true,
+           "Angular momenta about the centres of mass, world frame (N, 3), writable view: the integrator's state.");
+  def_view<double>(world, "forces", offsetof(Body, force), 3, false,
+           "Forces of the last evaluation (N, 3), read-only view.");
+  def_view<double>(world, "torques", offsetof(Body, torque), 3, false,
+           "Torques about the centres of mass (N, 3), read-only view.");
+  world.def_readonly("time", &World::time)
+      .def_property_readonly("settings", [](const World& w) { return w.settings; })
+      .def_property_readonly("body_count", [](const World& w) { return w.bodies.size(); })
+      .def(
+          "angular_velocities",
+          [](const World& w) {
+            py::array_t<double> out({static_cast<py::ssize_t>(w.bodies.size()), py::ssize_t{3}});
+            double* p = out.mutable_data();
+            for (std::size_t k = 0; k < w.bodies.size(); ++k) {
+              const Vec3 o = dem::angular_velocity_of(w, w.bodies[k]);
+              p[3 * k] = o.x, p[3 * k + 1] = o.y, p[3 * k + 2] = o.z;
+            }
+            return out;
+          },
+          "Angular velocities (N, 3), a new array computed from the angular momenta.")
+      .def(
+          "masses",
+          [](const World& w) {
+            py::array_t<double> out(static_cast<py::ssize_t>(w.bodies.size()));
+            for (std::size_t k = 0; k < w.bodies.size(); ++k) out.mutable_data()[k] = dem::mass_of(w, w.bodies[k]);
+            return out;
+          },
+          "Masses (kg; infinite for fixed bodies), a new array.")
+      .def(
+          "set_positions",
+          [](World& w, const py::object& values, const py::object& indices) {
+            const auto v = to_matrix(values, 3, "positions");
+            const std::vector<std::size_t> idx = body_indices(w, indices, v.shape(0));
+            for (std::size_t k = 0; k < idx.size(); ++k) {
+              const Vec3 p{v.at(k, 0), v.at(k, 1), v.at(k, 2)};
+              if (!is_finite(p)) fail("positions", "row " + std::to_string(k) + " is not finite");
+              if (w.bodies[idx[k]].fixed) fail("positions", "body " + std::to_string(idx[k]) + " is fixed");
+            }
+            for (std::size_t k = 0; k < idx.size(); ++k) w.bodies[idx[k]].position = {v.at(k, 0), v.at(k, 1), v.at(k, 2)};
+            w.forces_current = false;
+          },
+          py::arg("values"), py::arg("indices") = py::none(),
+          "Moves bodies' centres of mass ((N, 3) values; indices None: every body). Fixed bodies cannot move.")
+      .def(
+          "set_orientations",
+          [](World& w, const py::object& values, const py::object& indices) {
+            const auto v = to_matrix(values, 4, "orientations");
+            const std::vector<std::size_t> idx = body_indices(w, indices, v.shape(0));
+            std::vector<Quat> q(idx.size());
+            for (std::size_t k = 0; k < idx.size(); ++k) {
+              q[k] = to_quat(py::array_t<double>(4, v.data(static_cast<py::ssize_t>(k), 0)),
+                             "orientations[" + std::to_string(k) + "]");
+              if (w.bodies[idx[k]].fixed) fail("orientations", "body " + std::to_string(idx[k]) + " is fixed");
+            }
+            for (std::size_t k = 0; k < idx.size(); ++k) w.bodies[idx[k]].orientation = q[k];
+            w.forces_current = false;
+          },
+          py::arg("values"), py::arg("indices") = py::none(),
+          "Turns bodies' principal frames (unit quaternions [w, x, y, z], (N, 4)).")
+      .def(
+          "step",
+          [](World& w, double dt) {
+            if (!(dt > 0 && std::isfinite(dt))) fail("dt", "must be finite and > 0");
+            dem::StepReport r;
+            {
+              py::gil_scoped_release release;
+              r = dem::step(w, dt);
+            }
+            if (r.status != dem::StepStatus::Ok) throw RunError(dem::describe_failure(w, r));
+          },
+          py::arg("dt"), "Advances the world by dt seconds (RunError when a pair cannot be computed).")
+      .def(
+          "run",
+          [](py::object self, double duration, std::optional<double> dt, std::optional<double> output_every,
+             const py::object& observer) {
+            World& w = self.cast<World&>();
+            const double step = dt ? *dt : dem::critical_time_step(w);
+            dem::RunState state;
+            try {
+              state = dem::plan_run(duration, step, output_every ? *output_every : duration);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+            PyObserver o(self, observer);
+            return run_with(o, {}, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+              return dem::run(w, state, obs, [&] { return !stop().empty(); });
+            });
+          },
+          py::arg("duration"), py::arg("dt") = py::none(), py::arg("output_every") = py::none(),
+          py::arg("observer") = py::none(),
+          "Runs for `duration` s in steps of dt (None: critical_time_step), calling observer(world, state) at the\n"
+          "start, every output_every s and at the end; an observer returning False stops the run.\n"
+          "Returns \"completed\" or \"stopped\"; raises RunError when the run fails (guards, unsupported pairs).")
+      .def("critical_time_step", &dem::critical_time_step)
+      .def("stable_time_step", &dem::stable_time_step)
+      .def("contacts", &contacts_of,
+           "The touching contacts of the last force evaluation: a dict of arrays (ids (M, 2): a wall's or\n"
+           "body's id then the body's; points, normals (a -> b) and forces on b (M, 3); depth, overlap_volume).")
+      .def(
+          "energies",
+          [](const World& w) {
+            py::dict d;
+            d["kinetic"] = dem::kinetic_energy(w), d["potential"] = dem::potential_energy(w);
+            d["elastic"] = w.stats.elastic_energy;
+            return d;
+          },
+          "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy (J).")
+      .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
+      .def(
+          "save_checkpoint",
+          [](const World& w, const std::string& path, std::optional<double> dt) {
+            // The format keeps a run's clock; a world saved between runs keeps the step to go on with.
+            io::Checkpoint c;
+            c.run.dt = dt ? *dt : dem::critical_time_step(w);
+            if (!(c.run.dt > 0 && std::isfinite(c.run.dt))) fail("dt", "must be finite and > 0");
+            {
+              py::gil_scoped_release release;
+              io::save_checkpoint(path, w, c, 0);
+            }
+          },
+          py::arg("path"), py::arg("dt") = py::none(),
+          "Saves the world's state (bodies, springs, warm starts, clock) in the portable, checksummed\n"
+          "checkpoint format (docs/checkpoints.md), with the time step to go on with (None: critical_time_step).")
+      .def(
+          "load_checkpoint",
+          [](World& w, const std::string& path) {
+            py::gil_scoped_release release;
+            return io::load_checkpoint(path, w, 0).run.dt;
+          },
+          py::arg("path"),
+          "Restores a state saved from a world built the same way (same bodies and ids); returns its time step.");
+}
+
+}  // namespace gjkdem::py_bind

@@ -1,0 +1,191 @@
+"""Worlds from Python: the builder, views that alias the engine's memory,
+setters, runs with observers, contacts, energies, checkpoints, and the
+errors of bad input."""
+import math
+
+import numpy as np
+import pytest
+
+import gjkdem
+
+
+def small_bed(model="hertz", count=40, seed=1):
+    s = gjkdem.Settings()
+    s.model = model
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7, restitution=0.5, friction=0.4)
+    b.add_plane([0, 0, 0], [0, 0, 1], "glass")
+    b.fill_region(gjkdem.Shape("sphere", radius=0.01), count, [-0.05, -0.05, 0.0], [0.05, 0.05, 0.2], "glass",
+                  seed=seed)
+    return b.build()
+
+
+def test_views_alias_the_bodies_and_setters_write_through():
+    w = small_bed()
+    p = w.positions
+    assert p.shape == (40, 3) and not p.flags.writeable and not p.flags.owndata
+    w.set_positions(np.array([[0.01, 0.02, 0.5]]), indices=[3])
+    assert list(p[3]) == [0.01, 0.02, 0.5]  # the old view sees the new value: no copy
+    q = np.array([[math.cos(0.3), 0, 0, math.sin(0.3)]])
+    w.set_orientations(q, indices=[3])
+    assert np.allclose(w.orientations[3], q[0])
+    v = w.velocities
+    assert v.flags.writeable
+    v[5] = [0.0, 0.0, -2.0]
+    assert list(w.velocities[5]) == [0.0, 0.0, -2.0]
+    with pytest.raises(ValueError, match="read-only"):
+        p[0, 0] = 1.0
+    ids = w.ids
+    assert ids.dtype == np.uint64 and list(ids) == list(range(40))
+
+
+def test_written_velocities_move_the_bodies():
+    s = gjkdem.Settings()
+    s.gravity = [0, 0, 0]
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("m", 1000, 1e6)
+    b.add_body(gjkdem.Shape("box", half_extents=[0.1, 0.1, 0.1]), "m", position=[0, 0, 0])
+    w = b.build()
+    w.velocities[0] = [1.0, 0.0, 0.0]
+    for _ in range(10):
+        w.step(0.01)
+    assert w.positions[0, 0] == pytest.approx(0.1)
+    assert w.time == pytest.approx(0.1)
+
+
+def test_a_run_calls_the_observer_at_its_cadence_and_stops_when_told():
+    w = small_bed()
+    seen = []
+
+    def observer(world, state):
+        seen.append((state.step, world.time))
+        return state.outputs < 3
+
+    status = w.run(0.2, dt=1e-4, output_every=0.01, observer=observer)
+    assert status == "stopped"
+    assert [s for s, _ in seen] == [0, 100, 200]
+    status = w.run(0.05, dt=1e-4, output_every=0.01)
+    assert status == "completed" and w.time == pytest.approx(0.02 + 0.05)
+
+
+def test_an_observers_exception_comes_back_and_the_run_stops():
+    w = small_bed()
+
+    def observer(world, state):
+        if state.step > 0:
+            raise KeyError("mine")
+
+    with pytest.raises(KeyError, match="mine"):
+        w.run(0.1, dt=1e-4, output_every=0.01, observer=observer)
+    assert w.time == pytest.approx(0.01)
+
+
+def test_a_settled_bed_has_contacts_and_its_energy_balances():
+    w = small_bed(count=30)
+    w.run(0.4)
+    c = w.contacts()
+    n = w.contact_count
+    assert n > 0 and c["ids"].shape == (n, 2) and c["forces"].shape == (n, 3)
+    # At rest, the contact forces carry the weight: their vertical sum on the floor's contacts.
+    floor = c["ids"][:, 0] >= 2**62
+    weight = w.masses().sum() * 9.81
+    assert c["forces"][floor, 2].sum() == pytest.approx(weight, rel=1e-2)
+    e = w.energies()
+    assert e["kinetic"] < 1e-6 * abs(e["potential"]) + 1e-12
+    assert np.all(np.linalg.norm(c["normals"], axis=1) == pytest.approx(1.0))
+
+
+def test_a_checkpoint_brings_the_world_back_bit_for_bit(tmp_path):
+    w = small_bed()
+    w.run(0.05, dt=1e-4)
+    path = tmp_path / "bed.ckpt"
+    w.save_checkpoint(str(path), dt=1e-4)
+    before = w.positions.copy()
+    w.run(0.02, dt=1e-4)
+    after_first = w.positions.copy()
+    assert w.load_checkpoint(str(path)) == 1e-4
+    assert np.array_equal(w.positions, before)
+    w.run(0.02, dt=1e-4)
+    assert np.array_equal(w.positions, after_first)
+    other = small_bed(count=10)
+    with pytest.raises(gjkdem.CheckpointError):
+        other.load_checkpoint(str(path))
+
+
+def test_an_unsupported_pair_or_a_blown_run_raises_run_error():
+    b = gjkdem.WorldBuilder()
+    b.add_material("m", 2500, 1e7)
+    b.add_body(gjkdem.Shape("box", half_extents=[0.01] * 3), "m", velocity=[0, 0, -1], position=[0, 0, 0.0105])
+    b.add_plane([0, 0, 0], [0, 0, 1], "m")
+    w = b.build()
+    with pytest.raises(gjkdem.RunError, match="time step"):
+        w.run(0.01, dt=1e-2 / 3)  # far beyond the stable step: the guard stops it
+    assert issubclass(gjkdem.RunError, RuntimeError)
+
+
+@pytest.mark.parametrize(
+    "build, message",
+    [
+        (lambda b: b.add_material("bad", -1, 1e7), "material 'bad': density must be > 0"),
+        (lambda b: b.add_material("m", 1, 1e7), "material 'm': defined twice"),
+        (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "nope"), "material: no material is named 'nope'"),
+        (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), 7), "body 0: material 7 was never added"),
+        (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "m", rotation=[1, 1, 0, 0]),
+         "rotation: quaternion [w, x, y, z] must be unit"),
+        (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "m", position=[0, float("nan"), 0]),
+         "position: NaN or infinite number"),
+        (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "m", velocity=[0, 0]),
+         "velocity: expected 3 numbers, got an array of shape (2,)"),
+        (lambda b: b.add_plane([0, 0, 0], [0, 0, 0], "m"), "plane"),
+    ],
+)
+def test_bad_builder_input_raises_value_error(build, message):
+    b = gjkdem.WorldBuilder()
+    b.add_material("m", 2500, 1e7)
+    with pytest.raises(ValueError) as e:
+        build(b)
+    assert message in str(e.value)
+
+
+def test_overlapping_bodies_are_refused_naming_them():
+    b = gjkdem.WorldBuilder()
+    b.add_material("m", 2500, 1e7)
+    s = gjkdem.Shape("box", half_extents=[0.01] * 3)
+    b.add_body(s, "m", label="left")
+    b.add_body(s, "m", position=[0.015, 0, 0], label="right")
+    with pytest.raises(gjkdem.BuildError, match="left overlaps right"):
+        b.build()
+
+
+def test_bad_setter_input_raises_value_error():
+    w = small_bed(count=5)
+    with pytest.raises(ValueError, match="expected one row per body"):
+        w.set_positions(np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="body index 9 out of range"):
+        w.set_positions(np.zeros((1, 3)), indices=[9])
+    with pytest.raises(ValueError, match="not finite"):
+        w.set_positions(np.full((1, 3), np.inf), indices=[0])
+    with pytest.raises(ValueError, match="must be unit"):
+        w.set_orientations(np.array([[2.0, 0, 0, 0]]), indices=[0])
+    with pytest.raises(ValueError, match=r"shape \(N, 4\)"):
+        w.set_orientations(np.zeros((1, 3)), indices=[0])
+    with pytest.raises(ValueError, match="dt: must be finite and > 0"):
+        w.step(float("nan"))
+
+
+def test_ctrl_c_stops_a_run_with_keyboard_interrupt():
+    import signal
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    w = small_bed(count=20)
+    previous = signal.signal(signal.SIGALRM, interrupt)
+    signal.setitimer(signal.ITIMER_REAL, 0.3)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            w.run(1000.0, dt=1e-4)  # hours of steps: only the interrupt ends it
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    assert 0 < w.time < 1000.0
