@@ -18,6 +18,11 @@
 // microseconds per particle-step, bytes per particle (growth of the resident
 // set), and the world's arrays split into bytes per body and per contact. `--export PREFIX` writes
 // each bed (PREFIX<N>.txt) for bench/yade_bed.py, which runs it in Yade.
+//
+//   bench_dem_scaling --free-fall [--threads T] [--steps S] [--export FILE]
+//
+// times 1,000 grains falling freely instead; `--export FILE` writes them (and
+// FILE.spin, their angular velocities) for bench/yade_free_fall.py.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -186,7 +191,7 @@ Footprint footprint(const World& w) {
 // walls, falling from rest and tumbling (spin ~ 10 rad/s per axis) for
 // `steps` steps (no contact ever). Prints the
 // cost per particle-step, the first step (start-up) excluded.
-void free_fall(int threads, int steps) {
+void free_fall(int threads, int steps, const std::string& export_file) {
   std::vector<BlockBody> bodies;
   std::mt19937_64 rng(7);
   for (int i = 0; i < kBlockCount; ++i)
@@ -197,6 +202,16 @@ void free_fall(int threads, int steps) {
   for (Body& b : w.bodies)
     b.angular_momentum = rotate(b.orientation, hadamard(principal_moments(w, b), Vec3{spin(rng), spin(rng), spin(rng)}));
   const Real dt = critical_time_step(w);
+  if (!export_file.empty()) {  // the same grains for bench/yade_free_fall.py: hulls, then spins (rad/s, world)
+    export_bed(w, export_file, 0, 0);
+    std::ofstream spins(export_file + ".spin");
+    spins.precision(17);
+    for (const Body& b : w.bodies) {
+      const Vec3 o = angular_velocity_of(w, b);
+      spins << o.x << ' ' << o.y << ' ' << o.z << '\n';
+    }
+    std::printf("exported %zu grains to %s (dt %.17g)\n", w.bodies.size(), export_file.c_str(), dt);
+  }
   step(w, dt);  // start-up: every box made, the static tree, buffers
   const auto t0 = std::chrono::steady_clock::now();
   int updates = 0;
@@ -234,7 +249,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE]\n"
                    "          [--skin S] N [N ...]\n"
-                   "       %s --free-fall [--threads T] [--steps S] [--skin S]\n"
+                   "       %s --free-fall [--threads T] [--steps S] [--skin S] [--export FILE]\n"
                    "  --skin: box skin, relative to each grain's reach (WorldSettings::box_skin)\n"
                    "  N: multiples of 1000 (default 1000 10000 100000)\n",
                    argv[0], argv[0]);
@@ -242,7 +257,7 @@ int main(int argc, char** argv) {
     }
   }
   if (free_fall_steps > 0) {
-    free_fall(threads, steps > 0 ? steps : free_fall_steps);
+    free_fall(threads, steps > 0 ? steps : free_fall_steps, export_prefix);
     return 0;
   }
   if (counts.empty()) counts = {1000, 10000, 100000};

@@ -7,13 +7,18 @@
 // the World alive. Positions, orientations, forces and torques are read-only
 // (set_positions / set_orientations check what they are given); velocities
 // and angular momenta may be written in place.
+#include <array>
 #include <cstddef>
+#include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "bindings.hpp"
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/checkpoint.hpp"
+#include "gjkdem/io/run_observers.hpp"
+#include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
 
 namespace gjkdem::py_bind {
@@ -212,6 +217,29 @@ void bind_world(py::module_& m) {
           py::arg("lo"), py::arg("hi"), py::arg("material"), py::arg("open_top") = false, py::arg("thickness") = 0.0,
           py::arg("label") = "", "A box container [lo, hi]; thickness 0: half its smallest side.")
       .def(
+          "add_mesh_walls",
+          [](dem::WorldBuilder& b, const py::object& vertices, const py::object& triangles, double thickness,
+             const py::object& material, const std::string& label) {
+            const auto v = to_matrix(vertices, 3, "vertices");
+            const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(triangles);
+            if (!t || t.ndim() != 2 || t.shape(1) != 3) fail("triangles", "expected an (M, 3) array of vertex indices");
+            std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
+            for (std::size_t k = 0; k < points.size(); ++k) points[k] = {v.at(k, 0), v.at(k, 1), v.at(k, 2)};
+            std::vector<std::array<std::uint32_t, 3>> tris(static_cast<std::size_t>(t.shape(0)));
+            for (std::size_t k = 0; k < tris.size(); ++k)
+              for (int c = 0; c < 3; ++c) {
+                const std::int64_t i = t.at(k, c);
+                if (i < 0 || i >= v.shape(0))
+                  fail("triangles", "row " + std::to_string(k) + ": vertex index " + std::to_string(i) +
+                                        " out of range [0, " + std::to_string(v.shape(0)) + ")");
+                tris[k][c] = static_cast<std::uint32_t>(i);
+              }
+            b.add_mesh_walls(points, tris, thickness, material_index(b, material), label.empty() ? "mesh" : label);
+          },
+          py::arg("vertices"), py::arg("triangles"), py::arg("thickness"), py::arg("material"),
+          py::arg("label") = "",
+          "A triangle mesh wall (world coordinates, (N, 3) vertices, (M, 3) indices), one fixed piece per triangle.")
+      .def(
           "fill_region",
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
@@ -326,7 +354,8 @@ void bind_world(py::module_& m) {
       .def(
           "run",
           [](py::object self, double duration, std::optional<double> dt, std::optional<double> output_every,
-             const py::object& observer) {
+             const py::object& observer, std::optional<std::string> out, bool overwrite, bool frames,
+             int checkpoint_every) {
             World& w = self.cast<World&>();
             const double step = dt ? *dt : dem::critical_time_step(w);
             dem::RunState state;
@@ -335,15 +364,40 @@ void bind_world(py::module_& m) {
             } catch (const std::invalid_argument& e) {
               throw py::value_error(e.what());
             }
+            if (checkpoint_every < 0) fail("checkpoint_every", "must be >= 0");
+            // A run folder written as `gjkdem run` writes one (no scene.toml: the world came from Python).
+            std::optional<io::RunFolderLock> lock;
+            std::unique_ptr<io::RunFolderWriters> writers;
+            if (out) {
+              const io::RunPaths folder{*out};
+              std::filesystem::create_directories(folder.dir);
+              lock.emplace(folder.dir);
+              io::prepare_run_folder(folder, overwrite);
+              writers = std::make_unique<io::RunFolderWriters>(
+                  folder, w,
+                  io::RunWriterOptions{.frames = frames, .checkpoint_every = checkpoint_every, .traced = {},
+                                       .fingerprint = 0, .info_json = io::run_info_json(w, step)});
+              writers->info().started(w, state);
+            }
+            const std::vector<dem::RunObserver*> outputs =
+                writers ? writers->observers() : std::vector<dem::RunObserver*>{};
             PyObserver o(self, observer);
-            return run_with(o, {}, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
-              return dem::run(w, state, obs, [&] { return !stop().empty(); });
-            });
+            return run_with(o, outputs,
+                            [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+                              return dem::run(w, state, obs, [&] {
+                                const std::string why = stop();
+                                if (writers) writers->info().stopped_by = why;
+                                return !why.empty();
+                              });
+                            });
           },
           py::arg("duration"), py::arg("dt") = py::none(), py::arg("output_every") = py::none(),
-          py::arg("observer") = py::none(),
+          py::arg("observer") = py::none(), py::arg("out") = py::none(), py::arg("overwrite") = false,
+          py::arg("frames") = true, py::arg("checkpoint_every") = 10,
           "Runs for `duration` s in steps of dt (None: critical_time_step), calling observer(world, state) at the\n"
           "start, every output_every s and at the end; an observer returning False stops the run.\n"
+          "out: a run folder to write as `gjkdem run` does (frames, energy.csv, trace.csv, checkpoint.bin,\n"
+          "run.json; overwrite replaces an earlier run's files).\n"
           "Returns \"completed\" or \"stopped\"; raises RunError when the run fails (guards, unsupported pairs).")
       .def("critical_time_step", &dem::critical_time_step)
       .def("stable_time_step", &dem::stable_time_step)

@@ -173,4 +173,30 @@ void RunInfoWriter::write(const std::string& status, const dem::World& w, const 
   write_file_atomically(file_, info.dump(2) + "\n");
 }
 
+RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options)
+    : RunFolderWriters(folder, world, options, nullptr) {}
+
+RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
+                                   const Checkpoint& restored)
+    : RunFolderWriters(folder, world, options, &restored) {}
+
+RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
+                                   const Checkpoint* restored)
+    : frames_(folder.frames(), world, options.frames),
+      trace_(options.traced),
+      checkpoints_(folder.checkpoint(), options.checkpoint_every, options.fingerprint, frames_, trace_, energy_,
+                   restored ? restored->logs.wall_seconds : 0),
+      info_(folder.run_json(), options.info_json, checkpoints_) {
+  if (restored) {
+    frames_.frames = restored->logs.frames;
+    trace_.resume(folder.trace(), restored->logs.trace_bytes);
+    energy_.resume(folder.energy(), restored->logs.energy_bytes);
+  } else {
+    trace_.start(folder.trace(), trace_header());
+    energy_.start(folder.energy(), energy_header());
+  }
+  // After a kill, run.json tells how far the last checkpoint got.
+  checkpoints_.saved = [this](const dem::World& w, const dem::RunState& s) { info_.started(w, s); };
+}
+
 }  // namespace gjkdem::io

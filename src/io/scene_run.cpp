@@ -101,58 +101,57 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
   return r;
 }
 
+std::string run_info_json(const dem::World& world, Real dt) {
+  Json info;
+  info["version"] = version();
+  info["status"] = "starting";
+  info["bodies"] = world.bodies.size();
+  info["shape_templates"] = world.templates.size();
+  info["threads"] = world.settings.threads;
+  info["dt"] = dt;
+  return info.dump();
+}
+
 void SceneRun::open_writers(const std::string& text, const std::string& scene_file, const fs::path& base,
                             bool resuming) {
   dem::World& world = scene.world;
   world.settings.threads = resolve_threads(world.settings.threads);
-  const std::uint64_t fingerprint = fnv1a64(text);
-  frames_ = std::make_unique<FrameWriter>(folder.frames(), world, scene.write_frames);
-  trace_ = std::make_unique<TraceWriter>(scene.traced);
-  energy_ = std::make_unique<EnergyWriter>();
-  double wall_before = 0;
-  if (!resuming) {
-    trace_->start(folder.trace(), trace_header());
-    energy_->start(folder.energy(), energy_header());
-  } else {
-    const Checkpoint c = load_checkpoint(folder.checkpoint(), world, fingerprint);
-    if (c.run.steps_total != state.steps_total || c.run.dt != state.dt ||
-        c.run.steps_per_output != state.steps_per_output)
-      throw CheckpointError(folder.checkpoint().string() + " does not match the scene's duration and steps");
-    state = c.run;
-    frames_->frames = c.logs.frames;
-    trace_->resume(folder.trace(), c.logs.trace_bytes);
-    energy_->resume(folder.energy(), c.logs.energy_bytes);
-    wall_before = c.logs.wall_seconds;
-  }
-  checkpoints_ = std::make_unique<Checkpointer>(folder.checkpoint(), scene.checkpoint_every, fingerprint, *frames_,
-                                                *trace_, *energy_, wall_before);
   Json info;
   info["version"] = version();
   info["status"] = "starting";
   info["scene_file"] = scene_file;
   info["scene_base"] = fs::absolute(base).string();
   info["scene"] = Json::parse(scene.resolved_json);
-  info["bodies"] = world.bodies.size();
-  info["shape_templates"] = world.templates.size();
-  info["threads"] = world.settings.threads;
+  info.update(Json::parse(run_info_json(world, scene.dt)));
   info["warnings"] = scene.warnings;
-  info["dt"] = scene.dt;
-  info_ = std::make_unique<RunInfoWriter>(folder.run_json(), info.dump(), *checkpoints_);
-  // After a kill, run.json tells how far the last checkpoint got.
-  checkpoints_->saved = [this](const dem::World& w, const dem::RunState& s) { info_->started(w, s); };
+  const RunWriterOptions options{.frames = scene.write_frames,
+                                 .checkpoint_every = scene.checkpoint_every,
+                                 .traced = scene.traced,
+                                 .fingerprint = fnv1a64(text),
+                                 .info_json = info.dump()};
+  if (!resuming) {
+    writers_ = std::make_unique<RunFolderWriters>(folder, world, options);
+    return;
+  }
+  const Checkpoint c = load_checkpoint(folder.checkpoint(), world, options.fingerprint);
+  if (c.run.steps_total != state.steps_total || c.run.dt != state.dt ||
+      c.run.steps_per_output != state.steps_per_output)
+    throw CheckpointError(folder.checkpoint().string() + " does not match the scene's duration and steps");
+  state = c.run;
+  writers_ = std::make_unique<RunFolderWriters>(folder, world, options, c);
 }
 
-double SceneRun::wall_seconds() const { return checkpoints_->wall_seconds(); }
+double SceneRun::wall_seconds() const { return writers_->wall_seconds(); }
 
 dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop) {
-  std::vector<dem::RunObserver*> observers = {frames_.get(), trace_.get(), energy_.get(), checkpoints_.get(),
-                                              info_.get()};
+  std::vector<dem::RunObserver*> observers = writers_->observers();
   observers.insert(observers.end(), extra.begin(), extra.end());
-  info_->started(scene.world, state);
+  RunInfoWriter& info = writers_->info();
+  info.started(scene.world, state);
   const auto stop_and_say = [&] {
     if (!stop) return false;
-    info_->stopped_by = stop();
-    return !info_->stopped_by.empty();
+    info.stopped_by = stop();
+    return !info.stopped_by.empty();
   };
   return dem::run(scene.world, state, observers, stop_and_say, scene.guards);
 }

@@ -189,3 +189,45 @@ def test_ctrl_c_stops_a_run_with_keyboard_interrupt():
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
     assert 0 < w.time < 1000.0
+
+
+def test_a_run_can_write_a_run_folder_as_the_program_does(tmp_path):
+    import json
+
+    w = small_bed(count=10)
+    out = tmp_path / "bed"
+    assert w.run(0.02, dt=1e-4, output_every=0.005, out=str(out), checkpoint_every=2) == "completed"
+    info = json.loads((out / "run.json").read_text())
+    assert info["status"] == "completed" and info["bodies"] == 10 and info["steps"] == 200
+    energy = (out / "energy.csv").read_text().splitlines()
+    assert len(energy) == 1 + 5 and energy[0].startswith("time")
+    assert len(list((out / "frames").glob("frame_*.vtk"))) == 5
+    assert (out / "checkpoint.bin").stat().st_size > 0
+    with pytest.raises(gjkdem.RunFolderError, match="overwrite"):
+        w.run(0.01, dt=1e-4, out=str(out))
+    assert w.run(0.01, dt=1e-4, out=str(out), overwrite=True, frames=False) == "completed"
+    assert not list((out / "frames").glob("frame_*.vtk"))
+
+
+def test_a_ball_rests_on_a_mesh_wall_as_on_a_plane():
+    def resting_height(add_floor):
+        s = gjkdem.Settings()
+        s.model = "hertz"
+        b = gjkdem.WorldBuilder(s)
+        b.add_material("m", 2500, 1e7)
+        add_floor(b)
+        b.add_body(gjkdem.Shape("sphere", radius=0.01), "m", position=[0.001, 0.002, 0.0101])
+        w = b.build()
+        w.run(0.3)
+        return w.positions[-1, 2]
+
+    square = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=float)
+    # Under Hertz a triangle is rounded by half the thickness: its top lies 1 mm above its vertices.
+    sunk = square - [0, 0, 0.001]
+    on_mesh = resting_height(lambda b: b.add_mesh_walls(sunk, [[0, 1, 2], [0, 2, 3]], 0.002, "m"))
+    on_plane = resting_height(lambda b: b.add_plane([0, 0, 0], [0, 0, 1], "m"))
+    assert on_mesh == pytest.approx(on_plane, abs=1e-9)
+    b = gjkdem.WorldBuilder()
+    b.add_material("m", 2500, 1e7)
+    with pytest.raises(ValueError, match="row 1: vertex index 4 out of range"):
+        b.add_mesh_walls(square, [[0, 1, 2], [0, 2, 4]], 0.002, "m")

@@ -124,6 +124,43 @@ class RunInfoWriter : public dem::RunObserver {
   const Checkpointer& clock_;
 };
 
+/// What a run folder's writers are asked to write.
+struct RunWriterOptions {
+  bool frames = true;                ///< VTK frames at every output
+  int checkpoint_every = 10;         ///< outputs between checkpoints (0: only when stopped)
+  std::vector<TracedBody> traced;    ///< bodies logged in trace.csv
+  std::uint64_t fingerprint = 0;     ///< of the scene (checkpoints of another are refused)
+  std::string info_json = "{}";      ///< run.json's description of the run (a JSON object)
+};
+
+/// Every writer of a run folder, made together: frames, trace.csv,
+/// energy.csv, checkpoints and run.json. A new run writes the logs' headers;
+/// a resumed one takes the frames, logs and wall clock up from the
+/// checkpoint the world was restored from.
+class RunFolderWriters {
+ public:
+  RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options);
+  RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
+                   const Checkpoint& restored);
+  RunFolderWriters(const RunFolderWriters&) = delete;
+  RunFolderWriters& operator=(const RunFolderWriters&) = delete;
+
+  /// In the order a run calls them.
+  std::vector<dem::RunObserver*> observers() { return {&frames_, &trace_, &energy_, &checkpoints_, &info_}; }
+  RunInfoWriter& info() { return info_; }
+  double wall_seconds() const { return checkpoints_.wall_seconds(); }
+
+ private:
+  RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
+                   const Checkpoint* restored);
+
+  FrameWriter frames_;
+  TraceWriter trace_;
+  EnergyWriter energy_;
+  Checkpointer checkpoints_;
+  RunInfoWriter info_;
+};
+
 /// A run folder that cannot be used (refused before a run starts).
 struct RunFolderError : std::runtime_error {
   using std::runtime_error::runtime_error;

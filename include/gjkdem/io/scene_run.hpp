@@ -27,6 +27,10 @@ struct SceneRunOptions {
 /// The library's version ("0.1.0"), written into run.json.
 const char* version() noexcept;
 
+/// run.json's description of a run of `world` in steps of dt (version,
+/// bodies, shape templates, threads, dt), to which callers add their own.
+std::string run_info_json(const dem::World& world, Real dt);
+
 class SceneRun {
  public:
   /// A new run of the scene in `scene_file` (empty: the built-in default
@@ -60,11 +64,7 @@ class SceneRun {
                     bool resuming);
 
   std::optional<RunFolderLock> lock_;
-  std::unique_ptr<FrameWriter> frames_;
-  std::unique_ptr<TraceWriter> trace_;
-  std::unique_ptr<EnergyWriter> energy_;
-  std::unique_ptr<Checkpointer> checkpoints_;
-  std::unique_ptr<RunInfoWriter> info_;
+  std::unique_ptr<RunFolderWriters> writers_;
 };
 
 }  // namespace gjkdem::io
