@@ -67,14 +67,14 @@ def settled_bed(grains, seed, checkpoint):
     b = gjkdem.WorldBuilder(s)
     b.add_material("rock", density=2600, youngs_modulus=2e6, restitution=0.3, friction=0.5, rolling_friction=0.05)
     side = 0.2
-    b.add_box_walls([0, 0, 0], [side, side, 0.6], "rock", open_top=True, thickness=0.05)
+    b.add_box_walls([0, 0, 0], [side, side, 0.25], "rock", open_top=True, thickness=0.05)
     rng = np.random.default_rng(seed)
-    shapes = [gjkdem.Shape("polytope", vertices=rng.normal(size=(12, 3)) * 0.005) for _ in range(20)]
-    b.fill_region(shapes, grains, [0, 0, 0], [side, side, 0.6], "rock", seed=seed)
+    shapes = [gjkdem.Shape("polytope", vertices=rng.normal(size=(12, 3)) * 0.002) for _ in range(20)]
+    b.fill_region(shapes, grains, [0, 0, 0], [side, side, 0.25], "rock", seed=seed)
     w = b.build()
     dt = w.critical_time_step()
     t = time.perf_counter()
-    w.run(1.0, dt=dt)
+    w.run(0.4, dt=dt)
     print(f"  settled {grains} grains in {time.perf_counter() - t:.0f} s "
           f"({w.contact_count} contacts, kinetic {w.energies()['kinetic']:.2e} J)", flush=True)
     w.save_checkpoint(checkpoint, dt=dt)

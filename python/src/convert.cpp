@@ -55,10 +55,15 @@ Quat to_quat(const py::handle& value, const std::string& what) {
   return unit_quat(q[0], q[1], q[2], q[3], what);
 }
 
-Transform pose_from_row(const double* r, const std::string& what) {
+Transform pose_from_row(const double* r, const std::string& what, std::ptrdiff_t row) {
+  // Batches read thousands of rows: the row's name is made only for a message.
+  const auto name = [&] { return row < 0 ? what : what + "[" + std::to_string(row) + "]"; };
   for (int k = 0; k < 7; ++k)
-    if (!std::isfinite(r[k])) fail(what, "NaN or infinite number");
-  return Transform::from({r[0], r[1], r[2]}, unit_quat(r[3], r[4], r[5], r[6], what));
+    if (!std::isfinite(r[k])) fail(name(), "NaN or infinite number");
+  const double norm = std::sqrt(r[3] * r[3] + r[4] * r[4] + r[5] * r[5] + r[6] * r[6]);
+  if (!(std::fabs(norm - 1) <= kUnitQuaternionTol))
+    fail(name(), "quaternion [w, x, y, z] must be unit (norm " + std::to_string(norm) + ")");
+  return Transform::from({r[0], r[1], r[2]}, Quat{r[3] / norm, r[4] / norm, r[5] / norm, r[6] / norm});
 }
 
 Transform to_pose(const py::handle& value, const std::string& what) {

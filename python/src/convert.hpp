@@ -32,8 +32,9 @@ Vec3 to_vec3(const py::handle& value, const std::string& what);
 Quat to_quat(const py::handle& value, const std::string& what);
 /// None (identity) or 7 finite numbers [x, y, z, qw, qx, qy, qz] with a unit quaternion.
 Transform to_pose(const py::handle& value, const std::string& what);
-/// A pose from a row of 7 numbers (checked as to_pose).
-Transform pose_from_row(const double* row, const std::string& what);
+/// A pose from a row of 7 numbers (checked as to_pose); messages name it
+/// `what`, or `what[row]` for row >= 0.
+Transform pose_from_row(const double* values, const std::string& what, std::ptrdiff_t row = -1);
 
 /// An (N, cols) C-ordered float64 array (a copy only when the input is not one).
 py::array_t<double, py::array::c_style | py::array::forcecast> to_matrix(const py::handle& value, py::ssize_t cols,
