@@ -84,19 +84,24 @@ def settled_bed(grains, seed, checkpoint):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("cli")
-    p.add_argument("--pairs", type=int, default=2000)
+    p.add_argument("--pairs", type=int, nargs="+", default=[2000, 20000])
     p.add_argument("--grains", type=int, default=1000)
     p.add_argument("--steps", type=int, default=2000)
     p.add_argument("--repeat", type=int, default=5)
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
-        pairs = f"{tmp}/pairs.jsonl"
-        random_pairs(pairs, a.pairs, 1)
-        print(f"1. batched queries, {a.pairs} pairs of distinct random polytopes (4-64 vertices), one thread")
-        for q in ("intersect", "penetration"):
-            cpp = statistics.median(cpp_ns(a.cli, pairs, q, 10) for _ in range(a.repeat))
-            py = statistics.median(python_ns(pairs, q, 10) for _ in range(a.repeat))
-            print(f"  {q:12s} C++ {cpp:8.1f} ns/pair   Python batch {py:8.1f} ns/pair   ratio {py / cpp:.3f}")
+        print("1. batched queries on distinct random polytopes (4-64 vertices), one thread")
+        for count in a.pairs:
+            pairs = f"{tmp}/pairs{count}.jsonl"
+            random_pairs(pairs, count, 1)
+            for q in ("intersect", "penetration"):
+                cpp, py = [], []
+                for _ in range(a.repeat):  # alternated, so both see the same machine
+                    cpp.append(cpp_ns(a.cli, pairs, q, 5))
+                    py.append(python_ns(pairs, q, 5))
+                cpp, py = statistics.median(cpp), statistics.median(py)
+                print(f"  {count:6d} pairs {q:12s} C++ {cpp:8.1f} ns/pair   Python batch {py:8.1f} ns/pair   "
+                      f"ratio {py / cpp:.3f}", flush=True)
 
         print(f"2. stepping a settled bed of {a.grains} random polyhedra, {a.steps} steps, one thread")
         ckpt = f"{tmp}/bed.ckpt"

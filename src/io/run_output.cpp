@@ -30,15 +30,15 @@ void put_big_endian(std::string& out, T value) {
 }
 
 void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
-  m.vertices = d.vertices;
+  m.vertices.assign(d.vertices.begin(), d.vertices.end());
   if (d.facet_begin.empty()) {  // flat hull: one polygon through its vertices
     m.polygon_begin = {0};
     for (std::uint32_t k = 0; k < d.vertices.size(); ++k) m.indices.push_back(k);
     m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
     return;
   }
-  m.polygon_begin = d.facet_begin;
-  m.indices = d.facet_vertices;
+  m.polygon_begin.assign(d.facet_begin.begin(), d.facet_begin.end());
+  m.indices.assign(d.facet_vertices.begin(), d.facet_vertices.end());
 }
 
 }  // namespace

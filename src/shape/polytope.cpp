@@ -1,66 +1,123 @@
 #include "gjkdem/shape/polytope.hpp"
 
+#include <cstddef>
+#include <memory>
+#include <new>
 #include <stdexcept>
+#include <type_traits>
 
 #include "gjkdem/shape/convex_hull.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
+namespace {
+
+// The arrays of a polytope while they are being built.
+struct Arrays {
+  std::vector<Real> soa;
+  std::vector<Vec3> vertices;
+  std::vector<std::uint32_t> adj_begin, adj, start;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::uint32_t> facet_begin, facet_vertices;
+  std::vector<Vec3> facet_normals;
+};
+
+constexpr std::size_t kBlockAlign = 64;  // a cache line
+
+std::size_t align_up(std::size_t n, std::size_t a) { return (n + a - 1) / a * a; }
+
+// Copies the header and every array into one block (header first, arrays in
+// the order of Arrays), owned by the returned pointer.
+std::shared_ptr<const PolytopeData> pack(const PolytopeData& header, const Arrays& a) {
+  std::size_t size = align_up(sizeof(PolytopeData), kBlockAlign);
+  const auto place = [&](const auto& v) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    size = align_up(size, alignof(T));
+    const std::size_t at = size;
+    size += v.size() * sizeof(T);
+    return at;
+  };
+  const std::size_t at[] = {place(a.soa),       place(a.vertices),    place(a.adj_begin),
+                            place(a.adj),       place(a.start),       place(a.triangles),
+                            place(a.facet_begin), place(a.facet_vertices), place(a.facet_normals)};
+  auto* block = static_cast<std::byte*>(::operator new(size, std::align_val_t{kBlockAlign}));
+  auto* d = new (block) PolytopeData(header);
+  const auto copy = [&](const auto& v, std::size_t offset) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    T* out = reinterpret_cast<T*>(block + offset);
+    std::uninitialized_copy(v.begin(), v.end(), out);
+    return std::span<const T>(out, v.size());
+  };
+  d->soa = copy(a.soa, at[0]);
+  d->vertices = copy(a.vertices, at[1]);
+  d->adj_begin = copy(a.adj_begin, at[2]);
+  d->adj = copy(a.adj, at[3]);
+  d->start = copy(a.start, at[4]);
+  d->triangles = copy(a.triangles, at[5]);
+  d->facet_begin = copy(a.facet_begin, at[6]);
+  d->facet_vertices = copy(a.facet_vertices, at[7]);
+  d->facet_normals = copy(a.facet_normals, at[8]);
+  static_assert(std::is_trivially_destructible_v<PolytopeData>);
+  return {d, [](const PolytopeData* p) { ::operator delete(const_cast<PolytopeData*>(p), std::align_val_t{kBlockAlign}); }};
+}
+
+}  // namespace
 
 Polytope make_polytope(std::span<const Vec3> points) {
   if (points.empty()) throw std::invalid_argument("polytope needs at least one point");
   for (const Vec3& q : points)
     if (!is_finite(q)) throw std::invalid_argument("polytope point is not finite");
   ConvexHull hull = convex_hull(points);
-  auto data = std::make_shared<PolytopeData>();
-  data->vertices = std::move(hull.vertices);
-  for (const Vec3& v : data->vertices) data->radius = std::fmax(data->radius, length(v));
-  const auto n = data->vertices.size();
+  PolytopeData header;
+  Arrays a;  // the arrays; the scalars go in header
+  a.vertices = std::move(hull.vertices);
+  for (const Vec3& v : a.vertices) header.radius = std::fmax(header.radius, length(v));
+  const auto n = a.vertices.size();
   if (hull.dimension == HullDimension::Solid) {
     // Volume and centroid by the divergence theorem over tetrahedra from the
     // bounding-box centre (the local origin for the query format's shapes).
     Real vol6 = 0;
     Vec3 moment;
     for (const auto& t : hull.triangles) {
-      const Vec3 &p0 = data->vertices[t[0]], &p1 = data->vertices[t[1]], &p2 = data->vertices[t[2]];
+      const Vec3 &p0 = a.vertices[t[0]], &p1 = a.vertices[t[1]], &p2 = a.vertices[t[2]];
       const Real v6 = dot(p0, cross(p1, p2));
       vol6 += v6;
       moment += (p0 + p1 + p2) * (v6 / 4);
-      data->triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+      a.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
                                  static_cast<std::uint32_t>(t[2])});
     }
-    data->volume = vol6 / 6;
-    data->facet_normals = hull.facet_normals;
-    data->facet_begin.push_back(0);
+    header.volume = vol6 / 6;
+    a.facet_normals = hull.facet_normals;
+    a.facet_begin.push_back(0);
     for (const auto& facet : hull.facets) {
-      for (int i : facet) data->facet_vertices.push_back(static_cast<std::uint32_t>(i));
-      data->facet_begin.push_back(static_cast<std::uint32_t>(data->facet_vertices.size()));
+      for (int i : facet) a.facet_vertices.push_back(static_cast<std::uint32_t>(i));
+      a.facet_begin.push_back(static_cast<std::uint32_t>(a.facet_vertices.size()));
     }
-    data->centroid = vol6 > 0 ? moment / vol6 : Vec3{};
+    header.centroid = vol6 > 0 ? moment / vol6 : Vec3{};
   } else {
-    for (const Vec3& v : data->vertices) data->centroid += v / static_cast<Real>(n);
+    for (const Vec3& v : a.vertices) header.centroid += v / static_cast<Real>(n);
   }
-  data->soa_stride = static_cast<int>((n + 1) / 2 * 2);
-  data->soa.resize(3 * static_cast<std::size_t>(data->soa_stride));
-  for (int i = 0; i < data->soa_stride; ++i) {
-    const Vec3& v = data->vertices[static_cast<std::size_t>(i) < n ? i : 0];
-    data->soa[i] = v.x;
-    data->soa[data->soa_stride + i] = v.y;
-    data->soa[2 * data->soa_stride + i] = v.z;
+  header.soa_stride = static_cast<int>((n + 1) / 2 * 2);
+  a.soa.resize(3 * static_cast<std::size_t>(header.soa_stride));
+  for (int i = 0; i < header.soa_stride; ++i) {
+    const Vec3& v = a.vertices[static_cast<std::size_t>(i) < n ? i : 0];
+    a.soa[i] = v.x;
+    a.soa[header.soa_stride + i] = v.y;
+    a.soa[2 * header.soa_stride + i] = v.z;
   }
   if (hull.dimension == HullDimension::Solid && hull.manifold && n > static_cast<std::size_t>(kHillClimbMinVertices)) {
     std::vector<std::vector<std::uint32_t>> nbr(n);
     for (const auto& t : hull.triangles)
       for (int k = 0; k < 3; ++k) nbr[t[k]].push_back(static_cast<std::uint32_t>(t[(k + 1) % 3]));
-    data->adj_begin.reserve(n + 1);
-    data->adj_begin.push_back(0);
+    a.adj_begin.reserve(n + 1);
+    a.adj_begin.push_back(0);
     for (const auto& list : nbr) {
-      data->adj.insert(data->adj.end(), list.begin(), list.end());
-      data->adj_begin.push_back(static_cast<std::uint32_t>(data->adj.size()));
+      a.adj.insert(a.adj.end(), list.begin(), list.end());
+      a.adj_begin.push_back(static_cast<std::uint32_t>(a.adj.size()));
     }
     // Start table: the exact support vertex of each cell's centre direction.
     constexpr int res = kSupportMapResolution;
-    data->start.resize(6 * res * res);
+    a.start.resize(6 * res * res);
     for (int face = 0; face < 6; ++face)
       for (int iu = 0; iu < res; ++iu)
         for (int iv = 0; iv < res; ++iv) {
@@ -71,11 +128,11 @@ Polytope make_polytope(std::span<const Vec3> points) {
           d[(axis + 2) % 3] = (iv + Real(0.5)) * 2 / res - 1;
           std::uint32_t best = 0;
           for (std::uint32_t i = 1; i < n; ++i)
-            if (dot(data->vertices[i], d) > dot(data->vertices[best], d)) best = i;
-          data->start[detail::support_map_cell(d)] = best;
+            if (dot(a.vertices[i], d) > dot(a.vertices[best], d)) best = i;
+          a.start[detail::support_map_cell(d)] = best;
         }
   }
-  return Polytope{std::move(data)};
+  return Polytope{pack(header, a)};
 }
 
 }  // namespace gjkdem

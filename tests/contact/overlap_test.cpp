@@ -28,7 +28,7 @@ Body random_body(std::mt19937_64& rng, const Vec3& centre, int n) {
   b.pose = Transform::from(centre, normalized(Quat{u(rng), u(rng), u(rng), u(rng)}));
   const auto& data = *std::get<Polytope>(b.shape.core).data;
   for (const Vec3& v : data.vertices) b.world.push_back(apply(b.pose, v));
-  b.tris = data.triangles;
+  b.tris.assign(data.triangles.begin(), data.triangles.end());
   return b;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Convex polytope: the convex hull of a point cloud. Only the hull vertices are
 // kept. Large hulls carry their vertex adjacency so that support() can hill-climb
-// from a hint instead of scanning every vertex. The data are immutable and
-// shared, so many particles can use one template.
+// from a hint instead of scanning every vertex. The data are immutable, in one
+// block, and shared, so many particles can use one template.
 #include <algorithm>
 #include <array>
 #if defined(__SSE2__)
@@ -20,28 +20,34 @@ namespace gjkdem {
 /// Cells per cube-face side of the support start table (6 * n * n cells).
 inline constexpr int kSupportMapResolution = 4;
 
+/// A polytope's data, in one block of memory: this header, then its arrays
+/// in the order a query reads them (the vectorised scan's coordinates, the
+/// vertices, the hill-climbing tables, then what clipping uses). A shape that
+/// is not in cache then costs a few misses, not one per array: with one
+/// shape per particle (scanned rocks) most queries start cold. Made only by
+/// make_polytope; immutable.
 struct PolytopeData {
-  std::vector<Vec3> vertices;            ///< hull vertices, local frame
-  std::vector<std::uint32_t> adj_begin;  ///< CSR offsets into adj (size vertices+1); empty: scan
-  std::vector<std::uint32_t> adj;        ///< neighbour vertex indices
-  /// Support vertex of the centre direction of each cube-map cell: hill climbing
-  /// starts there, a few steps from the answer whatever the direction.
-  std::vector<std::uint32_t> start;
   /// Structure-of-arrays copy of the vertices for the vectorised scan: x of all
   /// vertices, then y, then z, each padded to an even count with vertex 0.
-  std::vector<Real> soa;
-  int soa_stride = 0;                    ///< padded vertex count
-  Real radius = 0;                       ///< max |vertex|
+  std::span<const Real> soa;
+  int soa_stride = 0;                               ///< padded vertex count
+  Real radius = 0;                                  ///< max |vertex|
+  std::span<const Vec3> vertices;                   ///< hull vertices, local frame
+  std::span<const std::uint32_t> adj_begin;         ///< CSR offsets into adj (size vertices+1); empty: scan
+  std::span<const std::uint32_t> adj;               ///< neighbour vertex indices
+  /// Support vertex of the centre direction of each cube-map cell: hill climbing
+  /// starts there, a few steps from the answer whatever the direction.
+  std::span<const std::uint32_t> start;
   /// Outward triangles of the hull (indices into vertices); empty when the hull
   /// is flat, a segment or a point.
-  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::span<const std::array<std::uint32_t, 3>> triangles;
   /// Facets (coplanar triangles merged, counter-clockwise from outside): facet f
   /// is facet_vertices[facet_begin[f] .. facet_begin[f+1]); empty when flat.
-  std::vector<std::uint32_t> facet_begin;
-  std::vector<std::uint32_t> facet_vertices;
-  std::vector<Vec3> facet_normals;       ///< unit, outward
-  Real volume = 0;                       ///< of the hull; 0 when flat
-  Vec3 centroid;                         ///< of the solid hull; of the vertices when flat
+  std::span<const std::uint32_t> facet_begin;
+  std::span<const std::uint32_t> facet_vertices;
+  std::span<const Vec3> facet_normals;              ///< unit, outward
+  Real volume = 0;                                  ///< of the hull; 0 when flat
+  Vec3 centroid;                                    ///< of the solid hull; of the vertices when flat
 };
 
 namespace detail {
