@@ -10,6 +10,7 @@
 // Departures: the triangle case uses the dominant axis of the triangle normal
 // for its 2D projection; the segment case projects directly.
 #include "gjkdem/math/vec3.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 
@@ -71,6 +72,15 @@ inline void closest_on_triangle(const Vec3* w, int i, int j, int k, SubSimplex& 
       r.mask = (1u << i) | (1u << j) | (1u << k);
       r.lambda[i] = ci / mu; r.lambda[j] = cj / mu; r.lambda[k] = ck / mu;
       r.v = w[i] * r.lambda[i] + w[j] * r.lambda[j] + w[k] * r.lambda[k];
+      // Near the origin, the projection: the weighted sum of numbers of the
+      // simplex's size cancels to a point of size |v| with the error of the
+      // size, so when shapes nearly touch along parallel faces v's direction
+      // was off by eps * size / |v| (1e-8 rad for 1e-9 m on 1 m boxes), the
+      // next support point came back already in the simplex, and GJK stopped
+      // 8x too far (FCL's issue 388 setting). The projection's direction is
+      // the normal's, exact to round-off.
+      const Real extent = std::fmax(dot(w[i], w[i]), std::fmax(dot(w[j], w[j]), dot(w[k], w[k])));
+      if (dot(r.v, r.v) < kProjectedClosestRelSq * extent) r.v = p0;
       r.dist_sq = dot(r.v, r.v);
       return;
     }
@@ -132,16 +142,14 @@ inline Vec3 reduce_to_closest(Simplex& s) noexcept {
     default: detail::closest_on_tetrahedron(w, r); break;
   }
   int n = 0;
-  Vec3 v{};
   for (int m = 0; m < s.size; ++m) {
     if (!(r.mask & (1u << m))) continue;
     s.p[n] = s.p[m];
     s.lambda[n] = r.lambda[m];
-    v += w[m] * r.lambda[m];
     ++n;
   }
   s.size = n;
-  return n == 4 ? Vec3{} : v;
+  return n == 4 ? Vec3{} : r.v;
 }
 
 /// Witness points: the barycentric combination of the simplex's A and B points.
