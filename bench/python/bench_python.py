@@ -103,6 +103,8 @@ def main():
                 print(f"  {count:6d} pairs {q:12s} C++ {cpp:8.1f} ns/pair   Python batch {py:8.1f} ns/pair   "
                       f"ratio {py / cpp:.3f}", flush=True)
 
+        if a.grains <= 0:
+            return
         print(f"2. stepping a settled bed of {a.grains} random polyhedra, {a.steps} steps, one thread")
         ckpt = f"{tmp}/bed.ckpt"
         w, dt = settled_bed(a.grains, 1, ckpt)
