@@ -37,6 +37,10 @@ inline constexpr Real kEpaAbsTol = 1e-13;
 inline constexpr int kEpaMaxVertices = 256;
 inline constexpr int kEpaMaxFaces = 2 * kEpaMaxVertices;
 inline constexpr int kMaxEpaIterations = kEpaMaxVertices - 4;
+/// EPA's closest face may not come closer than the closest face seen before
+/// by more than this (x size): it only does when round-off turned a sliver
+/// face inside out, and EPA then answers with the face before.
+inline constexpr Real kEpaMonotoneSlack = 1e-9;
 
 /// Penetration of smooth shapes: when EPA's buffers fill before it converges,
 /// a Newton polish of the normal on the sphere stops once the tangential part

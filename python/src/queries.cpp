@@ -27,6 +27,18 @@ const char* gjk_status_name(GjkStatus s) {
   return "?";
 }
 
+const char* epa_status_name(EpaStatus s) {
+  switch (s) {
+    case EpaStatus::NotRun: return "not_run";
+    case EpaStatus::Converged: return "converged";
+    case EpaStatus::Touching: return "touching";
+    case EpaStatus::Degenerate: return "degenerate";
+    case EpaStatus::OutOfMemory: return "out_of_memory";
+    case EpaStatus::MaxIterations: return "max_iterations";
+  }
+  return "?";
+}
+
 const char* overlap_status_name(OverlapStatus s) {
   switch (s) {
     case OverlapStatus::Empty: return "empty";
@@ -188,6 +200,10 @@ void bind_queries(py::module_& m) {
       .def_property_readonly("normal", [](const PenetrationResult& r) { return from_vec3(r.normal); },
                              "Unit, A -> B.")
       .def_readonly("iterations", &PenetrationResult::iterations)
+      .def_property_readonly("gjk_status", [](const PenetrationResult& r) { return gjk_status_name(r.gjk_status); })
+      .def_property_readonly("epa_status", [](const PenetrationResult& r) { return epa_status_name(r.epa_status); },
+                             "How EPA ended (\"not_run\" when apart; \"out_of_memory\": best face so far)")
+      .def_readonly("epa_iterations", &PenetrationResult::epa_iterations)
       .def("__repr__", [](const PenetrationResult& r) {
         return "<gjkdem.Penetration intersect=" + std::string(r.intersect ? "True" : "False") +
                " distance=" + std::to_string(r.distance) + " depth=" + std::to_string(r.depth) + ">";
