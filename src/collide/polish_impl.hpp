@@ -1,5 +1,5 @@
 #pragma once
-// Newton polish of the penetration direction for smooth shapes.
+// Newton polish of the penetration direction for curved shapes.
 //
 // The depth is the minimum over unit u of f(u) = h_{A-B}(u), the support
 // function of the Minkowski difference, and the minimiser is the normal. On
@@ -70,17 +70,23 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
     }
     const Real len = std::hypot(step[0], step[1]);
     if (len > radius) { step[0] *= radius / len; step[1] *= radius / len; }
+    // Backtrack along the Newton step; at a kink (a cylinder's rim, where f
+    // has a V-shaped valley) the finite-difference Hessian can point it
+    // across the valley, so then backtrack along steepest descent.
     bool improved = false;
-    for (int tries = 0; tries < 30 && !improved; ++tries) {
-      const Vec3 u_new = normalized(u + e1 * step[0] + e2 * step[1]);
-      SupportPoint sp_new;
-      const Vec3 g_new = tangential(md, u_new, sp_new);
-      const Real f_new = dot(sp_new.w, u_new);
-      if (f_new < f) {
-        u = u_new; f = f_new; sp = sp_new; g3 = g_new;
-        improved = true;
-      } else {
-        step[0] *= 0.25; step[1] *= 0.25;
+    for (int pass = 0; pass < 2 && !improved; ++pass) {
+      if (pass == 1) step[0] = -g[0] / gnorm * radius, step[1] = -g[1] / gnorm * radius;
+      for (int tries = 0; tries < 30 && !improved; ++tries) {
+        const Vec3 u_new = normalized(u + e1 * step[0] + e2 * step[1]);
+        SupportPoint sp_new;
+        const Vec3 g_new = tangential(md, u_new, sp_new);
+        const Real f_new = dot(sp_new.w, u_new);
+        if (f_new < f) {
+          u = u_new; f = f_new; sp = sp_new; g3 = g_new;
+          improved = true;
+        } else {
+          step[0] *= 0.25; step[1] *= 0.25;
+        }
       }
     }
     if (!improved) break;
@@ -89,30 +95,39 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
   return f < f_start;
 }
 
-/// Refines an unconverged EPA answer on pairs with a unique-support core: the
-/// normal is polished, the depth becomes f at the polished normal, and the
-/// witness on the unique-support side is its support point.
+/// Refines an unconverged EPA answer on pairs with a curved core (ellipsoid,
+/// superellipsoid, cylinder, cone): the normal is polished, the depth becomes
+/// f at the polished normal, and the witness on a unique-support side is its
+/// support point (else A's).
 template <class MD>
 void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
   using CoreA = typename MD::TypeA;
   using CoreB = typename MD::TypeB;
-  if constexpr (kUniqueSupport<CoreA> || kUniqueSupport<CoreB>) {
+  if constexpr (kCurvedCore<CoreA> || kCurvedCore<CoreB>) {
     if (e.status != EpaStatus::OutOfMemory && e.status != EpaStatus::MaxIterations) return;
     Vec3 u = e.normal;
     Real f = 0;
     SupportPoint sp;
     int steps = 0;
     const Real lower_bound = e.depth;  // EPA's closest face: the true depth is at least this
-    if (!polish_direction(md, u, f, sp, size, steps) || f < lower_bound) return;
+    // f(u) is an upper bound at every u, EPA's face a lower bound. A polish
+    // that cannot improve on EPA's normal sits at the minimum already (at a
+    // kink, where EPA's inner polytope needs endless vertices: two coaxial
+    // cylinders came out 3e-4 short), and f there is the depth.
+    polish_direction(md, u, f, sp, size, steps);
+    if (f < lower_bound) return;
     e.iterations += steps;
     e.depth = f;
     e.normal = u;
     if constexpr (kUniqueSupport<CoreA>) {
       e.witness_a = sp.a;
       e.witness_b = sp.a - u * f;
-    } else {
+    } else if constexpr (kUniqueSupport<CoreB>) {
       e.witness_b = sp.b;
       e.witness_a = sp.b + u * f;
+    } else {  // both may have support sets (a cylinder's side): A's support point
+      e.witness_a = sp.a;
+      e.witness_b = sp.a - u * f;
     }
     e.status = EpaStatus::Converged;
   }
