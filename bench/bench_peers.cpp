@@ -120,8 +120,8 @@ std::vector<PolytopePair> pairs_from_file(const std::string& path) {
     const auto* pb = std::get_if<Polytope>(&in_pair.b.shape.core);
     if (!pa || !pb || in_pair.a.shape.margin > 0 || in_pair.b.shape.margin > 0) continue;
     PolytopePair p;
-    p.local_a = pa->data->vertices;
-    p.local_b = pb->data->vertices;
+    p.local_a.assign(pa->data->vertices.begin(), pa->data->vertices.end());
+    p.local_b.assign(pb->data->vertices.begin(), pb->data->vertices.end());
     p.pose_a = in_pair.a.pose;
     p.pose_b = in_pair.b.pose;
     p.a = in_pair.a.shape;
