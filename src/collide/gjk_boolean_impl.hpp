@@ -19,20 +19,30 @@ enum class Overlap { Separated, Intersecting, Undecided };
 
 /// `d` is the first search direction; `last_d` receives the last one (a
 /// separating direction when the result is Separated), for warm starts.
+/// `touch`: shapes closer than this touch (the distance loop's tolerance), so
+/// a separating plane must clear it; one that does not leaves the pair
+/// Undecided, and the distance loop answers as penetration() would.
 template <class MD>
-Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, int& iterations, Vec3& last_d) noexcept {
+Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, Real touch, int& iterations, Vec3& last_d) noexcept {
+  // p.d < 0 separates; within touch * |d| of 0 it is a touching contact.
+  const auto separates = [touch](const Vec3& p, const Vec3& dir) {
+    const Real pd = dot(p, dir);
+    return pd < 0 && pd * pd > touch * touch * dot(dir, dir);
+  };
   if (!(dot(d, d) > 0)) d = {1, 0, 0};
   last_d = d;
   Vec3 s[4];  // s[n-1] is the newest point ("A" of the seed)
   int n = 0;
   s[n++] = md.support(d).w;
-  if (dot(s[0], d) < 0) { iterations = 1; return Overlap::Separated; }
+  if (separates(s[0], d)) { iterations = 1; return Overlap::Separated; }
+  if (dot(s[0], d) < 0) { iterations = 1; return Overlap::Undecided; }
   d = -s[0];
   for (iterations = 1; iterations <= max_iterations; ++iterations) {
     if (!(dot(d, d) > 0)) return Overlap::Intersecting;  // origin on the simplex
     last_d = d;
     const Vec3 p = md.support(d).w;
-    if (dot(p, d) < 0) return Overlap::Separated;       // Algorithm 14, line 5
+    if (separates(p, d)) return Overlap::Separated;     // Algorithm 14, line 5
+    if (dot(p, d) < 0) return Overlap::Undecided;       // touching to round-off
     for (int k = 0; k < n; ++k)
       if (s[k] == p) return Overlap::Undecided;          // no progress: let the distance loop decide
     s[n++] = p;

@@ -60,8 +60,10 @@ GjkOutput gjk(MD& md, Vec3 v, const Vec3* warm, int warm_size, Real size, Real m
     const SupportPoint w = md.support(-v);
     const Real vw = dot(v, w.w);
     if (mode == GjkMode::Boolean) {
-      // v.w / |v| is a lower bound on the core distance.
-      if (vw > 0 && vw * vw > margin * margin * dist_sq) { out.status = GjkStatus::Separated; break; }
+      // v.w / |v| is a lower bound on the core distance; it must clear the
+      // margins, or the touch tolerance of cores, as penetration()'s answer does.
+      const Real clear = std::fmax(margin, st.touch_tol * size);
+      if (vw > 0 && vw * vw > clear * clear * dist_sq) { out.status = GjkStatus::Separated; break; }
       if (dist_sq <= margin * margin) { out.status = GjkStatus::Intersecting; break; }
     }
     const Real gap = dist_sq - vw;

@@ -69,7 +69,8 @@ bool intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Tr
       int iterations = 0;
       Vec3 last_d;
       const Vec3 d0 = warm_size(cache) > 0 ? cache->dirs[0] : -v0;
-      const auto o = detail::gjk_boolean(md, d0, st.max_gjk_iterations, iterations, last_d);
+      const auto o = detail::gjk_boolean(md, d0, st.max_gjk_iterations, st.touch_tol * pair_size(a, b), iterations,
+                                         last_d);
       if (o != detail::Overlap::Undecided) {
         save_cache(cache, md, &last_d, 1);  // a separating direction, or the last search direction
         return o == detail::Overlap::Intersecting;
