@@ -52,8 +52,8 @@ struct PolytopeData {
 
 namespace detail {
 
-/// Index of a vertex maximising d . v, by two vectorised passes (the maximum,
-/// then its first index): branch-free, which beats hill climbing on small hulls.
+/// Index of the first vertex maximising d . v, by one vectorised pass:
+/// branch-free, which beats hill climbing on small hulls.
 inline int scan_support_index(const PolytopeData& s, const Vec3& d) noexcept {
   const Real* xs = s.soa.data();
   const Real* ys = xs + s.soa_stride;
@@ -65,14 +65,23 @@ inline int scan_support_index(const PolytopeData& s, const Vec3& d) noexcept {
     return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(xs + i), dx), _mm_mul_pd(_mm_loadu_pd(ys + i), dy)),
                       _mm_mul_pd(_mm_loadu_pd(zs + i), dz));
   };
+  // One pass: each lane keeps its first maximum and that vertex's index
+  // (lane 0 the even vertices, lane 1 the odd ones); then the larger of the
+  // two, the smaller index on a tie: the first vertex with the maximum.
   __m128d best = dots(0);
-  for (int i = 2; i < m; i += 2) best = _mm_max_pd(best, dots(i));
-  const __m128d top = _mm_max_pd(best, _mm_shuffle_pd(best, best, 1));
-  for (int i = 0; i < m; i += 2) {
-    const int mask = _mm_movemask_pd(_mm_cmpeq_pd(dots(i), top));
-    if (mask) return i + ((mask & 1) ? 0 : 1);
+  __m128d index = _mm_set_pd(1, 0);
+  const __m128d two = _mm_set1_pd(2);
+  __m128d at = index;
+  for (int i = 2; i < m; i += 2) {
+    at = _mm_add_pd(at, two);
+    const __m128d t = dots(i);
+    const __m128d more = _mm_cmpgt_pd(t, best);
+    best = _mm_or_pd(_mm_and_pd(more, t), _mm_andnot_pd(more, best));
+    index = _mm_or_pd(_mm_and_pd(more, at), _mm_andnot_pd(more, index));
   }
-  return 0;  // only reached with NaN input
+  const double b0 = _mm_cvtsd_f64(best), b1 = _mm_cvtsd_f64(_mm_unpackhi_pd(best, best));
+  const int i0 = static_cast<int>(_mm_cvtsd_f64(index)), i1 = static_cast<int>(_mm_cvtsd_f64(_mm_unpackhi_pd(index, index)));
+  return (b1 > b0 || (b1 == b0 && i1 < i0)) ? i1 : i0;
 #else
   int best = 0;
   Real best_dot = xs[0] * d.x + ys[0] * d.y + zs[0] * d.z;
