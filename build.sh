@@ -14,7 +14,7 @@ base_pkgs=(cmake make g++ libgtest-dev libbenchmark-dev nlohmann-json3-dev libcl
 # VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
 # example plots with matplotlib.
 test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib)
-peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev)
+peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev yade)  # yade: bench/yade_*.py
 
 install_missing() {
   local missing=()

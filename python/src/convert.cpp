@@ -36,14 +36,21 @@ std::vector<double> fixed_numbers(const py::handle& value, py::ssize_t count, co
   return out;
 }
 
-Quat unit_quat(double w, double x, double y, double z, const std::string& what) {
-  const double norm = std::sqrt(w * w + x * x + y * y + z * z);
-  if (!(std::fabs(norm - 1) <= kUnitQuaternionTol))
-    fail(what, "quaternion [w, x, y, z] must be unit (norm " + std::to_string(norm) + ")");
-  return {w / norm, x / norm, y / norm, z / norm};
+// Rows are read by the thousand: a row's name is made only for a message.
+std::string row_name(const std::string& what, std::ptrdiff_t row) {
+  return row < 0 ? what : what + "[" + std::to_string(row) + "]";
 }
 
 }  // namespace
+
+Quat quat_from_row(const double* q, const std::string& what, std::ptrdiff_t row) {
+  for (int k = 0; k < 4; ++k)
+    if (!std::isfinite(q[k])) fail(row_name(what, row), "NaN or infinite number");
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(std::fabs(norm - 1) <= kUnitQuaternionTol))
+    fail(row_name(what, row), "quaternion [w, x, y, z] must be unit (norm " + std::to_string(norm) + ")");
+  return {q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm};
+}
 
 Vec3 to_vec3(const py::handle& value, const std::string& what) {
   const std::vector<double> v = fixed_numbers(value, 3, what);
@@ -51,19 +58,13 @@ Vec3 to_vec3(const py::handle& value, const std::string& what) {
 }
 
 Quat to_quat(const py::handle& value, const std::string& what) {
-  const std::vector<double> q = fixed_numbers(value, 4, what);
-  return unit_quat(q[0], q[1], q[2], q[3], what);
+  return quat_from_row(fixed_numbers(value, 4, what).data(), what);
 }
 
 Transform pose_from_row(const double* r, const std::string& what, std::ptrdiff_t row) {
-  // Batches read thousands of rows: the row's name is made only for a message.
-  const auto name = [&] { return row < 0 ? what : what + "[" + std::to_string(row) + "]"; };
-  for (int k = 0; k < 7; ++k)
-    if (!std::isfinite(r[k])) fail(name(), "NaN or infinite number");
-  const double norm = std::sqrt(r[3] * r[3] + r[4] * r[4] + r[5] * r[5] + r[6] * r[6]);
-  if (!(std::fabs(norm - 1) <= kUnitQuaternionTol))
-    fail(name(), "quaternion [w, x, y, z] must be unit (norm " + std::to_string(norm) + ")");
-  return Transform::from({r[0], r[1], r[2]}, Quat{r[3] / norm, r[4] / norm, r[5] / norm, r[6] / norm});
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(r[k])) fail(row_name(what, row), "NaN or infinite number");
+  return Transform::from({r[0], r[1], r[2]}, quat_from_row(r + 3, what, row));
 }
 
 Transform to_pose(const py::handle& value, const std::string& what) {

@@ -32,6 +32,9 @@ Vec3 to_vec3(const py::handle& value, const std::string& what);
 Quat to_quat(const py::handle& value, const std::string& what);
 /// None (identity) or 7 finite numbers [x, y, z, qw, qx, qy, qz] with a unit quaternion.
 Transform to_pose(const py::handle& value, const std::string& what);
+/// A unit quaternion from 4 numbers [w, x, y, z] (finite, unit to
+/// kUnitQuaternionTol), normalized; messages name it `what`, or `what[row]`.
+Quat quat_from_row(const double* values, const std::string& what, std::ptrdiff_t row = -1);
 /// A pose from a row of 7 numbers (checked as to_pose); messages name it
 /// `what`, or `what[row]` for row >= 0.
 Transform pose_from_row(const double* values, const std::string& what, std::ptrdiff_t row = -1);

@@ -18,11 +18,6 @@ using Json = nlohmann::json;
 Json to_json(const py::handle& v, const std::string& what) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
   if (py::isinstance<py::int_>(v)) return v.cast<long long>();
-  if (py::isinstance<py::float_>(v) || py::isinstance(v, py::module_::import("numpy").attr("floating"))) {
-    const double x = v.cast<double>();
-    if (!std::isfinite(x)) fail(what, "NaN or infinite number");
-    return x;
-  }
   if (py::isinstance<py::str>(v)) return v.cast<std::string>();
   if (py::isinstance<py::dict>(v)) {
     Json o = Json::object();
@@ -37,6 +32,13 @@ Json to_json(const py::handle& v, const std::string& what) {
     Json a = Json::array();
     for (const auto& item : v.cast<py::sequence>()) a.push_back(to_json(item, what));
     return a;
+  }
+  // Python floats, and NumPy's scalars (float32 is no float subclass).
+  if (PyFloat_Check(v.ptr()) || PyNumber_Check(v.ptr())) {
+    const double x = PyFloat_AsDouble(v.ptr());
+    if (x == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+    if (!std::isfinite(x)) fail(what, "NaN or infinite number");
+    return x;
   }
   fail(what, std::string("cannot be a ") + py::str(v.get_type().attr("__name__")).cast<std::string>());
 }

@@ -330,8 +330,7 @@ void bind_world(py::module_& m) {
             const std::vector<std::size_t> idx = body_indices(w, indices, v.shape(0));
             std::vector<Quat> q(idx.size());
             for (std::size_t k = 0; k < idx.size(); ++k) {
-              q[k] = to_quat(py::array_t<double>(4, v.data(static_cast<py::ssize_t>(k), 0)),
-                             "orientations[" + std::to_string(k) + "]");
+              q[k] = quat_from_row(v.data(static_cast<py::ssize_t>(k), 0), "orientations", static_cast<std::ptrdiff_t>(k));
               if (w.bodies[idx[k]].fixed) fail("orientations", "body " + std::to_string(idx[k]) + " is fixed");
             }
             for (std::size_t k = 0; k < idx.size(); ++k) w.bodies[idx[k]].orientation = q[k];

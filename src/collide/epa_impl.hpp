@@ -218,23 +218,23 @@ EpaOutput epa(MD& md, Simplex s, Real size, const QuerySettings& st, EpaPolytope
   // makes a face come out turned inside out, it does: a cylinder sunk 0.02
   // into a cone of size 4.5 converged to 1e-11 in 30 steps, then such a face
   // took over and depth 0 came out. Then the best face before it is the answer.
+  // (Vertices are never removed, so a copy of that face stays valid.)
   Real floor = -std::numeric_limits<Real>::infinity();
-  EpaOutput before;
+  EpaFace before{};
   for (int it = 0; it < kMaxEpaIterations; ++it) {
-    out.iterations = it + 1;
-    best = poly.closest_face();
+    out.iterations = it + 1;  // `best` is the closest face (found before the loop and after each expansion)
     if (best < 0) break;
     const EpaFace& face = poly.faces[best];
     if (face.dist < floor - kEpaMonotoneSlack * size) {
-      before.iterations = out.iterations;
-      return before;
+      out.status = EpaStatus::MaxIterations;  // the best face before round-off took over
+      out.depth = std::fmax(before.dist, Real(0));
+      out.normal = before.normal;
+      face_witnesses(poly, before, out);
+      return out;
     }
     if (face.dist >= floor) {
       floor = face.dist;
-      before.status = EpaStatus::MaxIterations;  // best face so far
-      before.depth = std::fmax(face.dist, Real(0));
-      before.normal = face.normal;
-      face_witnesses(poly, face, before);
+      before = face;
     }
     const SupportPoint w = md.support(face.normal);
     const Real gap = dot(face.normal, w.w) - face.dist;

@@ -24,25 +24,29 @@ enum class Overlap { Separated, Intersecting, Undecided };
 /// Undecided, and the distance loop answers as penetration() would.
 template <class MD>
 Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, Real touch, int& iterations, Vec3& last_d) noexcept {
-  // p.d < 0 separates; within touch * |d| of 0 it is a touching contact.
-  const auto separates = [touch](const Vec3& p, const Vec3& dir) {
+  // p.d < 0 separates, unless within touch * |d| of 0: a touching contact.
+  enum class Side { Separates, Touches, Passes };
+  const auto side = [touch](const Vec3& p, const Vec3& dir) {
     const Real pd = dot(p, dir);
-    return pd < 0 && pd * pd > touch * touch * dot(dir, dir);
+    if (pd >= 0) return Side::Passes;
+    return pd * pd > touch * touch * dot(dir, dir) ? Side::Separates : Side::Touches;
   };
   if (!(dot(d, d) > 0)) d = {1, 0, 0};
   last_d = d;
   Vec3 s[4];  // s[n-1] is the newest point ("A" of the seed)
   int n = 0;
   s[n++] = md.support(d).w;
-  if (separates(s[0], d)) { iterations = 1; return Overlap::Separated; }
-  if (dot(s[0], d) < 0) { iterations = 1; return Overlap::Undecided; }
+  if (const Side first = side(s[0], d); first != Side::Passes) {
+    iterations = 1;
+    return first == Side::Separates ? Overlap::Separated : Overlap::Undecided;
+  }
   d = -s[0];
   for (iterations = 1; iterations <= max_iterations; ++iterations) {
     if (!(dot(d, d) > 0)) return Overlap::Intersecting;  // origin on the simplex
     last_d = d;
     const Vec3 p = md.support(d).w;
-    if (separates(p, d)) return Overlap::Separated;     // Algorithm 14, line 5
-    if (dot(p, d) < 0) return Overlap::Undecided;       // touching to round-off
+    if (const Side where = side(p, d); where != Side::Passes)  // Algorithm 14, line 5
+      return where == Side::Separates ? Overlap::Separated : Overlap::Undecided;  // touching: the distance loop decides
     for (int k = 0; k < n; ++k)
       if (s[k] == p) return Overlap::Undecided;          // no progress: let the distance loop decide
     s[n++] = p;

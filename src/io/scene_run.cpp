@@ -36,6 +36,15 @@ Json read_run_json(const RunPaths& folder) {
   return j;
 }
 
+// The run of a scene, its errors named after `source`.
+dem::RunState plan_scene(const Scene& scene, const std::string& source) {
+  try {
+    return dem::plan_run(scene.duration, scene.dt, scene.output_every);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(source + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 const char* version() noexcept { return GJKDEM_VERSION; }
@@ -66,11 +75,7 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   }
   r->scene = load_scene(text, source, base);
   if (options.threads >= 0) r->scene.world.settings.threads = options.threads;
-  try {
-    r->state = dem::plan_run(r->scene.duration, r->scene.dt, r->scene.output_every);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(source + ": " + e.what());
-  }
+  r->state = plan_scene(r->scene, source);
   r->folder.dir = options.out.empty() ? fs::path(r->scene.output_dir) : options.out;
   fs::create_directories(r->folder.dir);
   r->lock_.emplace(r->folder.dir);
@@ -90,11 +95,7 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
   const fs::path base = previous["scene_base"].get<std::string>();
   r->scene = load_scene(text, r->folder.scene().string(), base);
   if (threads >= 0) r->scene.world.settings.threads = threads;
-  try {
-    r->state = dem::plan_run(r->scene.duration, r->scene.dt, r->scene.output_every);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(r->folder.scene().string() + ": " + e.what());
-  }
+  r->state = plan_scene(r->scene, r->folder.scene().string());
   r->lock_.emplace(r->folder.dir);
   remove_stale_temporaries(r->folder);
   r->open_writers(text, previous.value("scene_file", ""), base, true);
@@ -116,13 +117,10 @@ void SceneRun::open_writers(const std::string& text, const std::string& scene_fi
                             bool resuming) {
   dem::World& world = scene.world;
   world.settings.threads = resolve_threads(world.settings.threads);
-  Json info;
-  info["version"] = version();
-  info["status"] = "starting";
+  Json info = Json::parse(run_info_json(world, scene.dt));
   info["scene_file"] = scene_file;
   info["scene_base"] = fs::absolute(base).string();
   info["scene"] = Json::parse(scene.resolved_json);
-  info.update(Json::parse(run_info_json(world, scene.dt)));
   info["warnings"] = scene.warnings;
   const RunWriterOptions options{.frames = scene.write_frames,
                                  .checkpoint_every = scene.checkpoint_every,
