@@ -181,7 +181,7 @@ void bind_world(py::module_& m) {
           "add_body",
           [](dem::WorldBuilder& b, const PyShape& shape, const py::object& material, const py::object& position,
              const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
-             const std::string& label) {
+             std::uint32_t motion, const std::string& label) {
             return b.add_body({.shape = {shape.shape, shape.offset},
                                .material = material_index(b, material),
                                .position = to_vec3(position, "position"),
@@ -189,37 +189,68 @@ void bind_world(py::module_& m) {
                                .velocity = to_vec3(velocity, "velocity"),
                                .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
                                .fixed = fixed,
+                               .motion = motion,
                                .label = label});
           },
           py::arg("shape"), py::arg("material"), py::arg("position") = std::array<double, 3>{0, 0, 0},
           py::arg("rotation") = std::array<double, 4>{1, 0, 0, 0},
           py::arg("velocity") = std::array<double, 3>{0, 0, 0},
           py::arg("angular_velocity") = std::array<double, 3>{0, 0, 0}, py::arg("fixed") = false,
-          py::arg("label") = "",
-          "Adds a body whose frame (the shape's) is at `position`, turned by `rotation` [w, x, y, z]; returns its index.")
+          py::arg("motion") = 0, py::arg("label") = "",
+          "Adds a body whose frame (the shape's) is at `position`, turned by `rotation` [w, x, y, z]; returns its index.\n"
+          "motion: a number from add_motion, for a fixed body that moves as prescribed.")
+      .def(
+          "add_motion",
+          [](dem::WorldBuilder& b, const py::object& center, const py::object& velocity,
+             const py::object& angular_velocity, const py::object& amplitude, double frequency, double phase,
+             const py::object& table, const std::string& label) {
+            dem::PrescribedMotion motion;
+            motion.center = to_vec3(center, "center");
+            motion.velocity = to_vec3(velocity, "velocity");
+            motion.angular_velocity = to_vec3(angular_velocity, "angular_velocity");
+            motion.amplitude = to_vec3(amplitude, "amplitude");
+            motion.frequency = frequency;
+            motion.phase = phase;
+            if (!table.is_none()) {
+              const auto rows = to_matrix(table, 4, "table");
+              for (py::ssize_t k = 0; k < rows.shape(0); ++k) {
+                motion.table_times.push_back(rows.at(k, 0));
+                motion.table_displacements.push_back({rows.at(k, 1), rows.at(k, 2), rows.at(k, 3)});
+              }
+            }
+            return b.add_motion(motion, label.empty() ? "motion" : label);
+          },
+          py::arg("center") = std::array<double, 3>{0, 0, 0}, py::arg("velocity") = std::array<double, 3>{0, 0, 0},
+          py::arg("angular_velocity") = std::array<double, 3>{0, 0, 0},
+          py::arg("amplitude") = std::array<double, 3>{0, 0, 0}, py::arg("frequency") = 0.0, py::arg("phase") = 0.0,
+          py::arg("table") = py::none(), py::arg("label") = "",
+          "A prescribed motion for walls and fixed bodies (docs/scenes.md): constant velocity, turning at\n"
+          "angular_velocity about center, a vibration amplitude * sin(2 pi frequency t + phase), and a table of\n"
+          "(K, 4) rows [t, dx, dy, dz] of displacements. Returns its number for the `motion` arguments.")
       .def(
           "add_plane",
           [](dem::WorldBuilder& b, const py::object& point, const py::object& normal, const py::object& material,
-             const std::string& label) {
+             std::uint32_t motion, const std::string& label) {
             b.add_plane(to_vec3(point, "point"), to_vec3(normal, "normal"), material_index(b, material),
-                        label.empty() ? "plane" : label);
+                        label.empty() ? "plane" : label, motion);
           },
-          py::arg("point"), py::arg("normal"), py::arg("material"), py::arg("label") = "",
+          py::arg("point"), py::arg("normal"), py::arg("material"), py::arg("motion") = 0, py::arg("label") = "",
           "An infinite plane wall; the material lies on the side opposite to `normal`.")
       .def(
           "add_box_walls",
           [](dem::WorldBuilder& b, const py::object& lo, const py::object& hi, const py::object& material,
-             bool open_top, double thickness, const std::string& label) {
+             bool open_top, double thickness, std::uint32_t motion, const std::string& label) {
             const Vec3 l = to_vec3(lo, "lo"), h = to_vec3(hi, "hi");
             if (thickness <= 0) thickness = 0.5 * std::fmin(h.x - l.x, std::fmin(h.y - l.y, h.z - l.z));
-            b.add_box_walls(l, h, open_top, thickness, material_index(b, material), label.empty() ? "box" : label);
+            b.add_box_walls(l, h, open_top, thickness, material_index(b, material), label.empty() ? "box" : label,
+                            motion);
           },
           py::arg("lo"), py::arg("hi"), py::arg("material"), py::arg("open_top") = false, py::arg("thickness") = 0.0,
-          py::arg("label") = "", "A box container [lo, hi]; thickness 0: half its smallest side.")
+          py::arg("motion") = 0, py::arg("label") = "", "A box container [lo, hi]; thickness 0: half its smallest side.")
       .def(
           "add_mesh_walls",
           [](dem::WorldBuilder& b, const py::object& vertices, const py::object& triangles, double thickness,
-             const py::object& material, const std::string& label) {
+             const py::object& material, std::uint32_t motion, const std::string& label) {
             const auto v = to_matrix(vertices, 3, "vertices");
             const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(triangles);
             if (!t || t.ndim() != 2 || t.shape(1) != 3) fail("triangles", "expected an (M, 3) array of vertex indices");
@@ -234,10 +265,11 @@ void bind_world(py::module_& m) {
                                         " out of range [0, " + std::to_string(v.shape(0)) + ")");
                 tris[k][c] = static_cast<std::uint32_t>(i);
               }
-            b.add_mesh_walls(points, tris, thickness, material_index(b, material), label.empty() ? "mesh" : label);
+            b.add_mesh_walls(points, tris, thickness, material_index(b, material), label.empty() ? "mesh" : label,
+                             motion);
           },
           py::arg("vertices"), py::arg("triangles"), py::arg("thickness"), py::arg("material"),
-          py::arg("label") = "",
+          py::arg("motion") = 0, py::arg("label") = "",
           "A triangle mesh wall (world coordinates, (N, 3) vertices, (M, 3) indices), one fixed piece per triangle.")
       .def(
           "fill_region",
@@ -272,7 +304,9 @@ void bind_world(py::module_& m) {
 
   py::class_<World> world(m, "World", "A DEM world: bodies, walls and their contacts. Made by WorldBuilder or a scene.");
   def_view<std::uint64_t>(world, "ids", offsetof(Body, id), 0, false, "Global ids (N,), read-only view.");
-  def_view<std::uint32_t>(world, "fixed", offsetof(Body, fixed), 0, false, "1 for fixed bodies (N,), read-only view.");
+  def_view<std::uint16_t>(world, "fixed", offsetof(Body, fixed), 0, false, "1 for fixed bodies (N,), read-only view.");
+  def_view<std::uint16_t>(world, "motions", offsetof(Body, motion), 0, false,
+                          "The motion number (add_motion) of driven bodies, 0 for others (N,), read-only view.");
   def_view<double>(world, "positions", offsetof(Body, position), 3, false,
            "Centres of mass (N, 3), read-only view; set_positions changes them.");
   def_view<double>(world, "orientations", offsetof(Body, orientation), 4, false,
@@ -409,9 +443,11 @@ void bind_world(py::module_& m) {
             py::dict d;
             d["kinetic"] = dem::kinetic_energy(w), d["potential"] = dem::potential_energy(w);
             d["elastic"] = w.stats.elastic_energy;
+            d["wall_work"] = w.wall_work;
             return d;
           },
-          "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy (J).")
+          "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, and the work driven\n"
+          "walls and bodies did on the others so far (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
       .def(
           "save_checkpoint",

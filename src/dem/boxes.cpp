@@ -47,7 +47,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     int any = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : any) if (count >= kMinParallelBodies)
     for (std::int64_t i = 0; i < count; ++i) {
-      cache.moved[i] = bodies[i].fixed ? 0 : moved(i);
+      cache.moved[i] = is_static(bodies[i]) ? 0 : moved(i);
       if (!(cache.moved[i] <= 1)) any = 1;
     }
     if (!any) return 0;
@@ -58,8 +58,8 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
   for (std::int64_t i = 0; i < count; ++i) {
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
-    if (!all && (b.fixed || cache.moved[i] <= threshold)) continue;
-    cache.boxes[i] = aabb(t.shape, shape_pose(t, b), b.fixed ? 0 : skin * t.reach);
+    if (!all && (is_static(b) || cache.moved[i] <= threshold)) continue;
+    cache.boxes[i] = aabb(t.shape, shape_pose(t, b), is_static(b) ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;
     ++updated;
@@ -76,7 +76,7 @@ void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const Shap
     at.position = cache.anchor_position[i];
     at.orientation = cache.anchor_orientation[i];
     const ShapeTemplate& t = templates[at.shape];
-    cache.boxes[i] = aabb(t.shape, shape_pose(t, at), at.fixed ? 0 : skin * t.reach);
+    cache.boxes[i] = aabb(t.shape, shape_pose(t, at), is_static(at) ? 0 : skin * t.reach);
   }
 }
 

@@ -20,8 +20,9 @@ using detail::kMinParallelContacts;
 using detail::thread_count;
 using detail::thread_id;
 
-// Candidate body pairs: moving against moving by the sweep, moving against
-// fixed from the static tree (built again when the boxes were all made anew).
+// Candidate body pairs: moving and driven bodies against each other by the
+// sweep (two driven ones never touch), moving against static from the static
+// tree (built again when the boxes were all made anew).
 void find_candidates(World& w, int threads) {
   StepWorkspace& work = w.work;
   const std::vector<Aabb>& boxes = work.boxes.boxes;
@@ -30,7 +31,7 @@ void find_candidates(World& w, int threads) {
     std::vector<std::uint32_t> fixed;
     std::vector<Aabb> fixed_boxes;
     for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
-      if (w.bodies[i].fixed) {
+      if (is_static(w.bodies[i])) {
         fixed.push_back(i);
         fixed_boxes.push_back(boxes[i]);
       } else {
@@ -45,8 +46,11 @@ void find_candidates(World& w, int threads) {
   std::vector<BodyPair>& pairs = work.candidates;
   overlapping_pairs(work.moving_boxes, work.sweep, pairs, threads);
   for (BodyPair& p : pairs) p = {work.moving[p.first], work.moving[p.second]};  // moving is increasing
+  if (!w.driven.empty())
+    std::erase_if(pairs, [&](const BodyPair& p) { return w.bodies[p.first].fixed && w.bodies[p.second].fixed; });
   std::vector<std::uint32_t> found;
   for (const std::uint32_t i : work.moving) {
+    if (w.bodies[i].fixed) continue;
     found.clear();
     query_static_tree(work.fixed_tree, boxes[i], found);
     for (const std::uint32_t f : found) pairs.emplace_back(std::min(i, f), std::max(i, f));
@@ -98,8 +102,24 @@ ContactSide fixed_side() {
   return s;
 }
 
+// A driven wall or body: infinite too, moving with its motion's frame.
+ContactSide driven_side(const MotionFrame& f, const Vec3& position, const Vec3& velocity) {
+  ContactSide s = fixed_side();
+  s.moving = true;
+  s.position = position;
+  s.velocity = velocity;
+  s.spin = f.spin;
+  return s;
+}
+
+ContactSide plane_side(const World& w, const PlaneWall& p) {
+  if (p.motion == 0) return fixed_side();
+  const MotionFrame& f = w.work.motion_frames[p.motion - 1];
+  return driven_side(f, f.center, f.velocity);
+}
+
 ContactSide side_of(const World& w, const Body& b) {
-  if (b.fixed) return fixed_side();
+  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position, b.velocity) : fixed_side();
   ContactSide s;
   const ShapeTemplate& t = w.templates[b.shape];
   s.moving = true;
@@ -157,7 +177,7 @@ StepReport compute_forces(World& w, Real dt) {
     StepContact& c = contacts[k];
     if (!c.active) continue;
     const Body& b = w.bodies[c.b];
-    const ContactSide side_a = c.a_is_plane ? fixed_side() : side_of(w, w.bodies[c.a]);
+    const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a]);
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
                                          side_of(w, b), w.pairs[k].history, w.settings, dt);
@@ -186,6 +206,17 @@ StepReport compute_forces(World& w, Real dt) {
       a.torque -= c.torque - cross(a.position, c.force);
     }
     w.pairs[k].history = c.history;
+    // Power of a driven side on the other: its velocity field against the
+    // force and torque it exerts (c.force and c.torque act on b).
+    const std::uint32_t motion_a = c.a_is_plane ? w.planes[c.a].motion : w.bodies[c.a].motion;
+    if (motion_a) {
+      const MotionFrame& f = work.motion_frames[motion_a - 1];
+      stats.wall_power += dot(c.force, f.velocity_at_origin) + dot(c.torque, f.spin);
+    }
+    if (b.motion) {
+      const MotionFrame& f = work.motion_frames[b.motion - 1];
+      stats.wall_power -= dot(c.force, f.velocity_at_origin) + dot(c.torque, f.spin);
+    }
     stats.elastic_energy += c.elastic;
     ++stats.contacts;
     if (c.a_is_plane || w.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
@@ -198,24 +229,28 @@ StepReport compute_forces(World& w, Real dt) {
 
 StepReport compute_forces_now(World& w) {
   if (w.forces_current) return {};
+  place_driven(w);
   return compute_forces(w, 0);
 }
 
 StepReport step(World& w, Real dt) {
   if (!w.forces_current) {
-    const StepReport r = compute_forces(w, 0);
+    const StepReport r = compute_forces_now(w);
     if (r.status != StepStatus::Ok) return r;
   }
   const int threads = thread_count(w.settings.threads);
   kick(w.bodies, w.templates, w.materials, dt / 2, threads);
   drift(w.bodies, w.templates, w.materials, dt, threads);
+  const Real power_before = w.stats.wall_power;
+  w.time += dt;
+  if (!w.motions.empty()) place_driven(w);
   const StepReport r = compute_forces(w, dt);
   if (r.status != StepStatus::Ok) {
     w.forces_current = false;
     return r;
   }
   kick(w.bodies, w.templates, w.materials, dt / 2, threads);
-  w.time += dt;
+  w.wall_work += 0.5 * dt * (power_before + w.stats.wall_power);  // trapezoid rule
   return r;
 }
 

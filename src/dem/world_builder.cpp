@@ -70,6 +70,30 @@ void WorldBuilder::check_material(std::uint32_t material, const std::string& lab
     throw BuildError(label + ": material " + std::to_string(material) + " was never added");
 }
 
+std::uint32_t WorldBuilder::add_motion(const PrescribedMotion& motion, const std::string& label) {
+  try {
+    check_motion(motion);
+  } catch (const std::invalid_argument& e) {
+    throw BuildError(label + ": " + e.what());
+  }
+  if (world_.motions.size() >= 0xffff) throw BuildError(label + ": more than 65,534 motions");
+  world_.motions.push_back(motion);
+  return static_cast<std::uint32_t>(world_.motions.size());
+}
+
+void WorldBuilder::check_motion_number(std::uint32_t motion, const std::string& label) const {
+  if (motion > world_.motions.size())
+    throw BuildError(label + ": motion " + std::to_string(motion) + " was never added");
+}
+
+// A fixed body placed where it was given, from now on moved by `motion`.
+void WorldBuilder::drive(std::uint32_t index, std::uint32_t motion) {
+  if (motion == 0) return;
+  Body& b = world_.bodies[index];
+  b.motion = static_cast<std::uint16_t>(motion);
+  world_.driven.push_back({index, b.position, b.orientation});
+}
+
 std::uint64_t WorldBuilder::next_id() const noexcept {
   return world_.bodies.empty() ? 0 : world_.bodies.back().id + 1;
 }
@@ -119,6 +143,8 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     throw BuildError(label + ": a fixed body cannot move (velocity and angular_velocity must be 0)");
+  check_motion_number(d.motion, label);
+  if (d.motion && !d.fixed) throw BuildError(label + ": a motion is for fixed bodies (forces move the others)");
   Body b;
   b.id = next_id();
   b.material = d.material;
@@ -136,8 +162,10 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   }
   world_.bodies.push_back(b);
   labels_.push_back(label);
-  explicit_.push_back(static_cast<std::uint32_t>(world_.bodies.size() - 1));
-  return static_cast<std::uint32_t>(world_.bodies.size() - 1);
+  const std::uint32_t index = static_cast<std::uint32_t>(world_.bodies.size() - 1);
+  explicit_.push_back(index);
+  drive(index, d.motion);
+  return index;
 }
 
 std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string& label) {
@@ -145,18 +173,20 @@ std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string&
   return static_cast<std::uint32_t>(shared_.size() - 1);
 }
 
-void WorldBuilder::add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label) {
+void WorldBuilder::add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label,
+                             std::uint32_t motion) {
   check_material(material, label);
+  check_motion_number(motion, label);
   if (!is_finite(point) || !is_finite(normal)) throw BuildError(label + ": point and normal must be finite");
   // Scaled first, so that huge components do not overflow the length.
   const Real largest = max_abs(normal);
   const Vec3 unit = largest > 0 ? normalized(normal / largest) : Vec3{};
   if (!(length(unit) > 0.5)) throw BuildError(label + ": the normal must not be zero");
-  world_.planes.push_back({kPlaneIdBase + world_.planes.size(), point, unit, material});
+  world_.planes.push_back({kPlaneIdBase + world_.planes.size(), point, unit, material, motion, point, unit});
 }
 
 std::uint32_t WorldBuilder::add_fixed_piece(const Shape& shape, const Vec3& position, std::uint32_t material,
-                                            std::uint32_t group, const std::string& label) {
+                                            std::uint32_t group, const std::string& label, std::uint32_t motion) {
   Body b;
   b.id = next_id();
   b.shape = add_template(shape, true, label);
@@ -166,30 +196,36 @@ std::uint32_t WorldBuilder::add_fixed_piece(const Shape& shape, const Vec3& posi
   b.position = position;
   world_.bodies.push_back(b);
   labels_.push_back(label);
-  return static_cast<std::uint32_t>(world_.bodies.size() - 1);
+  const std::uint32_t index = static_cast<std::uint32_t>(world_.bodies.size() - 1);
+  drive(index, motion);
+  return index;
 }
 
 void WorldBuilder::add_box_walls(const Vec3& lo, const Vec3& hi, bool open_top, Real t, std::uint32_t material,
-                                 const std::string& label) {
+                                 const std::string& label, std::uint32_t motion) {
   check_material(material, label);
+  check_motion_number(motion, label);
   if (!is_finite(lo) || !is_finite(hi) || !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
     throw BuildError(label + ": max must exceed min on every axis");
   if (!(t > 0) || !std::isfinite(t)) throw BuildError(label + ": the thickness must be > 0");
   const std::uint32_t group = ++groups_;
   const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-  add_fixed_piece(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, lo.z - t / 2}, material, group, label + " (floor)");
-  if (!open_top)
-    add_fixed_piece(Shape{Box{{h.x + 2 * t, h.y + 2 * t, t / 2}}}, {c.x, c.y, hi.z + t / 2}, material, group, label + " (roof)");
-  add_fixed_piece(Shape{Box{{t / 2, h.y + t, h.z}}}, {lo.x - t / 2, c.y, c.z}, material, group, label + " (side -x)");
-  add_fixed_piece(Shape{Box{{t / 2, h.y + t, h.z}}}, {hi.x + t / 2, c.y, c.z}, material, group, label + " (side +x)");
-  add_fixed_piece(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, lo.y - t / 2, c.z}, material, group, label + " (side -y)");
-  add_fixed_piece(Shape{Box{{h.x, t / 2, h.z}}}, {c.x, hi.y + t / 2, c.z}, material, group, label + " (side +y)");
+  auto slab = [&](const Vec3& half, const Vec3& centre, const char* side) {
+    add_fixed_piece(Shape{Box{half}}, centre, material, group, label + side, motion);
+  };
+  slab({h.x + 2 * t, h.y + 2 * t, t / 2}, {c.x, c.y, lo.z - t / 2}, " (floor)");
+  if (!open_top) slab({h.x + 2 * t, h.y + 2 * t, t / 2}, {c.x, c.y, hi.z + t / 2}, " (roof)");
+  slab({t / 2, h.y + t, h.z}, {lo.x - t / 2, c.y, c.z}, " (side -x)");
+  slab({t / 2, h.y + t, h.z}, {hi.x + t / 2, c.y, c.z}, " (side +x)");
+  slab({h.x, t / 2, h.z}, {c.x, lo.y - t / 2, c.z}, " (side -y)");
+  slab({h.x, t / 2, h.z}, {c.x, hi.y + t / 2, c.z}, " (side +y)");
 }
 
 void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
                                   std::span<const std::array<std::uint32_t, 3>> triangles, Real thick,
-                                  std::uint32_t material, const std::string& label) {
+                                  std::uint32_t material, const std::string& label, std::uint32_t motion) {
   check_material(material, label);
+  check_motion_number(motion, label);
   for (const Vec3& v : vertices)
     if (!is_finite(v)) throw BuildError(label + ": vertices must be finite (a scale beyond double precision?)");
   if (!(thick > 0) || !std::isfinite(thick)) throw BuildError(label + ": the thickness must be > 0 and finite");
@@ -210,7 +246,7 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
     } else {
       shape = Shape{Triangle{{a - centre, b - centre, c - centre}}, thick / 2};
     }
-    add_fixed_piece(shape, centre, material, group, piece);
+    add_fixed_piece(shape, centre, material, group, piece, motion);
   }
 }
 
@@ -401,6 +437,7 @@ void WorldBuilder::prepare_shapes() {
 
 World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty()) throw BuildError("the world is empty");
+  place_driven(world_);  // where their motions have them now, for the checks
   check_explicit_bodies();
   prepare_shapes();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);

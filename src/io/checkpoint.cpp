@@ -14,9 +14,9 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 3. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 4. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
-    "elastic_energy contacts(u64) wall_contacts(u64); BODY count, per body id(u64) position(3) orientation(w,x,y,z) "
+    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; BODY count, per body id(u64) position(3) orientation(w,x,y,z) "
     "velocity(3) angular_momentum(3) force(3) torque(3); BOXS count, per body anchor position(3) and orientation(4); "
     "PAIR count, per pair key(lo,hi u64) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) spring(3) twist roll(3); "
     "LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 length, bytes) time.";
@@ -144,6 +144,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   s = o.begin("STAT");
   o.u8(w.forces_current ? 1 : 0), o.real(w.stats.elastic_energy);
   o.u64(static_cast<std::uint64_t>(w.stats.contacts)), o.u64(static_cast<std::uint64_t>(w.stats.wall_contacts));
+  o.real(w.stats.wall_power), o.real(w.wall_work);
   o.end(s);
   s = o.begin("BODY");
   o.u64(w.bodies.size());
@@ -221,7 +222,10 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   stats.elastic_energy = in.real();
   stats.contacts = static_cast<int>(in.u64());
   stats.wall_contacts = static_cast<int>(in.u64());
+  stats.wall_power = in.real();
+  const Real wall_work = in.real();
   in.close(end, "STAT");
+  if (!std::isfinite(stats.wall_power) || !std::isfinite(wall_work)) in.fail("the work of driven walls is not finite");
 
   // Into a copy: the world is changed only once everything has been read.
   std::vector<dem::Body> bodies = w.bodies;
@@ -268,7 +272,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.time = time;
   w.forces_current = forces_current;
   w.stats = stats;
+  w.wall_work = wall_work;
   w.work = {};
+  dem::place_driven(w);  // planes and motion frames (driven bodies come back as saved)
   if (anchors > 0) {
     w.work.boxes = std::move(boxes);
     dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.work.boxes);

@@ -104,7 +104,7 @@ void TraceWriter::on_output(const dem::World& w, const dem::RunState&) {
 
 void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
   const dem::EnergyBalance e = dem::energy_balance(w, state.initial_energy);
-  append(energy_row(w.time, e.kinetic, e.potential, e.elastic, e.dissipated, w.stats.contacts));
+  append(energy_row(w.time, e, w.stats.contacts));
 }
 
 Checkpointer::Checkpointer(fs::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,

@@ -160,15 +160,17 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   return s;
 }
 
-std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts\n"; }
+std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts,wall_work\n"; }
 
-std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Real dissipated, int contacts) {
+std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   std::string s;
-  for (Real v : {time, kinetic, potential, elastic, dissipated}) {
+  for (Real v : {time, e.kinetic, e.potential, e.elastic, e.dissipated}) {
     append(s, v);
     s += ',';
   }
-  s += std::to_string(contacts) + "\n";
+  s += std::to_string(contacts) + ",";
+  append(s, e.wall_work);
+  s += "\n";
   return s;
 }
 

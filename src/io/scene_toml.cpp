@@ -415,7 +415,10 @@ class SceneBuilder {
     d.velocity = r.vec3("velocity").value_or(Vec3{});
     d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
     if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
-      r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0)");
+      r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0; give it a 'motion')");
+    Json motion_json;
+    if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
+    d.motion = read_motion(r, motion_json);
     if (name && names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
     if (name && (name->empty() || name->find_first_of(",\"\r\n") != std::string::npos ||
                  std::any_of(name->begin(), name->end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })))
@@ -430,6 +433,7 @@ class SceneBuilder {
               {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
               {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
     if (name) j["name"] = *name;
+    if (d.motion) j["motion"] = motion_json["motion"];
     resolved_["body"].push_back(j);
   }
 
@@ -496,15 +500,66 @@ class SceneBuilder {
                                       {"velocity", to_json(fill.velocity)}, {"variants", variants}});
   }
 
+  // The optional `motion` table of a wall or fixed body: its number for the
+  // builder (0: none), its resolved form added to `j`.
+  std::uint32_t read_motion(TableReader& owner, Json& j) {
+    const toml::table* t = owner.table("motion");
+    if (!t) return 0;
+    TableReader r(*t, owner.where() + ".motion");
+    dem::PrescribedMotion m;
+    m.center = r.vec3("center").value_or(Vec3{});
+    m.velocity = r.vec3("velocity").value_or(Vec3{});
+    m.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
+    Json out = {{"center", to_json(m.center)}, {"velocity", to_json(m.velocity)},
+                {"angular_velocity", to_json(m.angular_velocity)}};
+    if (const toml::table* v = r.table("vibration")) {
+      TableReader vib(*v, r.where() + ".vibration");
+      const std::optional<Vec3> amplitude = vib.vec3("amplitude");
+      if (!amplitude) throw SceneError(vib.where() + ": missing required key 'amplitude'" + line_of(*v));
+      m.amplitude = *amplitude;
+      m.frequency = vib.positive("frequency");
+      m.phase = vib.number("phase").value_or(0);
+      vib.finish();
+      out["vibration"] = {{"amplitude", to_json(m.amplitude)}, {"frequency", m.frequency}, {"phase", m.phase}};
+    }
+    if (const toml::node* n = r.find("table")) {
+      const toml::array* rows = n->as_array();
+      if (!rows || rows->empty()) r.fail("table", "must be an array of rows [time, x, y, z]");
+      for (const toml::node& row : *rows) {
+        const toml::array* a = row.as_array();
+        if (!a || a->size() != 4) r.fail("table", "must be an array of rows [time, x, y, z] (seconds, metres)");
+        Real v[4];
+        for (int k = 0; k < 4; ++k) {
+          if (!(*a)[k].is_number()) r.fail("table", "rows must hold numbers only");
+          v[k] = as_real((*a)[k]);
+          if (!std::isfinite(v[k])) r.fail("table", "must be finite");
+        }
+        if (!m.table_times.empty() && !(v[0] > m.table_times.back())) r.fail("table", "times must increase");
+        m.table_times.push_back(v[0]);
+        m.table_displacements.push_back({v[1], v[2], v[3]});
+      }
+      Json table = Json::array();
+      for (std::size_t k = 0; k < m.table_times.size(); ++k) {
+        const Vec3& d = m.table_displacements[k];
+        table.push_back({m.table_times[k], d.x, d.y, d.z});
+      }
+      out["table"] = table;
+    }
+    r.finish();
+    j["motion"] = out;
+    return building(*t, [&] { return builder_->add_motion(m, r.where()); });
+  }
+
   void read_wall(TableReader& r) {
     const std::string type = r.required_string("type");
     const std::uint32_t material = material_of(r);
     Json j = {{"type", type}, {"material", r.required_string("material")}};
+    const std::uint32_t motion = read_motion(r, j);
     if (type == "plane") {
       const Vec3 point = r.vec3("point").value_or(Vec3{});
       const std::optional<Vec3> normal = r.vec3("normal");
       if (!normal) throw SceneError(r.where() + ": missing required key 'normal'" + line_of(r.table_node()));
-      building(r.table_node(), [&] { builder_->add_plane(point, *normal, material, r.where()); });
+      building(r.table_node(), [&] { builder_->add_plane(point, *normal, material, r.where(), motion); });
       j["point"] = to_json(point);
       j["normal"] = to_json(*normal);  // as given; the builder makes it unit
     } else if (type == "box") {
@@ -514,7 +569,7 @@ class SceneBuilder {
       const bool open_top = r.boolean("open_top", false);
       const Vec3 size = *hi - *lo;
       const Real thick = r.positive("thickness", 0.5 * std::fmin(size.x, std::fmin(size.y, size.z)));
-      building(r.table_node(), [&] { builder_->add_box_walls(*lo, *hi, open_top, thick, material, r.where()); });
+      building(r.table_node(), [&] { builder_->add_box_walls(*lo, *hi, open_top, thick, material, r.where(), motion); });
       j["min"] = to_json(*lo);
       j["max"] = to_json(*hi);
       j["open_top"] = open_top;
@@ -539,7 +594,7 @@ class SceneBuilder {
       }
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),
-               [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where()); });
+               [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where(), motion); });
       j["file"] = file.string();
       j["position"] = to_json(position);
       j["rotation"] = to_json(rotation);

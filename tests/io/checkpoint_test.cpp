@@ -16,11 +16,19 @@ namespace gjkdem::io {
 namespace {
 
 // 40 random polyhedra poured into a box of plane walls, run for a while so
-// that contacts, springs and warm starts exist.
-dem::World pour(std::uint64_t seed, int grains = 40) {
+// that contacts, springs and warm starts exist. `driven`: the floor vibrates
+// and a paddle (a box) turns through the bed.
+dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false) {
   dem::WorldBuilder b;
   const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, 0.5});
-  b.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  std::uint32_t shake = 0, turn = 0;
+  if (driven) {
+    shake = b.add_motion({.amplitude = {0, 0, 0.002}, .frequency = 30}, "shake");
+    turn = b.add_motion({.center = {0, 0, 0.02}, .angular_velocity = {0, 3, 0}}, "turn");
+    b.add_body({.shape = {Shape{Box{{0.02, 0.03, 0.002}}}, {}}, .material = rock, .position = {0, 0, 0.02},
+                .fixed = true, .motion = turn, .label = "paddle"});
+  }
+  b.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor", shake);
   b.add_plane({-0.04, 0, 0}, {1, 0, 0}, rock, "-x");
   b.add_plane({0.04, 0, 0}, {-1, 0, 0}, rock, "+x");
   std::mt19937_64 rng(seed);
@@ -42,22 +50,31 @@ bool same_state(const dem::World& a, const dem::World& b) {
 }
 
 TEST(Checkpoint, RestoredWorldContinuesWithTheSameBits) {
-  dem::World straight = pour(1);
-  const dem::RunState plan = dem::plan_run(0.08, 1e-4, 0.01);
-  dem::RunState run = plan;
-  ASSERT_EQ(dem::run(straight, run, {}).status, dem::RunStatus::Completed);
+  for (const bool driven : {false, true}) {
+    SCOPED_TRACE(driven ? "driven walls" : "fixed walls");
+    dem::World straight = pour(1, 40, driven);
+    const dem::RunState plan = dem::plan_run(0.08, 1e-4, 0.01);
+    dem::RunState run = plan;
+    ASSERT_EQ(dem::run(straight, run, {}).status, dem::RunStatus::Completed);
 
-  dem::World first = pour(1);
-  dem::RunState part = plan;
-  dem::run(first, part, {}, [&] { return part.step == 500; });
-  ASSERT_EQ(part.step, 500u);
-  ASSERT_GT(first.stats.contacts, 10);  // springs and warm starts to carry
-  const std::string bytes = encode_checkpoint(first, {part, {}}, 42);
-  dem::World resumed = pour(1);  // a world rebuilt from the same "scene"
-  const Checkpoint c = decode_checkpoint(bytes, resumed, 42, "memory");
-  dem::RunState rest = c.run;
-  ASSERT_EQ(dem::run(resumed, rest, {}).status, dem::RunStatus::Completed);
-  EXPECT_TRUE(same_state(straight, resumed));
+    dem::World first = pour(1, 40, driven);
+    dem::RunState part = plan;
+    dem::run(first, part, {}, [&] { return part.step == 500; });
+    ASSERT_EQ(part.step, 500u);
+    ASSERT_GT(first.stats.contacts, 10);  // springs and warm starts to carry
+    if (driven) {
+      ASSERT_NE(first.wall_work, 0);
+    }
+    const std::string bytes = encode_checkpoint(first, {part, {}}, 42);
+    dem::World resumed = pour(1, 40, driven);  // a world rebuilt from the same "scene"
+    const Checkpoint c = decode_checkpoint(bytes, resumed, 42, "memory");
+    dem::RunState rest = c.run;
+    ASSERT_EQ(dem::run(resumed, rest, {}).status, dem::RunStatus::Completed);
+    EXPECT_TRUE(same_state(straight, resumed));
+    EXPECT_EQ(straight.wall_work, resumed.wall_work);
+    for (std::size_t k = 0; k < straight.planes.size(); ++k)
+      EXPECT_TRUE(straight.planes[k].point == resumed.planes[k].point) << "plane " << k;
+  }
 }
 
 std::string refusal(const std::string& bytes, dem::World& w, std::uint64_t fingerprint = 42) {

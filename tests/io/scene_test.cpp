@@ -34,6 +34,13 @@ material = "rock"
 position = [0.0, 0.0, 0.05]
 )";
 
+const std::string kPlane = R"(
+[[wall]]
+type = "plane"
+normal = [0.0, 0.0, 1.0]
+material = "rock"
+)";
+
 std::string refusal(const std::string& toml) {
   try {
     load_scene(toml, "test.toml", std::filesystem::temp_directory_path());
@@ -204,6 +211,31 @@ position = [0.0, 0.0, 0.0699999]
 }
 
 // Issue 11: these messages named neither key nor line.
+TEST(Scene, MotionsAreReadAndResolved) {
+  const Scene scene = load_scene(kHead + kCube + kPlane + R"(motion = { velocity = [0.1, 0.0, 0.0], vibration = { amplitude = [0.0, 0.0, 0.002], frequency = 20.0 } }
+[[wall]]
+type = "box"
+min = [-0.2, -0.2, -0.5]
+max = [0.2, 0.2, 0.5]
+material = "rock"
+motion = { center = [0.0, 0.0, 0.1], angular_velocity = [0.0, 2.0, 0.0], table = [[0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.5]] }
+)", "test.toml", std::filesystem::temp_directory_path());
+  const dem::World& w = scene.world;
+  ASSERT_EQ(w.motions.size(), 2u);
+  EXPECT_EQ(w.planes.at(0).motion, 1u);
+  EXPECT_EQ(w.motions[0].velocity, (Vec3{0.1, 0, 0}));
+  EXPECT_EQ(w.motions[0].frequency, 20.0);
+  EXPECT_EQ(w.motions[1].center, (Vec3{0, 0, 0.1}));
+  EXPECT_EQ(w.motions[1].table_times.size(), 2u);
+  std::size_t driven = 0;
+  for (const dem::Body& b : w.bodies) driven += b.motion == 2;
+  EXPECT_EQ(driven, 6u);  // the box's six slabs
+  EXPECT_EQ(w.driven.size(), 6u);
+  const std::string& resolved = scene.resolved_json;
+  EXPECT_NE(resolved.find("\"angular_velocity\":[0.0,2.0,0.0]"), std::string::npos) << resolved;
+  EXPECT_NE(resolved.find("\"vibration\""), std::string::npos) << resolved;
+}
+
 TEST(Scene, BuildMessagesNameTheirLines) {
   const std::string overlap = refusal(kHead + kCube + R"(
 [[body]]
@@ -344,6 +376,26 @@ fixed = true
         Bad{"gravity_length", "[simulation]\nduration = 1.0\ngravity = [0.0, -9.81]\n" + kNoSim + kCube,
             "gravity: must have 3 numbers"},
         Bad{"body_not_array", kHead + "[body]\nmaterial = \"rock\"\n", "write [[body]]"},
+        // Motions of walls and fixed bodies.
+        Bad{"motion_on_moving_body", kHead + kCube + "motion = { velocity = [1.0, 0.0, 0.0] }\n",
+            "body[0].motion: is for fixed bodies"},
+        Bad{"fixed_body_velocity", kHead + kCube + "fixed = true\nvelocity = [1.0, 0.0, 0.0]\n", "give it a 'motion'"},
+        Bad{"motion_unknown_key", kHead + kCube + kPlane + "motion = { speed = 2.0 }\n",
+            "wall[0].motion: unknown key 'speed'"},
+        Bad{"motion_not_table", kHead + kCube + kPlane + "motion = 3.0\n", "wall[0].motion: must be a table"},
+        Bad{"vibration_no_amplitude", kHead + kCube + kPlane + "motion = { vibration = { frequency = 5.0 } }\n",
+            "wall[0].motion.vibration: missing required key 'amplitude'"},
+        Bad{"vibration_zero_frequency",
+            kHead + kCube + kPlane + "motion = { vibration = { amplitude = [0.0, 0.0, 0.001], frequency = 0.0 } }\n",
+            "wall[0].motion.vibration.frequency: must be > 0"},
+        Bad{"table_times_decrease",
+            kHead + kCube + kPlane + "motion = { table = [[0.0, 0.0, 0.0, 0.0], [0.0, 0.1, 0.0, 0.0]] }\n",
+            "wall[0].motion.table: times must increase"},
+        Bad{"table_short_row", kHead + kCube + kPlane + "motion = { table = [[0.0, 0.0, 0.0]] }\n",
+            "wall[0].motion.table: must be an array of rows [time, x, y, z]"},
+        Bad{"table_empty", kHead + kCube + kPlane + "motion = { table = [] }\n", "wall[0].motion.table: must be"},
+        Bad{"motion_nan", kHead + kCube + kPlane + "motion = { angular_velocity = [nan, 0.0, 0.0] }\n",
+            "wall[0].motion.angular_velocity: must be finite"},
         // Issue 11: limits stated and checked before anything is drawn.
         Bad{"huge_variants", kHead + R"([[generator]]
 count = 100

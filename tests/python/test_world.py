@@ -231,3 +231,29 @@ def test_a_ball_rests_on_a_mesh_wall_as_on_a_plane():
     b.add_material("m", 2500, 1e7)
     with pytest.raises(ValueError, match="row 1: vertex index 4 out of range"):
         b.add_mesh_walls(square, [[0, 1, 2], [0, 2, 4]], 0.002, "m")
+
+
+def test_a_belt_carries_a_grain_and_its_work_is_counted():
+    s = gjkdem.Settings()
+    s.model = "linear"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("rubber", density=1200, youngs_modulus=1e7, friction=0.8, rolling_friction=0.1)
+    belt = b.add_motion(velocity=[0.3, 0, 0])
+    slab = b.add_body(gjkdem.Shape("box", half_extents=[0.5, 0.1, 0.01]), "rubber", position=[0, 0, -0.01],
+                      fixed=True, motion=belt)
+    b.add_body(gjkdem.Shape("box", half_extents=[0.01, 0.01, 0.01]), "rubber", position=[0, 0, 0.01])
+    w = b.build()
+    assert list(w.motions) == [belt, 0] and w.motions.dtype == np.uint16
+    w.run(0.2)
+    assert w.velocities[1][0] == pytest.approx(0.3, rel=0.01)
+    assert w.positions[slab][0] == pytest.approx(0.3 * w.time, abs=1e-12)
+    # The belt did the work of the grain's kinetic energy and of the friction while it slipped.
+    e = w.energies()
+    kinetic = 0.5 * w.masses()[1] * 0.3 ** 2
+    assert e["wall_work"] >= e["kinetic"] > 0.99 * kinetic
+    bad = gjkdem.WorldBuilder(s)
+    bad.add_material("rubber", density=1200, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="times must increase"):
+        bad.add_motion(table=[[0, 0, 0, 0], [0, 1, 0, 0]])
+    with pytest.raises(ValueError, match="for fixed bodies"):
+        bad.add_body(gjkdem.Shape("sphere", radius=0.01), "rubber", motion=bad.add_motion(velocity=[1, 0, 0]))

@@ -40,21 +40,34 @@ struct Body {
   std::uint32_t shape = 0;       ///< index into World::templates
   std::uint32_t material = 0;    ///< index into World::materials
   std::uint32_t group = 0;       ///< > 0: a piece of a wall (contacts with one group are merged)
-  std::uint32_t fixed = 0;       ///< 1: never moves (walls, obstacles)
+  std::uint16_t fixed = 0;       ///< 1: not moved by forces (walls, obstacles)
+  std::uint16_t motion = 0;      ///< > 0: a fixed body moved by World::motions[motion - 1]
   Vec3 position;                 ///< centre of mass, world (m)
   Quat orientation;              ///< principal frame -> world
-  Vec3 velocity;                 ///< m/s
+  Vec3 velocity;                 ///< m/s (of a driven body, set by its motion)
   Vec3 angular_momentum;         ///< world frame, about the centre of mass (kg m^2/s)
   Vec3 force, torque;            ///< of the last force evaluation (N, N m about the centre of mass)
 };
 static_assert(std::is_trivially_copyable_v<Body> && std::is_standard_layout_v<Body>);
 
+/// Fixed and without a motion: its box and place never change.
+inline bool is_static(const Body& b) noexcept { return b.fixed && b.motion == 0; }
+
 /// An infinite plane wall: material on the side opposite to `normal`.
 struct PlaneWall {
   std::uint64_t id = 0;       ///< global id, above every body's (it keys the pair store)
-  Vec3 point;
-  Vec3 normal;                ///< unit, pointing out of the wall
+  Vec3 point;                 ///< now
+  Vec3 normal;                ///< now; unit, pointing out of the wall
   std::uint32_t material = 0;
+  std::uint32_t motion = 0;   ///< > 0: moved by World::motions[motion - 1]
+  Vec3 given_point, given_normal;  ///< as built, before any motion
+};
+
+/// A fixed body with a motion: where it was given (its motion moves it from there).
+struct DrivenBody {
+  std::uint32_t body = 0;     ///< index into World::bodies
+  Vec3 position;              ///< centre of mass as given
+  Quat orientation;           ///< as given
 };
 
 /// Pose of a body's shape: its principal frame placed in the world, composed

@@ -10,7 +10,8 @@
 // mass moves by at most |dx| + 2 |q - q0| r when the centre moves by dx and the
 // orientation turns from q0 to q (unit quaternions with q . q0 >= 0: the
 // chord |q - q0| = 2 sin(theta / 4) and the point moves 2 sin(theta / 2) r <=
-// 4 sin(theta / 4) r). Fixed bodies get a tight box once.
+// 4 sin(theta / 4) r). Fixed bodies get a tight box once; driven ones
+// (motion.hpp) are boxed as moving bodies are.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -9,6 +9,7 @@
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
+#include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/pair_state.hpp"
 
 namespace gjkdem::dem {
@@ -38,8 +39,9 @@ struct StepWorkspace {
   std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
-  std::vector<std::uint32_t> moving;      ///< indices of the moving bodies
+  std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies
   std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep
+  std::vector<MotionFrame> motion_frames; ///< per motion, at world.time (place_driven)
 };
 
 }  // namespace gjkdem::dem

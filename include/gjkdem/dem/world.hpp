@@ -10,6 +10,7 @@
 // One step (dt), each stage in its own file:
 //   boxes        boxes.cpp         enlarged boxes, recomputed when a body may leave its own
 //   broad phase  broad_phase.cpp   moving boxes by sweep and prune, fixed ones in a static tree
+//   motions      motion.cpp        driven walls and bodies placed at the step's end time
 //   narrow phase narrow_phase.cpp  contact geometry per candidate pair (GJK/EPA or the overlap region)
 //   laws         contact_force.cpp forces from geometry, material pair, motion and the pair's springs
 //   integration  integrator.cpp    kick-drift-kick: half a step of force and torque on velocities
@@ -27,6 +28,7 @@
 
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/material.hpp"
+#include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/pair_state.hpp"
 #include "gjkdem/dem/step_workspace.hpp"
 #include "gjkdem/dem/world_settings.hpp"
@@ -39,6 +41,7 @@ struct StepStats {
   int contacts = 0;         ///< touching contacts
   int wall_contacts = 0;    ///< of which with a plane wall or a fixed body
   int box_updates = 0;      ///< moving bodies whose box was recomputed
+  Real wall_power = 0;      ///< power of the driven walls and bodies on the others (W)
 };
 
 enum class StepStatus {
@@ -59,11 +62,14 @@ struct World {
   std::vector<Material> materials;
   MaterialTable material_pairs;   ///< from materials and settings.model
   std::vector<PlaneWall> planes;
+  std::vector<PrescribedMotion> motions;  ///< of driven walls and bodies (motion.hpp)
+  std::vector<DrivenBody> driven;         ///< the bodies with a motion, as given
   // State.
   std::vector<Body> bodies;       ///< in increasing id order
   std::vector<PairState> pairs;   ///< sorted by key: every pair whose boxes overlap
   Real time = 0;                  ///< s
   bool forces_current = false;    ///< bodies' forces belong to the current positions
+  Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
   StepStats stats;
   // Scratch of a step, kept between steps to reuse its memory.
   StepWorkspace work;
@@ -75,6 +81,10 @@ StepReport step(World& world, Real dt);
 
 /// Evaluates the forces of the current state if they are not current.
 StepReport compute_forces_now(World& world);
+
+/// Puts the driven walls and bodies where their motions have them at
+/// world.time, with their velocities (motion.hpp).
+void place_driven(World& world);
 
 Transform shape_pose(const World& world, const Body& body) noexcept;
 Real mass_of(const World& world, const Body& body) noexcept;

@@ -48,7 +48,8 @@ struct BodyDef {
   Quat rotation{};              ///< of the body's frame, world
   Vec3 velocity{};              ///< of the centre of mass (m/s)
   Vec3 angular_velocity{};      ///< world (rad/s)
-  bool fixed = false;           ///< never moves; must have no velocity
+  bool fixed = false;           ///< not moved by forces; must have no velocity
+  std::uint32_t motion = 0;     ///< > 0: a fixed body moved by this motion (add_motion)
   std::string label{};          ///< names the body in messages, e.g. "body[2]" or its name
 };
 
@@ -93,21 +94,27 @@ class WorldBuilder {
   /// (By default such a start is refused, naming the two bodies.)
   void accept_initial_overlaps() noexcept { check_overlaps_ = false; }
 
+  /// A prescribed motion (motion.hpp) for walls and fixed bodies; returns
+  /// its number (> 0) for BodyDef::motion and the walls' `motion`.
+  std::uint32_t add_motion(const PrescribedMotion& motion, const std::string& label);
+
   /// An infinite plane; `normal` need not be unit but must have a direction.
-  void add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label);
+  /// Walls take an optional motion (add_motion) that moves them as one piece.
+  void add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label,
+                 std::uint32_t motion = 0);
 
   /// A box container [lo, hi]: one fixed slab of the given thickness per side
   /// outside it (no roof when open_top), the floor and roof spanning the side
   /// slabs so the corners are closed.
   void add_box_walls(const Vec3& lo, const Vec3& hi, bool open_top, Real thickness, std::uint32_t material,
-                     const std::string& label);
+                     const std::string& label, std::uint32_t motion = 0);
 
   /// A triangle mesh (world coordinates) as one fixed piece per triangle:
   /// the seed's triangle with a margin of thickness / 2 under the penetration
   /// laws, a prism of that thickness under the volume law (the pieces of a
   /// flat region tile it and their overlap volumes add up exactly).
   void add_mesh_walls(std::span<const Vec3> vertices, std::span<const std::array<std::uint32_t, 3>> triangles,
-                      Real thickness, std::uint32_t material, const std::string& label);
+                      Real thickness, std::uint32_t material, const std::string& label, std::uint32_t motion = 0);
 
   /// Fills a region (RegionFill); draws from `rng`. Throws BuildError when
   /// the region holds fewer than `count` bodies. Returns the bodies' indices.
@@ -125,8 +132,10 @@ class WorldBuilder {
   void place(Body& body, const BodyShape& shape, const Vec3& position, const Quat& rotation, const Vec3& velocity,
              const Vec3& spin) const;
   std::uint32_t add_fixed_piece(const Shape& shape, const Vec3& position, std::uint32_t material, std::uint32_t group,
-                                const std::string& label);
+                                const std::string& label, std::uint32_t motion);
   void check_material(std::uint32_t material, const std::string& label) const;
+  void check_motion_number(std::uint32_t motion, const std::string& label) const;
+  void drive(std::uint32_t body, std::uint32_t motion);
   void check_explicit_bodies() const;
   void prepare_shapes();
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::io {
@@ -48,7 +49,7 @@ std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);
 std::string energy_header();
-/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts.
-std::string energy_row(Real time, Real kinetic, Real potential, Real elastic, Real dissipated, int contacts);
+/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work.
+std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts);
 
 }  // namespace gjkdem::io
