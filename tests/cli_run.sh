@@ -23,7 +23,7 @@ for f in run.json trace.csv energy.csv scene.toml frames/frames.vtk.series frame
 done
 grep -q '"status": "completed"' full/run.json || fail "run.json does not say completed"
 [ "$(head -1 full/trace.csv)" = "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz" ] || fail "trace.csv header"
-[ "$(head -1 full/energy.csv)" = "time,kinetic,potential,elastic,dissipated,contacts,wall_work" ] || fail "energy.csv header"
+[ "$(head -1 full/energy.csv)" = "time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy" ] || fail "energy.csv header"
 [ "$(wc -l < full/trace.csv)" -eq 8 ] || fail "trace.csv should hold 7 frames of the tracer"
 [ "$(wc -l < full/energy.csv)" -eq 8 ] || fail "energy.csv should hold 7 frames"
 # The tracer must have fallen and touched something by the end.

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -23,6 +24,22 @@
 
 namespace gjkdem::py_bind {
 namespace {
+
+// A gjkdem.Shape or a sequence of them, as the builder's variants.
+std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
+  std::vector<dem::BodyShape> out;
+  if (py::isinstance<PyShape>(shapes)) {
+    const PyShape& s = shapes.cast<const PyShape&>();
+    out.push_back({s.shape, s.offset});
+    return out;
+  }
+  for (const auto& item : shapes.cast<py::sequence>()) {
+    if (!py::isinstance<PyShape>(item)) fail("shapes", "expected a gjkdem.Shape or a list of them");
+    const PyShape& s = item.cast<const PyShape&>();
+    out.push_back({s.shape, s.offset});
+  }
+  return out;
+}
 
 using dem::Body;
 using dem::World;
@@ -275,18 +292,10 @@ void bind_world(py::module_& m) {
           "fill_region",
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
-             const std::string& label) {
+             const py::object& weights, const std::string& label) {
             dem::RegionFill f;
-            if (py::isinstance<PyShape>(shapes)) {
-              const PyShape& s = shapes.cast<const PyShape&>();
-              f.variants.push_back({s.shape, s.offset});
-            } else {
-              for (const auto& item : shapes.cast<py::sequence>()) {
-                if (!py::isinstance<PyShape>(item)) fail("shapes", "expected a gjkdem.Shape or a list of them");
-                const PyShape& s = item.cast<const PyShape&>();
-                f.variants.push_back({s.shape, s.offset});
-              }
-            }
+            f.variants = body_shapes(shapes);
+            if (!weights.is_none()) f.weights = weights.cast<std::vector<double>>();
             f.count = count;
             f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
             f.material = material_index(b, material);
@@ -296,8 +305,38 @@ void bind_world(py::module_& m) {
             return b.fill_region(f, rng);
           },
           py::arg("shapes"), py::arg("count"), py::arg("lo"), py::arg("hi"), py::arg("material"),
-          py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1, py::arg("label") = "",
-          "Places `count` bodies, each one of `shapes` at random, without overlap in [lo, hi]; returns their indices.")
+          py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1, py::arg("weights") = py::none(),
+          py::arg("label") = "",
+          "Places `count` bodies, each one of `shapes` at random (number probabilities `weights`, default\n"
+          "equal), without overlap in [lo, hi]; returns their indices.")
+      .def(
+          "add_inflow",
+          [](dem::WorldBuilder& b, const py::object& shapes, const py::object& lo, const py::object& hi,
+             const py::object& material, double rate, double mass_rate, double start, double stop,
+             std::uint64_t count, const py::object& velocity, const py::object& weights, std::uint64_t seed,
+             const std::string& label) {
+            dem::InflowDef d;
+            d.variants = body_shapes(shapes);
+            if (!weights.is_none()) d.weights = weights.cast<std::vector<double>>();
+            d.lo = to_vec3(lo, "lo"), d.hi = to_vec3(hi, "hi");
+            d.material = material_index(b, material);
+            d.rate = rate, d.mass_rate = mass_rate;
+            d.start = start, d.stop = stop;
+            d.count = count;
+            d.velocity = to_vec3(velocity, "velocity");
+            d.seed = seed;
+            d.label = label.empty() ? "inflow" : label;
+            return b.add_inflow(d);
+          },
+          py::arg("shapes"), py::arg("lo"), py::arg("hi"), py::arg("material"), py::arg("rate") = 0.0,
+          py::arg("mass_rate") = 0.0, py::arg("start") = 0.0,
+          py::arg("stop") = std::numeric_limits<double>::infinity(), py::arg("count") = 0,
+          py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("weights") = py::none(),
+          py::arg("seed") = 1, py::arg("label") = "",
+          "A region [lo, hi] inserting bodies during runs at `rate` bodies/s or `mass_rate` kg/s, from `start`\n"
+          "until `stop` s or `count` bodies (give one), each one of `shapes` (number probabilities `weights`) at\n"
+          "a random place and orientation where it touches nothing. Returns its index. The world keeps room for\n"
+          "every body its inflows can insert, so views stay valid; they show the bodies there when made.")
       .def("accept_initial_overlaps", &dem::WorldBuilder::accept_initial_overlaps)
       .def_property_readonly("body_count", &dem::WorldBuilder::body_count)
       .def("build", &dem::WorldBuilder::build, "Checks and prepares everything; the builder is empty afterwards.");
@@ -444,10 +483,13 @@ void bind_world(py::module_& m) {
             d["kinetic"] = dem::kinetic_energy(w), d["potential"] = dem::potential_energy(w);
             d["elastic"] = w.stats.elastic_energy;
             d["wall_work"] = w.wall_work;
+            double inflow = 0;
+            for (const dem::InflowState& f : w.inflow_states) inflow += f.energy;
+            d["inflow_energy"] = inflow;
             return d;
           },
-          "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, and the work driven\n"
-          "walls and bodies did on the others so far (J).")
+          "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, the work driven\n"
+          "walls and bodies did on the others so far, and the energy inserted bodies brought in (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
       .def(
           "save_checkpoint",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include "parallel.hpp"
 
 namespace gjkdem::dem {
@@ -12,18 +13,24 @@ using detail::kMinParallelBodies;
 
 // Boxes at least this far out (in skins) are made again with one that left.
 constexpr Real kBatchFraction = 0.5;
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 }  // namespace
 
 std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
                          BoxCache& cache, int threads) {
-  const std::size_t n = bodies.size();
-  const bool all = cache.boxes.size() != n;
+  const std::size_t n = bodies.size(), old = cache.boxes.size();
+  const bool all = old == 0 || old > n;
   if (all) {
     cache.boxes.assign(n, Aabb{});
     cache.anchor_position.assign(n, Vec3{});
     cache.anchor_orientation.assign(n, Quat{});
     cache.moved.assign(n, 0);
+  } else if (old < n) {  // bodies added: boxed below as bodies that left theirs
+    cache.boxes.resize(n);
+    cache.anchor_position.resize(n);
+    cache.anchor_orientation.resize(n);
+    cache.moved.resize(n);
   }
   // How far each moving body's points may have moved since its box was made,
   // in units of its skin (> 1: it may have left the box).
@@ -47,7 +54,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     int any = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : any) if (count >= kMinParallelBodies)
     for (std::int64_t i = 0; i < count; ++i) {
-      cache.moved[i] = is_static(bodies[i]) ? 0 : moved(i);
+      cache.moved[i] = static_cast<std::size_t>(i) >= old ? kInfinity : is_static(bodies[i]) ? 0 : moved(i);
       if (!(cache.moved[i] <= 1)) any = 1;
     }
     if (!any) return 0;
@@ -58,7 +65,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
   for (std::int64_t i = 0; i < count; ++i) {
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
-    if (!all && (is_static(b) || cache.moved[i] <= threshold)) continue;
+    if (!all && ((is_static(b) && static_cast<std::size_t>(i) < old) || cache.moved[i] <= threshold)) continue;
     cache.boxes[i] = aabb(t.shape, shape_pose(t, b), is_static(b) ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;

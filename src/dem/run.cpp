@@ -61,7 +61,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
       if (!b.fixed) floor += 1e-9 * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
     if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
       return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start, "
-             "gravity and driven walls supply " + number_text(available) + " J, at t = " + number_text(w.time) +
+             "gravity, driven walls and inflows supply " + number_text(available) + " J, at t = " + number_text(w.time) +
              " s (a blow-up: lower dt, or check the stiffness)";
   }
   return "";
@@ -92,7 +92,8 @@ EnergyBalance energy_balance(const World& w, Real initial) noexcept {
   e.potential = potential_energy(w);
   e.elastic = w.stats.elastic_energy;
   e.wall_work = w.wall_work;
-  e.dissipated = initial + e.wall_work - e.kinetic - e.potential - e.elastic;
+  for (const InflowState& f : w.inflow_states) e.inflow += f.energy;
+  e.dissipated = initial + e.wall_work + e.inflow - e.kinetic - e.potential - e.elastic;
   return e;
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/contact_force.hpp"
@@ -144,7 +145,15 @@ StepReport compute_forces(World& w, Real dt) {
     b.force = b.fixed ? Vec3{} : w.settings.gravity * mass_of(w, b);
     b.torque = {};
   }
-  if (work.boxes.boxes.size() != w.bodies.size()) work.static_ready = false;  // every box is made anew
+  const std::size_t boxed = work.boxes.boxes.size();
+  if (boxed == 0 || boxed > w.bodies.size()) {
+    work.static_ready = false;  // every box is made anew
+  } else {
+    for (std::size_t i = boxed; i < w.bodies.size(); ++i) {  // bodies added since (inflows, a continued world)
+      if (is_static(w.bodies[i])) work.static_ready = false;
+      else if (work.static_ready) work.moving.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
   const std::size_t updated = update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads);
   if (updated > 0 || !work.static_ready || !work.candidates_current) find_candidates(w, threads);
   list_contacts(w);
@@ -243,13 +252,17 @@ StepReport step(World& w, Real dt) {
   drift(w.bodies, w.templates, w.materials, dt, threads);
   const Real power_before = w.stats.wall_power;
   w.time += dt;
+  const std::size_t before = w.bodies.size();
+  const std::size_t inserted = w.inflows.empty() ? 0 : run_inflows(w);
   if (!w.motions.empty()) place_driven(w);
   const StepReport r = compute_forces(w, dt);
+  w.stats.inserted = static_cast<int>(inserted);
   if (r.status != StepStatus::Ok) {
     w.forces_current = false;
     return r;
   }
-  kick(w.bodies, w.templates, w.materials, dt / 2, threads);
+  // Bodies inserted now start at this time with their velocity: no half kick.
+  kick(std::span(w.bodies).first(before), w.templates, w.materials, dt / 2, threads);
   w.wall_work += 0.5 * dt * (power_before + w.stats.wall_power);  // trapezoid rule
   return r;
 }

@@ -49,6 +49,8 @@ Real critical_time_step(const World& w) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> kinds;
   for (const Body& b : w.bodies)
     if (!b.fixed) kinds.emplace_back(b.shape, b.material);
+  for (const Inflow& f : w.inflows)  // bodies to come
+    for (const std::uint32_t t : f.templates) kinds.emplace_back(t, f.material);
   std::sort(kinds.begin(), kinds.end());
   kinds.erase(std::unique(kinds.begin(), kinds.end()), kinds.end());
   const WorldSettings& s = w.settings;

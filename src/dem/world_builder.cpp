@@ -250,6 +250,67 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
   }
 }
 
+namespace {
+
+// Number probabilities, summed to 1 (equal ones when none are given).
+std::vector<Real> cumulative_weights(const std::vector<Real>& weights, std::size_t variants, const std::string& label) {
+  if (!weights.empty() && weights.size() != variants)
+    throw BuildError(label + ": " + std::to_string(weights.size()) + " weights for " + std::to_string(variants) +
+                     " shapes");
+  Real total = 0;
+  for (const Real w : weights) {
+    if (!(w >= 0) || !std::isfinite(w)) throw BuildError(label + ": weights must be finite and >= 0");
+    total += w;
+  }
+  if (!weights.empty() && !(total > 0)) throw BuildError(label + ": the weights add up to 0");
+  std::vector<Real> cumulative(variants);
+  Real sum = 0;
+  for (std::size_t k = 0; k < variants; ++k) {
+    sum += weights.empty() ? 1 : weights[k];
+    cumulative[k] = sum / (weights.empty() ? static_cast<Real>(variants) : total);
+  }
+  cumulative.back() = 1;
+  return cumulative;
+}
+
+std::size_t pick_weighted(const std::vector<Real>& cumulative, Real u) {
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), u);
+  return std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()), cumulative.size() - 1);
+}
+
+}  // namespace
+
+std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
+  const std::string label = d.label.empty() ? "inflow " + std::to_string(world_.inflows.size()) : d.label;
+  check_material(d.material, label);
+  if (d.variants.empty()) throw BuildError(label + ": no shape to insert");
+  if (!is_finite(d.lo) || !is_finite(d.hi) || !(d.hi.x >= d.lo.x && d.hi.y >= d.lo.y && d.hi.z >= d.lo.z))
+    throw BuildError(label + ": the region's max must not be below its min on any axis");
+  if (!is_finite(d.velocity)) throw BuildError(label + ": the velocity must be finite");
+  if (!(std::isfinite(d.rate) && std::isfinite(d.mass_rate) && d.rate >= 0 && d.mass_rate >= 0 &&
+        (d.rate > 0) != (d.mass_rate > 0)))
+    throw BuildError(label + ": give one rate > 0, in bodies or in kilograms per second");
+  if (!(std::isfinite(d.start) && d.start >= 0)) throw BuildError(label + ": the start must be >= 0 and finite");
+  if (!(d.stop > d.start)) throw BuildError(label + ": the stop must come after the start");
+  if (d.count == 0 && !std::isfinite(d.stop)) throw BuildError(label + ": give a count or a stop time");
+  Inflow f;
+  f.cumulative = cumulative_weights(d.weights, d.variants.size(), label);
+  for (const BodyShape& v : d.variants) f.templates.push_back(add_template(v.shape, false, label));
+  f.lo = d.lo, f.hi = d.hi;
+  f.material = d.material;
+  f.velocity = d.velocity;
+  f.rate = d.rate, f.mass_rate = d.mass_rate;
+  f.start = d.start, f.stop = d.stop;
+  f.count = d.count;
+  f.seed = d.seed;
+  if (inflow_capacity(world_, f) > kMaxInflowBodies)
+    throw BuildError(label + ": it could insert more than " + std::to_string(kMaxInflowBodies) +
+                     " bodies; give a smaller count, stop or rate");
+  world_.inflows.push_back(f);
+  world_.inflow_states.emplace_back();
+  return static_cast<std::uint32_t>(world_.inflows.size() - 1);
+}
+
 std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
   check_material(f.material, label);
@@ -349,11 +410,13 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
                      std::to_string(f.count) + " bodies (each needs a free cube of side " + number_text(diameter) +
                      " m); enlarge the region or lower the count");
   std::uniform_int_distribution<std::size_t> pick(0, f.variants.size() - 1);
+  const std::vector<Real> cumulative = cumulative_weights(f.weights, f.variants.size(), label);
+  std::uniform_real_distribution<Real> uniform(0, 1);
   std::vector<std::uint32_t> placed;
   for (const auto& [centre, q] : spots) {
     Body b;
     b.id = next_id();
-    const std::size_t v = pick(rng);
+    const std::size_t v = f.weights.empty() ? pick(rng) : pick_weighted(cumulative, uniform(rng));
     b.shape = first_template + static_cast<std::uint32_t>(v);
     b.material = f.material;
     place(b, f.variants[v], centre - rotate(q, f.variants[v].pose.translation), q, f.velocity, {});
@@ -436,11 +499,18 @@ void WorldBuilder::prepare_shapes() {
 }
 
 World WorldBuilder::build() {
-  if (world_.bodies.empty() && world_.planes.empty()) throw BuildError("the world is empty");
+  if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
   check_explicit_bodies();
   prepare_shapes();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);
+  // Room for every body the inflows can insert: the bodies never move in memory.
+  std::size_t room = world_.bodies.size();
+  for (std::size_t k = 0; k < world_.inflows.size(); ++k) {
+    const std::uint64_t most = inflow_capacity(world_, world_.inflows[k]);
+    room += most - std::min(most, world_.inflow_states[k].inserted);
+  }
+  world_.bodies.reserve(room);
   World out = std::move(world_);
   world_ = World{};
   world_.settings = settings_;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::io {
@@ -16,10 +17,12 @@ constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
     "gjkdem checkpoint, format 4. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
-    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; BODY count, per body id(u64) position(3) orientation(w,x,y,z) "
-    "velocity(3) angular_momentum(3) force(3) torque(3); BOXS count, per body anchor position(3) and orientation(4); "
-    "PAIR count, per pair key(lo,hi u64) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) spring(3) twist roll(3); "
-    "LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 length, bytes) time.";
+    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; BODY count, per body id(u64) shape(u32) "
+    "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
+    "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
+    "orientation(4); PAIR count, per pair key(lo,hi u64) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
+    "spring(3) twist roll(3); LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 "
+    "length, bytes) time.";
 
 class Out {
  public:
@@ -149,9 +152,14 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   s = o.begin("BODY");
   o.u64(w.bodies.size());
   for (const dem::Body& b : w.bodies) {
-    o.u64(b.id), o.vec(b.position), o.quat(b.orientation), o.vec(b.velocity), o.vec(b.angular_momentum);
+    o.u64(b.id), o.u32(b.shape), o.u32(b.material);
+    o.vec(b.position), o.quat(b.orientation), o.vec(b.velocity), o.vec(b.angular_momentum);
     o.vec(b.force), o.vec(b.torque);
   }
+  o.end(s);
+  s = o.begin("FLOW");
+  o.u64(w.inflow_states.size());
+  for (const dem::InflowState& f : w.inflow_states) o.u64(f.inserted), o.u64(f.attempts), o.real(f.mass), o.real(f.energy), o.u64(f.behind);
   o.end(s);
   s = o.begin("BOXS");
   const dem::BoxCache& boxes = w.work.boxes;
@@ -228,16 +236,46 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   if (!std::isfinite(stats.wall_power) || !std::isfinite(wall_work)) in.fail("the work of driven walls is not finite");
 
   // Into a copy: the world is changed only once everything has been read.
+  // Bodies beyond the scene's were inserted by its inflows: moving, of the
+  // inflows' templates (checked against the FLOW counts below).
   std::vector<dem::Body> bodies = w.bodies;
   end = in.section("BODY");
-  if (in.count(8 + 19 * 8) != bodies.size())
+  const std::uint64_t count = in.count(8 + 2 * 4 + 19 * 8);
+  if (count < bodies.size() || (count > bodies.size() && w.inflows.empty()))
     throw CheckpointError(name + ": the scene has a different number of bodies than the checkpoint");
-  for (dem::Body& b : bodies) {
-    if (in.u64() != b.id) throw CheckpointError(name + ": body ids differ from the scene's");
+  const std::size_t scene_bodies = bodies.size();
+  bodies.resize(count);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    dem::Body& b = bodies[i];
+    const std::uint64_t id = in.u64();
+    const std::uint32_t shape = in.u32(), material = in.u32();
+    if (i < scene_bodies && (id != b.id || shape != b.shape || material != b.material))
+      throw CheckpointError(name + ": body ids, shapes or materials differ from the scene's");
+    if (i >= scene_bodies) {
+      if ((i > 0 && !(id > bodies[i - 1].id)) || id >= dem::kPlaneIdBase || shape >= w.templates.size() ||
+          material >= w.materials.size())
+        in.fail("an inserted body out of range");
+      b = dem::Body{};
+      b.id = id, b.shape = shape, b.material = material;
+    }
     b.position = in.vec(), b.orientation = in.quat(), b.velocity = in.vec(), b.angular_momentum = in.vec();
     b.force = in.vec(), b.torque = in.vec();
   }
   in.close(end, "BODY");
+  end = in.section("FLOW");
+  if (in.count(5 * 8) != w.inflows.size())
+    throw CheckpointError(name + ": the scene has a different number of inflows than the checkpoint");
+  std::vector<dem::InflowState> flows(w.inflows.size());
+  std::uint64_t inserted = 0;
+  for (dem::InflowState& f : flows) {
+    f.inserted = in.u64(), f.attempts = in.u64(), f.mass = in.real(), f.energy = in.real(), f.behind = in.u64();
+    inserted += f.inserted;
+  }
+  in.close(end, "FLOW");
+  std::uint64_t inserted_before = 0;  // by the scene's own world (a continued one)
+  for (const dem::InflowState& f : w.inflow_states) inserted_before += f.inserted;
+  if (inserted < inserted_before || inserted - inserted_before != count - scene_bodies)
+    in.fail("the inflows' counts do not match the bodies");
   end = in.section("BOXS");
   const std::uint64_t anchors = in.count(7 * 8);
   if (anchors != 0 && anchors != bodies.size()) in.fail("box anchors do not match the bodies");
@@ -267,7 +305,8 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   in.close(end, "LOGS");
   if (in.position() != payload.size()) in.fail("bytes after the last section");
 
-  w.bodies = std::move(bodies);
+  w.bodies.assign(bodies.begin(), bodies.end());  // in place: views of the bodies stay valid
+  w.inflow_states = std::move(flows);
   w.pairs = std::move(pairs);
   w.time = time;
   w.forces_current = forces_current;

@@ -160,7 +160,7 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   return s;
 }
 
-std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts,wall_work\n"; }
+std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy\n"; }
 
 std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   std::string s;
@@ -170,6 +170,8 @@ std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   }
   s += std::to_string(contacts) + ",";
   append(s, e.wall_work);
+  s += ',';
+  append(s, e.inflow);
   s += "\n";
   return s;
 }

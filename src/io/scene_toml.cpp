@@ -121,6 +121,26 @@ class TableReader {
     }
     return out;
   }
+  // An array of rows of `width` finite numbers, e.g. [time, x, y, z] (empty
+  // when absent); `row` says what a row holds, for messages.
+  std::vector<std::vector<Real>> rows(const std::string& key, std::size_t width, const std::string& row) {
+    const toml::node* n = find(key);
+    if (!n) return {};
+    const toml::array* rows = n->as_array();
+    if (!rows || rows->empty()) fail(key, "must be an array of rows " + row);
+    std::vector<std::vector<Real>> out;
+    for (const toml::node& r : *rows) {
+      const toml::array* a = r.as_array();
+      if (!a || a->size() != width) fail(key, "must be an array of rows " + row);
+      out.emplace_back();
+      for (const toml::node& e : *a) {
+        if (!e.is_number()) fail(key, "rows must hold numbers only");
+        out.back().push_back(as_real(e));
+        if (!std::isfinite(out.back().back())) fail(key, "must be finite");
+      }
+    }
+    return out;
+  }
   std::optional<Vec3> vec3(const std::string& key) {
     const auto v = numbers(key, 3);
     if (v.empty()) return std::nullopt;
@@ -174,9 +194,10 @@ class SceneBuilder {
     for_each_table(top, "wall", [&](TableReader& r) { read_wall(r); });
     for_each_table(top, "body", [&](TableReader& r) { read_body(r); });
     for_each_table(top, "generator", [&](TableReader& r) { read_generator(r); });
+    for_each_table(top, "inflow", [&](TableReader& r) { read_inflow(r); });
     top.finish();
-    if (builder_->moving_count() == 0)
-      throw SceneError(source_ + ": the scene has no moving body (add a [[body]] or a [[generator]])");
+    if (builder_->moving_count() == 0 && inflow_count_ == 0)
+      throw SceneError(source_ + ": the scene has no moving body (add a [[body]], a [[generator]] or an [[inflow]])");
     try {
       scene_.world = builder_->build();
     } catch (const dem::BuildError& e) {
@@ -368,7 +389,13 @@ class SceneBuilder {
   ShapeSpec read_shape(TableReader& owner, const std::string& key) {
     const toml::table* t = owner.table(key);
     if (!t) throw SceneError(owner.where() + ": missing required key '" + key + "'" + line_of(owner.table_node()));
-    TableReader r(*t, owner.where() + "." + key);
+    return read_shape_table(*t, owner.where() + "." + key);
+  }
+
+  // A SHAPE table; `where` names it in messages (as "body[2].shape").
+  ShapeSpec read_shape_table(const toml::table& table, const std::string& where) {
+    const toml::table* t = &table;
+    TableReader r(*t, where);
     const std::string type = r.required_string("type");
     ShapeSpec s;
     if (type == "platonic") {
@@ -397,7 +424,7 @@ class SceneBuilder {
         s.shape = p.shape;
         s.pose = p.pose;
       } catch (const std::exception& e) {
-        throw SceneError(owner.where() + "." + key + ": " + e.what() + line_of(*t));
+        throw SceneError(where + ": " + e.what() + line_of(*t));
       }
     }
     return s;
@@ -437,6 +464,202 @@ class SceneBuilder {
     resolved_["body"].push_back(j);
   }
 
+  // A region { min, max } of a generator or an inflow; `strict`: max must
+  // exceed min on every axis (an inflow may be a plane or a point).
+  std::pair<Vec3, Vec3> read_region(TableReader& r, bool strict) {
+    const toml::table* t = r.table("region");
+    if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
+    TableReader region(*t, r.where() + ".region");
+    const Vec3 lo = region.vec3("min").value_or(Vec3{}), hi = region.vec3("max").value_or(Vec3{});
+    if (!region.has("min") || !region.has("max"))
+      throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(*t));
+    if (strict ? !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z) : !(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z))
+      region.fail("max", strict ? "must exceed 'min' on every axis" : "must not be below 'min' on any axis");
+    region.finish();
+    return {lo, hi};
+  }
+
+  // The bodies a generator or an inflow makes: shapes shared as variants,
+  // with number probabilities (empty: equal).
+  struct Mix {
+    std::vector<dem::BodyShape> variants;
+    std::vector<Real> weights;
+    Json resolved;
+  };
+
+  // `size` of a random polyhedron: a number or [min, max]; absent when a
+  // sieve table gives the sizes.
+  struct PolyhedronSpec {
+    std::int64_t vertices = 12;
+    Real size_lo = 0, size_hi = 0;
+  };
+  PolyhedronSpec read_polyhedron_spec(TableReader& s, const toml::table& t, bool sized_by_table) {
+    s.required_string("type");
+    PolyhedronSpec p;
+    p.vertices = s.integer("vertices").value_or(12);
+    if (p.vertices < 4 || p.vertices > 10000) s.fail("vertices", "must be between 4 and 10000");
+    if (const toml::node* n = s.find("size"); n && n->is_number()) {
+      p.size_lo = p.size_hi = s.positive("size");
+    } else {
+      const std::vector<Real> range = s.numbers("size", 2);
+      if (range.empty() && !sized_by_table) throw SceneError(s.where() + ": missing required key 'size'" + line_of(t));
+      if (!range.empty()) {
+        p.size_lo = range[0], p.size_hi = range[1];
+        if (!(p.size_lo > 0 && p.size_hi >= p.size_lo)) s.fail("size", "must be [min, max] with 0 < min <= max");
+      }
+    }
+    if (sized_by_table && p.size_hi > 0) s.fail("size", "is given by the sieve table 'sizes': remove it here");
+    s.finish();
+    return p;
+  }
+
+  static bool is_random_polyhedron(const toml::table& t) {
+    return t.get("type") && t.get("type")->value<std::string>() == std::optional<std::string>("random_polyhedron");
+  }
+
+  Mix read_mix(TableReader& r, std::int64_t count, std::mt19937_64& rng) {
+    Mix mix;
+    if (!r.has("sizes") && !r.has("shapes")) {  // one shape, equal variants (as before tables existed)
+      const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
+      if (variants <= 0 || variants > std::min<std::int64_t>(count, kMaxVariants))
+        r.fail("variants", "must be a positive integer up to the count and " + std::to_string(kMaxVariants));
+      const toml::table* st = r.table("shape");
+      if (!st) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
+      if (is_random_polyhedron(*st)) {
+        TableReader s(*st, r.where() + ".shape");
+        const PolyhedronSpec p = read_polyhedron_spec(s, *st, false);
+        if (p.vertices * variants > kMaxGeneratorVertices)
+          s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices) +
+                                 " (memory for the shapes)");
+        std::uniform_real_distribution<double> draw(p.size_lo, p.size_hi);
+        for (std::int64_t k = 0; k < variants; ++k)
+          mix.variants.push_back({random_polyhedron(static_cast<int>(p.vertices), draw(rng), rng), {}});
+        mix.resolved = {{"shape", {{"type", "random_polyhedron"}, {"vertices", p.vertices},
+                                   {"size", {p.size_lo, p.size_hi}}, {"variants", variants}}},
+                        {"variants", variants}};
+      } else {
+        mix.variants.push_back(read_shape(r, "shape"));
+        std::ostringstream json;
+        json << toml::json_formatter{*st};
+        mix.resolved = {{"shape", Json::parse(json.str())}, {"variants", variants}};
+      }
+      return mix;
+    }
+
+    // Parts (a shape and its fraction), each in the size classes of the sieve table.
+    struct Part {
+      const toml::table* table;
+      std::string where;
+      Real fraction;
+    };
+    std::vector<Part> parts;
+    if (const toml::node* n = r.find("shapes")) {
+      const toml::array* a = n->as_array();
+      if (!a || a->empty() || !a->is_array_of_tables())
+        r.fail("shapes", "must be an array of { shape = SHAPE, fraction = f } tables");
+      for (std::size_t k = 0; k < a->size(); ++k) {
+        TableReader part(*(*a)[k].as_table(), r.where() + ".shapes[" + std::to_string(k) + "]");
+        const toml::table* shape = part.table("shape");
+        if (!shape) throw SceneError(part.where() + ": missing required key 'shape'" + line_of(*(*a)[k].as_table()));
+        const Real f = part.number("fraction").value_or(-1);
+        if (!(f > 0)) part.fail("fraction", "must be > 0");
+        part.finish();
+        parts.push_back({shape, part.where() + ".shape", f});
+      }
+      if (r.has("shape")) r.fail("shape", "give either 'shape' or 'shapes', not both");
+    } else {
+      const toml::table* shape = r.table("shape");
+      if (!shape) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
+      parts.push_back({shape, r.where() + ".shape", 1});
+    }
+    const std::string fractions = r.string("fractions").value_or("number");
+    if (fractions != "number" && fractions != "mass") r.fail("fractions", "must be \"number\" or \"mass\"");
+    struct SizeClass {
+      Real lo, hi, mass_fraction;
+    };
+    std::vector<SizeClass> classes;
+    const std::string sieve_row = "[min_size, max_size, mass_fraction] (a sieve table)";
+    if (r.has("sizes")) {
+      Real total = 0;
+      for (const std::vector<Real>& v : r.rows("sizes", 3, sieve_row)) {
+        if (!(v[0] > 0 && v[1] >= v[0])) r.fail("sizes", "sizes must be finite with 0 < min_size <= max_size");
+        if (!(v[2] >= 0)) r.fail("sizes", "mass fractions must be finite and >= 0");
+        classes.push_back({v[0], v[1], v[2]});
+        total += v[2];
+      }
+      if (!(std::fabs(total - 1) <= 1e-6))
+        r.fail("sizes", "the mass fractions add up to " + std::to_string(total) + ", not 1");
+    }
+    const bool sized = !classes.empty();
+    if (!sized) classes.push_back({0, 0, 1});
+    const std::int64_t per_group = r.integer("variants").value_or(sized ? 10 : 1);
+    if (per_group <= 0 || per_group * static_cast<std::int64_t>(parts.size() * classes.size()) > kMaxVariants)
+      r.fail("variants", "must be a positive integer (variants per shape and size class), all of them up to " +
+                             std::to_string(kMaxVariants));
+    Real part_total = 0;
+    for (const Part& p : parts) part_total += p.fraction;
+    Json resolved_parts = Json::array();
+    for (const Part& part : parts) {
+      TableReader s(*part.table, part.where);
+      std::optional<PolyhedronSpec> poly;
+      dem::BodyShape base;
+      Real base_size = 0;
+      if (is_random_polyhedron(*part.table)) {
+        poly = read_polyhedron_spec(s, *part.table, sized);
+        if (poly->vertices * per_group * static_cast<std::int64_t>(classes.size()) > kMaxGeneratorVertices)
+          s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices));
+      } else {
+        base = read_shape_table(*part.table, part.where);
+        base_size = 2 * bounding_radius(base.shape);
+        if (!(base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
+      }
+      // Number weight of each variant: the part's fraction spread over its
+      // size classes by their mass fractions (mass per body from its volume).
+      std::vector<std::vector<Real>> volumes(classes.size());
+      for (std::size_t c = 0; c < classes.size(); ++c) {
+        std::uniform_real_distribution<double> draw(sized ? classes[c].lo : poly ? poly->size_lo : 0,
+                                                    sized ? classes[c].hi : poly ? poly->size_hi : 0);
+        for (std::int64_t v = 0; v < per_group; ++v) {
+          dem::BodyShape shape;
+          if (poly) {
+            shape.shape = random_polyhedron(static_cast<int>(poly->vertices), draw(rng), rng);
+          } else {
+            const Real k = sized ? draw(rng) / base_size : 1;
+            shape = {scaled(base.shape, k), base.pose};
+            shape.pose.translation *= k;
+          }
+          volumes[c].push_back(mass_properties(shape.shape).volume);
+          mix.variants.push_back(std::move(shape));
+        }
+      }
+      std::vector<Real> class_weight(classes.size());  // bodies per unit of the part's fraction
+      Real per_body_total = 0;
+      for (std::size_t c = 0; c < classes.size(); ++c) {
+        Real mean = 0;
+        for (const Real v : volumes[c]) mean += v / static_cast<Real>(volumes[c].size());
+        if (!(mean > 0)) throw SceneError(part.where + ": a shape without volume cannot take a mass fraction");
+        class_weight[c] = classes[c].mass_fraction / mean;  // number in class c per unit mass of the part
+        per_body_total += class_weight[c];
+      }
+      for (std::size_t c = 0; c < classes.size(); ++c) {
+        // fractions by mass: the part's mass fraction; by number: its number fraction.
+        const Real w = fractions == "mass" ? part.fraction / part_total * class_weight[c]
+                                           : part.fraction / part_total * class_weight[c] / per_body_total;
+        for (std::int64_t v = 0; v < per_group; ++v) mix.weights.push_back(w / static_cast<Real>(per_group));
+      }
+      std::ostringstream json;
+      json << toml::json_formatter{*part.table};
+      resolved_parts.push_back({{"shape", Json::parse(json.str())}, {"fraction", part.fraction}});
+    }
+    mix.resolved = {{"shapes", resolved_parts}, {"fractions", fractions}, {"variants", per_group}};
+    if (sized) {
+      Json table = Json::array();
+      for (const SizeClass& c : classes) table.push_back({c.lo, c.hi, c.mass_fraction});
+      mix.resolved["sizes"] = table;
+    }
+    return mix;
+  }
+
   void read_generator(TableReader& r) {
     const std::int64_t count = r.integer("count").value_or(-1);
     if (count <= 0 || count > kMaxGeneratorCount)
@@ -445,59 +668,56 @@ class SceneBuilder {
     fill.label = r.where();
     fill.count = static_cast<std::size_t>(count);
     fill.material = material_of(r);
-    const toml::table* region_table = r.table("region");
-    if (!region_table) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
-    TableReader region(*region_table, r.where() + ".region");
-    fill.lo = region.vec3("min").value_or(Vec3{});
-    fill.hi = region.vec3("max").value_or(Vec3{});
-    if (!region.has("min") || !region.has("max")) throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(*region_table));
-    if (!(fill.hi.x > fill.lo.x && fill.hi.y > fill.lo.y && fill.hi.z > fill.lo.z)) region.fail("max", "must exceed 'min' on every axis");
-    region.finish();
+    std::tie(fill.lo, fill.hi) = read_region(r, true);
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
-    const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
-    if (variants <= 0 || variants > std::min<std::int64_t>(count, kMaxVariants))
-      r.fail("variants", "must be a positive integer up to the count and " + std::to_string(kMaxVariants));
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
+    Mix mix = read_mix(r, count, rng);
+    fill.variants = std::move(mix.variants);
+    fill.weights = std::move(mix.weights);
+    building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
+    Json j = {{"count", count}, {"material", r.required_string("material")},
+              {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}}, {"velocity", to_json(fill.velocity)}};
+    j.update(mix.resolved);
+    resolved_["generator"].push_back(j);
+  }
 
-    // The shapes: random polyhedra come in `variants` draws, shared by the bodies.
-    const toml::table* st = r.table("shape");
-    if (!st) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
-    Json shape_json;
-    if (st->get("type") && st->get("type")->value<std::string>() == std::optional<std::string>("random_polyhedron")) {
-      TableReader s(*st, r.where() + ".shape");
-      s.required_string("type");
-      const std::int64_t vertices = s.integer("vertices").value_or(12);
-      if (vertices < 4 || vertices > 10000) s.fail("vertices", "must be between 4 and 10000");
-      if (vertices * variants > kMaxGeneratorVertices)
-        s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices) +
-                               " (memory for the shapes)");
-      Real size_lo, size_hi;
-      if (const toml::node* n = s.find("size"); n && n->is_number()) {
-        size_lo = size_hi = s.positive("size");
-      } else {
-        const std::vector<Real> range = s.numbers("size", 2);
-        if (range.empty()) throw SceneError(s.where() + ": missing required key 'size'" + line_of(*st));
-        size_lo = range[0];
-        size_hi = range[1];
-        if (!(size_lo > 0 && size_hi >= size_lo)) s.fail("size", "must be [min, max] with 0 < min <= max");
-      }
-      s.finish();
-      std::uniform_real_distribution<double> draw(size_lo, size_hi);
-      for (std::int64_t k = 0; k < variants; ++k)
-        fill.variants.push_back({random_polyhedron(static_cast<int>(vertices), draw(rng), rng), {}});
-      shape_json = {{"type", "random_polyhedron"}, {"vertices", vertices}, {"size", {size_lo, size_hi}},
-                    {"variants", variants}};
-    } else {
-      fill.variants.push_back(read_shape(r, "shape"));
-      std::ostringstream json;
-      json << toml::json_formatter{*st};
-      shape_json = Json::parse(json.str());
-    }
-    building(*region_table, [&] { return builder_->fill_region(fill, rng); });
-    resolved_["generator"].push_back({{"count", count}, {"shape", shape_json},
-                                      {"material", r.required_string("material")},
-                                      {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}},
-                                      {"velocity", to_json(fill.velocity)}, {"variants", variants}});
+  void read_inflow(TableReader& r) {
+    dem::InflowDef d;
+    d.label = r.where();
+    d.material = material_of(r);
+    std::tie(d.lo, d.hi) = read_region(r, false);
+    d.velocity = r.vec3("velocity").value_or(Vec3{});
+    const std::optional<Real> rate = r.number("rate"), mass_rate = r.number("mass_rate");
+    if (rate.has_value() == mass_rate.has_value())
+      throw SceneError(r.where() + ": give one of 'rate' (bodies per second) and 'mass_rate' (kg per second)" +
+                       line_of(r.table_node()));
+    if (rate && !(*rate > 0)) r.fail("rate", "must be > 0");
+    if (mass_rate && !(*mass_rate > 0)) r.fail("mass_rate", "must be > 0");
+    d.rate = rate.value_or(0);
+    d.mass_rate = mass_rate.value_or(0);
+    d.start = r.number("start").value_or(0);
+    if (!(d.start >= 0)) r.fail("start", "must be >= 0");
+    d.stop = r.number("stop").value_or(scene_.duration);
+    if (!(d.stop > d.start)) r.fail("stop", "must come after the start");
+    const std::int64_t count = r.integer("count").value_or(0);
+    if (count < 0 || count > static_cast<std::int64_t>(dem::kMaxInflowBodies))
+      r.fail("count", "must be a positive integer up to " + std::to_string(dem::kMaxInflowBodies));
+    d.count = static_cast<std::uint64_t>(count);
+    d.seed = scene_.seed * 1000003 + 500009 + inflow_count_;
+    std::mt19937_64 rng(d.seed);
+    Mix mix = read_mix(r, count > 0 ? count : 50, rng);
+    d.variants = std::move(mix.variants);
+    d.weights = std::move(mix.weights);
+    building(r.table_node(), [&] { return builder_->add_inflow(d); });
+    ++inflow_count_;
+    Json j = {{"material", r.required_string("material")},
+              {"region", {{"min", to_json(d.lo)}, {"max", to_json(d.hi)}}}, {"velocity", to_json(d.velocity)},
+              {"start", d.start}, {"stop", d.stop}};
+    if (rate) j["rate"] = *rate;
+    if (mass_rate) j["mass_rate"] = *mass_rate;
+    if (count > 0) j["count"] = count;
+    j.update(mix.resolved);
+    resolved_["inflow"].push_back(j);
   }
 
   // The optional `motion` table of a wall or fixed body: its number for the
@@ -522,18 +742,8 @@ class SceneBuilder {
       vib.finish();
       out["vibration"] = {{"amplitude", to_json(m.amplitude)}, {"frequency", m.frequency}, {"phase", m.phase}};
     }
-    if (const toml::node* n = r.find("table")) {
-      const toml::array* rows = n->as_array();
-      if (!rows || rows->empty()) r.fail("table", "must be an array of rows [time, x, y, z]");
-      for (const toml::node& row : *rows) {
-        const toml::array* a = row.as_array();
-        if (!a || a->size() != 4) r.fail("table", "must be an array of rows [time, x, y, z] (seconds, metres)");
-        Real v[4];
-        for (int k = 0; k < 4; ++k) {
-          if (!(*a)[k].is_number()) r.fail("table", "rows must hold numbers only");
-          v[k] = as_real((*a)[k]);
-          if (!std::isfinite(v[k])) r.fail("table", "must be finite");
-        }
+    if (r.has("table")) {
+      for (const std::vector<Real>& v : r.rows("table", 4, "[time, x, y, z] (seconds, metres)")) {
         if (!m.table_times.empty() && !(v[0] > m.table_times.back())) r.fail("table", "times must increase");
         m.table_times.push_back(v[0]);
         m.table_displacements.push_back({v[1], v[2], v[3]});
@@ -616,6 +826,7 @@ class SceneBuilder {
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;
+  std::uint64_t inflow_count_ = 0;
 };
 
 }  // namespace

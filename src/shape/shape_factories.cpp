@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "gjkdem/shape/polytope.hpp"
 
@@ -40,6 +42,32 @@ Shape random_polyhedron(int vertices, Real diameter, std::mt19937_64& rng) {
     points.push_back({p.x * axis_scale.x, p.y * axis_scale.y, p.z * axis_scale.z});
   }
   return scaled_polytope(points, diameter);
+}
+
+Shape scaled(const Shape& shape, Real k) {
+  Shape out = shape;
+  out.margin = shape.margin * k;
+  std::visit(
+      [&](auto& core) {
+        using T = std::decay_t<decltype(core)>;
+        if constexpr (std::is_same_v<T, Segment>) {
+          core.a *= k, core.b *= k;
+        } else if constexpr (std::is_same_v<T, Triangle>) {
+          for (Vec3& v : core.v) v *= k;
+        } else if constexpr (std::is_same_v<T, Box>) {
+          core.half_extents *= k;
+        } else if constexpr (std::is_same_v<T, Ellipsoid> || std::is_same_v<T, Superellipsoid>) {
+          core.radii *= k;
+        } else if constexpr (std::is_same_v<T, Cylinder> || std::is_same_v<T, Cone>) {
+          core.radius *= k, core.half_height *= k;
+        } else if constexpr (std::is_same_v<T, Polytope>) {
+          std::vector<Vec3> points(core.data->vertices.begin(), core.data->vertices.end());
+          for (Vec3& p : points) p *= k;
+          core = make_polytope(points);
+        }  // Point: nothing but the margin
+      },
+      out.core);
+  return out;
 }
 
 Shape platonic(const std::string& name, Real diameter) {

@@ -16,8 +16,8 @@ namespace gjkdem::io {
 namespace {
 
 // 40 random polyhedra poured into a box of plane walls, run for a while so
-// that contacts, springs and warm starts exist. `driven`: the floor vibrates
-// and a paddle (a box) turns through the bed.
+// that contacts, springs and warm starts exist. `driven`: the floor vibrates,
+// a paddle (a box) turns through the bed and an inflow adds grains from above.
 dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false) {
   dem::WorldBuilder b;
   const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, 0.5});
@@ -27,6 +27,14 @@ dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false) {
     turn = b.add_motion({.center = {0, 0, 0.02}, .angular_velocity = {0, 3, 0}}, "turn");
     b.add_body({.shape = {Shape{Box{{0.02, 0.03, 0.002}}}, {}}, .material = rock, .position = {0, 0, 0.02},
                 .fixed = true, .motion = turn, .label = "paddle"});
+    dem::InflowDef inflow;
+    inflow.variants = {{Shape{Box{{0.004, 0.004, 0.004}}}, {}}, {make_sphere(0.004), {}}};
+    inflow.lo = {-0.03, -0.03, 0.15};
+    inflow.hi = {0.03, 0.03, 0.16};
+    inflow.material = rock;
+    inflow.rate = 400;
+    inflow.stop = 1;
+    b.add_inflow(inflow);
   }
   b.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor", shake);
   b.add_plane({-0.04, 0, 0}, {1, 0, 0}, rock, "-x");
@@ -64,6 +72,7 @@ TEST(Checkpoint, RestoredWorldContinuesWithTheSameBits) {
     ASSERT_GT(first.stats.contacts, 10);  // springs and warm starts to carry
     if (driven) {
       ASSERT_NE(first.wall_work, 0);
+      ASSERT_GT(first.inflow_states[0].inserted, 10u);  // bodies beyond the scene's to restore
     }
     const std::string bytes = encode_checkpoint(first, {part, {}}, 42);
     dem::World resumed = pour(1, 40, driven);  // a world rebuilt from the same "scene"

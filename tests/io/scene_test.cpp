@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +41,13 @@ const std::string kPlane = R"(
 type = "plane"
 normal = [0.0, 0.0, 1.0]
 material = "rock"
+)";
+
+const std::string kInflow = R"(
+[[inflow]]
+shape = { type = "sphere", radius = 0.005 }
+material = "rock"
+region = { min = [0.0, 0.0, 1.0], max = [0.1, 0.1, 1.1] }
 )";
 
 std::string refusal(const std::string& toml) {
@@ -231,9 +240,108 @@ motion = { center = [0.0, 0.0, 0.1], angular_velocity = [0.0, 2.0, 0.0], table =
   for (const dem::Body& b : w.bodies) driven += b.motion == 2;
   EXPECT_EQ(driven, 6u);  // the box's six slabs
   EXPECT_EQ(w.driven.size(), 6u);
-  const std::string& resolved = scene.resolved_json;
-  EXPECT_NE(resolved.find("\"angular_velocity\":[0.0,2.0,0.0]"), std::string::npos) << resolved;
-  EXPECT_NE(resolved.find("\"vibration\""), std::string::npos) << resolved;
+  const nlohmann::json resolved = nlohmann::json::parse(scene.resolved_json);
+  EXPECT_EQ(resolved["wall"][1]["motion"]["angular_velocity"], nlohmann::json::parse("[0.0, 2.0, 0.0]"));
+  EXPECT_EQ(resolved["wall"][0]["motion"]["vibration"]["frequency"], 20.0);
+}
+
+// Mass fraction of the bodies in each group (`group_of` a body, < groups)
+// and its sampling error: the standard error of a ratio of sums, by the
+// delta method, from the sample itself.
+struct Fractions {
+  std::vector<double> value, error;
+};
+template <class F>
+Fractions mass_fractions(const dem::World& w, std::size_t groups, F group_of) {
+  double total = 0;
+  std::vector<double> mass(groups, 0);
+  std::vector<std::pair<std::size_t, double>> bodies;
+  for (const dem::Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const double m = dem::mass_of(w, b);
+    const std::size_t g = group_of(b);
+    mass.at(g) += m;
+    total += m;
+    bodies.emplace_back(g, m);
+  }
+  Fractions f;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const double p = mass[g] / total;
+    double variance = 0;
+    for (const auto& [group, m] : bodies) variance += std::pow(m * ((group == g) - p), 2);
+    f.value.push_back(p);
+    f.error.push_back(std::sqrt(variance) / total);
+  }
+  return f;
+}
+
+TEST(Scene, SieveTablesAndShapeMixesGiveTheirMassFractions) {
+  // 3,000 spheres and cubes, 70% of the mass in cubes, in three size classes
+  // of 20%, 50% and 30% of the mass.
+  const Scene scene = load_scene(R"(
+[simulation]
+duration = 0.1
+[contact]
+model = "hertz"
+[[material]]
+name = "rock"
+density = 2000.0
+youngs_modulus = 1.0e7
+[[generator]]
+count = 3000
+shapes = [ { shape = { type = "platonic", name = "cube", size = 0.01 }, fraction = 0.7 },
+           { shape = { type = "sphere", radius = 0.005 }, fraction = 0.3 } ]
+fractions = "mass"
+sizes = [[0.004, 0.006, 0.2], [0.006, 0.010, 0.5], [0.010, 0.014, 0.3]]
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }
+)", "test.toml", std::filesystem::temp_directory_path());
+  const dem::World& w = scene.world;
+  const auto size_of = [&](const dem::Body& b) { return 2 * bounding_radius(w.templates[b.shape].shape); };
+  const Fractions by_size = mass_fractions(w, 3, [&](const dem::Body& b) {
+    const double d = size_of(b);
+    EXPECT_TRUE(d >= 0.004 - 1e-12 && d <= 0.014 + 1e-12) << d;
+    return d < 0.006 ? 0u : d < 0.010 ? 1u : 2u;
+  });
+  const double expected_size[3] = {0.2, 0.5, 0.3};
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(by_size.value[c], expected_size[c], 4 * by_size.error[c]) << "size class " << c;
+  const Fractions by_shape = mass_fractions(w, 2, [&](const dem::Body& b) {
+    return std::holds_alternative<Polytope>(w.templates[b.shape].shape.core) ? 0u : 1u;
+  });
+  EXPECT_NEAR(by_shape.value[0], 0.7, 4 * by_shape.error[0]);
+  EXPECT_GT(by_size.error[0], 0.003);  // a real sample: the test could fail
+  EXPECT_LT(by_size.error[1], 0.03);
+  EXPECT_NE(scene.resolved_json.find("\"sizes\""), std::string::npos);
+}
+
+TEST(Scene, InflowsAreReadAndRun) {
+  Scene scene = load_scene(R"(
+[simulation]
+duration = 0.5
+[[material]]
+name = "rock"
+density = 2000.0
+youngs_modulus = 1.0e7
+[[inflow]]
+shape = { type = "random_polyhedron", vertices = 10 }
+sizes = [[0.004, 0.006, 0.5], [0.006, 0.008, 0.5]]
+material = "rock"
+rate = 100.0
+start = 0.1
+region = { min = [0.0, 0.0, 1.0], max = [0.1, 0.1, 1.0] }
+velocity = [0.0, 0.0, -1.0]
+)", "test.toml", std::filesystem::temp_directory_path());
+  dem::World& w = scene.world;
+  ASSERT_EQ(w.inflows.size(), 1u);
+  EXPECT_EQ(w.inflows[0].stop, 0.5);  // the run's end
+  EXPECT_EQ(w.inflows[0].templates.size(), 20u);  // 10 variants per size class
+  EXPECT_TRUE(w.bodies.empty());
+  EXPECT_LT(scene.dt, 1e-4) << "dt = auto sees the bodies to come";
+  dem::RunState run = dem::plan_run(scene.duration, scene.dt, scene.output_every);
+  const dem::RunOutcome outcome = dem::run(w, run, {});
+  ASSERT_EQ(outcome.status, dem::RunStatus::Completed) << outcome.error;
+  EXPECT_NEAR(static_cast<double>(w.bodies.size()), 41, 1);  // bodies 0..40 due in [0.1, 0.5]
 }
 
 TEST(Scene, BuildMessagesNameTheirLines) {
@@ -394,6 +502,28 @@ fixed = true
         Bad{"table_short_row", kHead + kCube + kPlane + "motion = { table = [[0.0, 0.0, 0.0]] }\n",
             "wall[0].motion.table: must be an array of rows [time, x, y, z]"},
         Bad{"table_empty", kHead + kCube + kPlane + "motion = { table = [] }\n", "wall[0].motion.table: must be"},
+        Bad{"inflow_two_rates", kHead + kCube + kInflow + "rate = 10.0\nmass_rate = 1.0\n", "give one of 'rate'"},
+        Bad{"inflow_no_rate", kHead + kCube + kInflow, "give one of 'rate'"},
+        Bad{"inflow_negative_rate", kHead + kCube + kInflow + "rate = -1.0\n", "inflow[0].rate: must be > 0"},
+        Bad{"inflow_stop_before_start", kHead + kCube + kInflow + "rate = 1.0\nstart = 0.5\nstop = 0.2\n",
+            "inflow[0].stop: must come after the start"},
+        Bad{"inflow_too_many", kHead + kCube + kInflow + "rate = 1e12\n", "more than 10000000 bodies"},
+        Bad{"sizes_not_summing", kHead + kCube + kInflow + "rate = 1.0\nsizes = [[0.01, 0.02, 0.5]]\n",
+            "inflow[0].sizes: the mass fractions add up to 0.5"},
+        Bad{"sizes_bad_row", kHead + kCube + kInflow + "rate = 1.0\nsizes = [[0.02, 0.01, 1.0]]\n",
+            "0 < min_size <= max_size"},
+        Bad{"shapes_and_shape", kHead + kCube + kInflow +
+            "rate = 1.0\nshapes = [ { shape = { type = \"sphere\", radius = 0.01 }, fraction = 1.0 } ]\n",
+            "give either 'shape' or 'shapes'"},
+        Bad{"shapes_zero_fraction", kHead + kCube + R"([[generator]]
+count = 10
+shapes = [ { shape = { type = "sphere", radius = 0.01 }, fraction = 0.0 } ]
+material = "rock"
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+)",
+            "generator[0].shapes[0].fraction: must be > 0"},
+        Bad{"bad_fractions", kHead + kCube + kInflow + "rate = 1.0\nfractions = \"volume\"\nsizes = [[0.01, 0.02, 1.0]]\n",
+            "inflow[0].fractions: must be \"number\" or \"mass\""},
         Bad{"motion_nan", kHead + kCube + kPlane + "motion = { angular_velocity = [nan, 0.0, 0.0] }\n",
             "wall[0].motion.angular_velocity: must be finite"},
         // Issue 11: limits stated and checked before anything is drawn.

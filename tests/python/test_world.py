@@ -257,3 +257,26 @@ def test_a_belt_carries_a_grain_and_its_work_is_counted():
         bad.add_motion(table=[[0, 0, 0, 0], [0, 1, 0, 0]])
     with pytest.raises(ValueError, match="for fixed bodies"):
         bad.add_body(gjkdem.Shape("sphere", radius=0.01), "rubber", motion=bad.add_motion(velocity=[1, 0, 0]))
+
+
+def test_an_inflow_adds_bodies_and_old_views_stay_valid():
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    b.add_body(gjkdem.Shape("sphere", radius=0.01), "glass", position=[0, 0, 1])
+    b.add_inflow([gjkdem.Shape("sphere", radius=0.004), gjkdem.Shape("sphere", radius=0.006)], [0, 0, 0.5],
+                 [0.1, 0.1, 0.5], "glass", rate=200, stop=0.5, weights=[3, 1], velocity=[0, 0, -1])
+    w = b.build()
+    before = w.positions  # a view of the one body there now
+    assert before.shape == (1, 3)
+    w.run(0.3)
+    assert w.body_count == pytest.approx(1 + 61, abs=1)  # bodies 0..60 due in [0, 0.3]
+    assert before[0][2] == w.positions[0][2] < 1  # the old view still aliases body 0: it fell
+    assert w.positions.shape == (w.body_count, 3)
+    e = w.energies()
+    assert e["inflow_energy"] > 0
+    bad = gjkdem.WorldBuilder(s)
+    bad.add_material("glass", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="give a count or a stop time"):
+        bad.add_inflow(gjkdem.Shape("sphere", radius=0.004), [0, 0, 0], [1, 1, 1], "glass", rate=1)

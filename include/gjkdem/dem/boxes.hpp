@@ -28,9 +28,9 @@ struct BoxCache {
   std::vector<Real> moved;               ///< per body: how far it may have moved, in skins (scratch)
 };
 
-/// Brings the boxes of `bodies` up to date: every box when the cache does not
-/// match the body count (then fixed bodies too), else those of moving bodies
-/// that may have left theirs. `skin` is relative to each template's reach.
+/// Brings the boxes of `bodies` up to date: every box when the cache is
+/// empty or holds more bodies (then fixed bodies too), else those of bodies
+/// added since and of moving bodies that may have left theirs. `skin` is relative to each template's reach.
 /// Returns how many boxes were recomputed.
 std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
                          BoxCache& cache, int threads);

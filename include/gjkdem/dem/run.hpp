@@ -29,11 +29,12 @@ struct RunState {
 /// fewer than 2^53 steps.
 RunState plan_run(Real duration, Real dt, Real output_every);
 
-/// Where the energy went (J): dissipated = initial + wall_work - kinetic -
-/// potential - elastic, what damping and friction took out of the system;
-/// wall_work is what driven walls and bodies put in (World::wall_work).
+/// Where the energy went (J): dissipated = initial + wall_work + inflow -
+/// kinetic - potential - elastic, what damping and friction took out of the
+/// system; wall_work is what driven walls and bodies put in
+/// (World::wall_work), inflow what inserted bodies brought (InflowState).
 struct EnergyBalance {
-  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0;
+  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0, inflow = 0;
 };
 
 EnergyBalance energy_balance(const World& world, Real initial_energy) noexcept;
@@ -51,8 +52,8 @@ enum class GuardAction {
 /// - a body travelling more than `max_travel` of its reach in one step (a
 ///   fast body tunnels through others: contacts are missed);
 /// - energy appearing from nowhere: kinetic + elastic energy exceeding what
-///   the start, the loss of potential energy and the work of driven walls can
-///   supply by more than `max_energy_gain` of that supply (1: the energy
+///   the start, the loss of potential energy, the work of driven walls and
+///   the bodies inflows brought can supply by more than `max_energy_gain` of that supply (1: the energy
 ///   doubled).
 /// Whatever the action, a run whose state or energy is not finite fails.
 struct RunGuards {

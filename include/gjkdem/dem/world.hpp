@@ -10,6 +10,7 @@
 // One step (dt), each stage in its own file:
 //   boxes        boxes.cpp         enlarged boxes, recomputed when a body may leave its own
 //   broad phase  broad_phase.cpp   moving boxes by sweep and prune, fixed ones in a static tree
+//   inflows      inflow.cpp        bodies inserted where and when inflows owe them
 //   motions      motion.cpp        driven walls and bodies placed at the step's end time
 //   narrow phase narrow_phase.cpp  contact geometry per candidate pair (GJK/EPA or the overlap region)
 //   laws         contact_force.cpp forces from geometry, material pair, motion and the pair's springs
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/inflow.hpp"
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/pair_state.hpp"
@@ -41,6 +43,7 @@ struct StepStats {
   int contacts = 0;         ///< touching contacts
   int wall_contacts = 0;    ///< of which with a plane wall or a fixed body
   int box_updates = 0;      ///< moving bodies whose box was recomputed
+  int inserted = 0;         ///< bodies the inflows inserted in this step
   Real wall_power = 0;      ///< power of the driven walls and bodies on the others (W)
 };
 
@@ -64,12 +67,14 @@ struct World {
   std::vector<PlaneWall> planes;
   std::vector<PrescribedMotion> motions;  ///< of driven walls and bodies (motion.hpp)
   std::vector<DrivenBody> driven;         ///< the bodies with a motion, as given
+  std::vector<Inflow> inflows;            ///< regions inserting bodies during a run (inflow.hpp)
   // State.
   std::vector<Body> bodies;       ///< in increasing id order
   std::vector<PairState> pairs;   ///< sorted by key: every pair whose boxes overlap
   Real time = 0;                  ///< s
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
+  std::vector<InflowState> inflow_states;  ///< one per inflow
   StepStats stats;
   // Scratch of a step, kept between steps to reuse its memory.
   StepWorkspace work;
@@ -101,7 +106,8 @@ Real potential_energy(const World& world) noexcept;
 
 /// A critical time step estimate (s): the shortest contact duration between
 /// two of the world's bodies divided by 20, or the Rayleigh time step times
-/// 0.2 for the Hertz law (docs/dem.md). Infinite without moving bodies.
+/// 0.2 for the Hertz law (docs/dem.md); the bodies inflows will insert count.
+/// Infinite without moving bodies.
 Real critical_time_step(const World& world);
 
 }  // namespace gjkdem::dem

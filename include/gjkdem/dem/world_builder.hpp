@@ -9,6 +9,7 @@
 // tests, benchmarks and Python all build worlds through it.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <random>
 #include <span>
@@ -59,11 +60,30 @@ struct BodyDef {
 /// outside a plane wall are skipped.
 struct RegionFill {
   std::vector<BodyShape> variants;  ///< each body takes one at random (shared templates)
+  std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
   std::size_t count = 0;
   Vec3 lo, hi;
   std::uint32_t material = 0;
   Vec3 velocity;
   std::string label;                ///< e.g. "generator[0]"
+};
+
+/// A region inserting bodies during a run (inflow.hpp): a rate in bodies or
+/// kilograms per second (one of them > 0), from `start` until `stop` or
+/// `count` bodies (at least one of the two finite).
+struct InflowDef {
+  std::vector<BodyShape> variants;  ///< shapes (their pose is ignored: bodies are turned at random)
+  std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
+  Vec3 lo, hi;                      ///< where centres of mass go
+  std::uint32_t material = 0;
+  Vec3 velocity;
+  Real rate = 0;                    ///< bodies/s
+  Real mass_rate = 0;               ///< kg/s
+  Real start = 0;
+  Real stop = std::numeric_limits<Real>::infinity();
+  std::uint64_t count = 0;          ///< 0: no limit but `stop`
+  std::uint64_t seed = 1;
+  std::string label;                ///< e.g. "inflow[0]"
 };
 
 class WorldBuilder {
@@ -115,6 +135,10 @@ class WorldBuilder {
   /// flat region tile it and their overlap volumes add up exactly).
   void add_mesh_walls(std::span<const Vec3> vertices, std::span<const std::array<std::uint32_t, 3>> triangles,
                       Real thickness, std::uint32_t material, const std::string& label, std::uint32_t motion = 0);
+
+  /// An inflow (InflowDef); returns its index. The world reserves room for
+  /// every body its inflows can insert, so views of its bodies stay valid.
+  std::uint32_t add_inflow(const InflowDef& inflow);
 
   /// Fills a region (RegionFill); draws from `rng`. Throws BuildError when
   /// the region holds fewer than `count` bodies. Returns the bodies' indices.

@@ -49,7 +49,7 @@ std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);
 std::string energy_header();
-/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work.
+/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy.
 std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts);
 
 }  // namespace gjkdem::io

@@ -1,6 +1,7 @@
 #pragma once
 // Shapes made from a few numbers: random convex polyhedra (scene generators'
-// grains) and the five Platonic solids, plus uniformly random rotations.
+// grains) and the five Platonic solids, shapes scaled, and uniformly random
+// rotations.
 #include <random>
 #include <string>
 
@@ -19,6 +20,9 @@ Shape random_polyhedron(int vertices, Real diameter, std::mt19937_64& rng);
 /// "icosahedron") inscribed in a sphere of the given diameter, centred at the
 /// origin. Throws std::invalid_argument for another name.
 Shape platonic(const std::string& name, Real diameter);
+
+/// The shape scaled by `factor` > 0 about its frame's origin (margin too).
+Shape scaled(const Shape& shape, Real factor);
 
 /// A rotation drawn uniformly (a normalised 4D Gaussian).
 Quat random_rotation(std::mt19937_64& rng);

@@ -1,0 +1,126 @@
+#include "gjkdem/dem/inflow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+std::uint64_t mix(std::uint64_t x) noexcept {  // splitmix64's finaliser
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// Draw k of the placement try `attempt` of body n.
+enum Draw : std::uint64_t { kVariant = 0, kX, kY, kZ, kTurn1, kTurn2, kTurn3 };
+
+// A uniformly random rotation from three uniform numbers (Shoemake 1992).
+Quat uniform_rotation(Real u1, Real u2, Real u3) noexcept {
+  const Real a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  const Real t2 = 2 * kPi * u2, t3 = 2 * kPi * u3;
+  return normalized(Quat{b * std::cos(t3), a * std::sin(t2), a * std::cos(t2), b * std::sin(t3)});
+}
+
+// The bodies that might touch a body placed in the inflow's region.
+std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f) {
+  Real reach = 0;
+  for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
+  std::vector<std::uint32_t> near;
+  for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    const Vec3 closest = max(f.lo, min(f.hi, b.position));  // of the region, to the body
+    if (length(b.position - closest) < w.templates[b.shape].reach + reach) near.push_back(i);
+  }
+  return near;
+}
+
+bool is_free(const World& w, const std::vector<std::uint32_t>& near, const ShapeTemplate& t, const Body& body) {
+  for (const PlaneWall& p : w.planes)
+    if (dot(body.position - p.point, p.normal) < t.reach) return false;
+  const Transform pose = shape_pose(t, body);
+  for (const std::uint32_t i : near) {
+    const Body& other = w.bodies[i];
+    const ShapeTemplate& o = w.templates[other.shape];
+    if (length(other.position - body.position) < o.reach + t.reach &&
+        intersect(t.shape, pose, o.shape, shape_pose(o, other)))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Real keyed_uniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b, std::uint64_t c) noexcept {
+  const std::uint64_t h = mix(mix(mix(mix(seed) ^ a) ^ b) ^ c);
+  return static_cast<Real>(h >> 11) * 0x1.0p-53;
+}
+
+std::uint32_t inflow_variant(const Inflow& f, std::uint64_t n) noexcept {
+  const Real u = keyed_uniform(f.seed, n, 0, kVariant);
+  const auto it = std::upper_bound(f.cumulative.begin(), f.cumulative.end(), u);
+  return static_cast<std::uint32_t>(std::min<std::size_t>(it - f.cumulative.begin(), f.cumulative.size() - 1));
+}
+
+std::uint64_t inflow_capacity(const World& w, const Inflow& f) noexcept {
+  Real lightest_mass = std::numeric_limits<Real>::infinity();
+  for (const std::uint32_t t : f.templates)
+    lightest_mass = std::fmin(lightest_mass, w.materials[f.material].density * w.templates[t].unit_mass.volume);
+  Real most = std::numeric_limits<Real>::infinity();
+  if (f.count > 0) most = static_cast<Real>(f.count);
+  const Real span = f.stop - f.start;
+  if (f.rate > 0) most = std::fmin(most, std::floor(f.rate * span) + 1);
+  else if (lightest_mass > 0) most = std::fmin(most, std::floor(f.mass_rate * span / lightest_mass + 0.5) + 1);
+  return most < 1.8e19 ? static_cast<std::uint64_t>(most) : std::numeric_limits<std::uint64_t>::max();
+}
+
+std::size_t run_inflows(World& w) {
+  std::size_t added = 0;
+  for (std::size_t k = 0; k < w.inflows.size(); ++k) {
+    const Inflow& f = w.inflows[k];
+    InflowState& s = w.inflow_states[k];
+    if (w.time < f.start) continue;
+    const Real elapsed = std::fmin(w.time, f.stop) - f.start;
+    std::vector<std::uint32_t> near;
+    bool looked = false;
+    while (f.count == 0 || s.inserted < f.count) {
+      const std::uint32_t v = inflow_variant(f, s.inserted);
+      const ShapeTemplate& t = w.templates[f.templates[v]];
+      const Real mass = w.materials[f.material].density * t.unit_mass.volume;
+      const bool due = f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed
+                                  : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
+      if (!due) break;
+      if (!looked) near = bodies_near(w, f), looked = true;
+      Body body;
+      body.shape = f.templates[v];
+      body.material = f.material;
+      body.velocity = f.velocity;
+      bool placed = false;
+      for (int a = 0; a < kInflowAttemptsPerStep && !placed; ++a) {
+        const std::uint64_t attempt = s.attempts++;
+        const auto u = [&](Draw d) { return keyed_uniform(f.seed, s.inserted, attempt, d); };
+        body.position = f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
+        body.orientation = uniform_rotation(u(kTurn1), u(kTurn2), u(kTurn3));
+        placed = is_free(w, near, t, body);
+      }
+      if (!placed) {
+        ++s.behind;
+        break;
+      }
+      body.id = w.bodies.empty() ? 0 : w.bodies.back().id + 1;
+      w.bodies.push_back(body);
+      near.push_back(static_cast<std::uint32_t>(w.bodies.size() - 1));
+      ++s.inserted;
+      s.mass += mass;
+      s.energy += mass * (0.5 * dot(body.velocity, body.velocity) - dot(w.settings.gravity, body.position));
+      ++added;
+    }
+  }
+  return added;
+}
+
+}  // namespace gjkdem::dem
