@@ -131,4 +131,10 @@ inline constexpr int kHillClimbMinVertices = 64;
 /// on it (relative). Raising it merges more near-coplanar points away.
 inline constexpr Real kHullRelTol = 1e-12;
 
+/// Two parts of a compound may overlap by this much (relative to the larger
+/// part's bounding diameter) and still count as touching: round-off in
+/// parts meant to share a face, far below any overlap that would change the
+/// mass properties measurably.
+inline constexpr Real kCompoundOverlapRelTol = 1e-9;
+
 }  // namespace gjkdem

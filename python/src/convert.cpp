@@ -89,4 +89,10 @@ py::array_t<double> from_vec3(const Vec3& v) {
   return a;
 }
 
+const Shape& convex_of(const PyShape& s, const char* what) {
+  if (!s.parts.empty())
+    fail(what, "a compound is for worlds (WorldBuilder); queries take one convex shape (query its parts one by one)");
+  return s.shape;
+}
+
 }  // namespace gjkdem::py_bind

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <string>
+#include <vector>
 
 #include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/shape.hpp"
@@ -18,10 +19,15 @@ namespace py = pybind11;
 /// A shape as Python holds it: the core in a frame centred on it, placed in
 /// the frame the user gave it in (so a polytope keeps its coordinates).
 struct PyShape {
-  Shape shape;
+  Shape shape;       ///< a compound's hull
   Transform offset;  ///< shape frame -> the user's frame
   std::string type;
+  std::vector<PlacedShape> parts;  ///< a compound's convex parts (empty otherwise)
 };
+
+/// The convex shape of `s`; raises ValueError for a compound (queries take
+/// convex shapes: a compound's hull would be a silent wrong answer).
+const Shape& convex_of(const PyShape& s, const char* what);
 
 /// Raises ValueError("what: message").
 [[noreturn]] void fail(const std::string& what, const std::string& message);

@@ -72,6 +72,7 @@ const PyShape* shape_of(const py::handle& item) {
 Side read_side(const py::handle& shapes, const py::handle& poses, const std::string& name) {
   Side s;
   if (const PyShape* one = shape_of(shapes)) {
+    convex_of(*one, name.c_str());
     s.shapes.push_back(one);
   } else {
     if (!PyList_Check(shapes.ptr()) && !PyTuple_Check(shapes.ptr()))
@@ -81,6 +82,7 @@ Side read_side(const py::handle& shapes, const py::handle& poses, const std::str
     for (const auto& item : items) {
       const PyShape* shape = shape_of(item);
       if (!shape) fail(name, "expected a gjkdem.Shape or a list of them");
+      convex_of(*shape, name.c_str());
       s.shapes.push_back(shape);
     }
     if (s.shapes.empty()) fail(name, "the list of shapes is empty");
@@ -234,26 +236,29 @@ void bind_queries(py::module_& m) {
       "intersect",
       [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
         const Transform ta = placed(a, to_pose(pa, "pose_a")), tb = placed(b, to_pose(pb, "pose_b"));
-        return intersect(a.shape, ta, b.shape, tb);
+        return intersect(convex_of(a, "a"), ta, convex_of(b, "b"), tb);
       },
       py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
   m.def(
       "distance",
       [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
-        return distance(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")));
+        return distance(convex_of(a, "a"), placed(a, to_pose(pa, "pose_a")), convex_of(b, "b"),
+                        placed(b, to_pose(pb, "pose_b")));
       },
       py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
   m.def(
       "penetration",
       [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
-        return penetration(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")));
+        return penetration(convex_of(a, "a"), placed(a, to_pose(pa, "pose_a")), convex_of(b, "b"),
+                           placed(b, to_pose(pb, "pose_b")));
       },
       py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
   m.def(
       "overlap",
       [](const PyShape& a, const PyShape& b, const py::object& pa, const py::object& pb) {
         OverlapWorkspace work;
-        return overlap(a.shape, placed(a, to_pose(pa, "pose_a")), b.shape, placed(b, to_pose(pb, "pose_b")), work);
+        return overlap(convex_of(a, "a"), placed(a, to_pose(pa, "pose_a")), convex_of(b, "b"),
+                       placed(b, to_pose(pb, "pose_b")), work);
       },
       py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(), py::arg("pose_b") = py::none(), pose_doc);
 

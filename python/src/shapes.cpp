@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bindings.hpp"
+#include "gjkdem/dem/body.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 
@@ -54,6 +55,10 @@ PyShape make_shape(const Json& fields) {
   }
 }
 
+MassProperties mass_of(const PyShape& s) {
+  return s.parts.empty() ? mass_properties(s.shape) : mass_properties(s.parts);
+}
+
 }  // namespace
 
 void bind_shapes(py::module_& m) {
@@ -85,13 +90,34 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
             return make_shape(to_json(value, "shape"));
           },
           py::arg("shape"))
+      .def_static(
+          "compound",
+          [](const std::vector<PyShape>& parts) {
+            if (parts.empty()) throw py::value_error("a compound needs at least one part");
+            PyShape c;
+            c.type = "compound";
+            for (const PyShape& p : parts) {
+              if (!p.parts.empty()) throw py::value_error("a part cannot itself be a compound");
+              c.parts.push_back({p.shape, p.offset});
+            }
+            try {
+              c.shape = dem::make_compound_template(c.parts, false).shape;
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+            return c;
+          },
+          py::arg("parts"),
+          "A non-convex grain as a rigid union of convex parts (each placed by its own center and rotation),\n"
+          "for WorldBuilder: parts may touch, not overlap (checked when a body is added). Queries refuse it.")
+      .def_property_readonly("parts", [](const PyShape& s) { return s.parts.size(); },
+                             "How many convex parts (0 for a convex shape).")
       .def_property_readonly("type", [](const PyShape& s) { return s.type; })
       .def_property_readonly("margin", [](const PyShape& s) { return s.shape.margin; })
-      .def_property_readonly("volume", [](const PyShape& s) { return mass_properties(s.shape).volume; },
+      .def_property_readonly("volume", [](const PyShape& s) { return mass_of(s).volume; },
                              "Volume (flat shapes: 0).")
       .def_property_readonly(
-          "centroid",
-          [](const PyShape& s) { return from_vec3(apply(s.offset, mass_properties(s.shape).centroid)); },
+          "centroid", [](const PyShape& s) { return from_vec3(apply(s.offset, mass_of(s).centroid)); },
           "Centre of volume, in the shape's frame.")
       .def_property_readonly(
           "bounding_radius", [](const PyShape& s) { return bounding_radius(s.shape) + length(s.offset.translation); },

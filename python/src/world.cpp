@@ -30,13 +30,13 @@ std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
   std::vector<dem::BodyShape> out;
   if (py::isinstance<PyShape>(shapes)) {
     const PyShape& s = shapes.cast<const PyShape&>();
-    out.push_back({s.shape, s.offset});
+    out.push_back({s.shape, s.offset, s.parts});
     return out;
   }
   for (const auto& item : shapes.cast<py::sequence>()) {
     if (!py::isinstance<PyShape>(item)) fail("shapes", "expected a gjkdem.Shape or a list of them");
     const PyShape& s = item.cast<const PyShape&>();
-    out.push_back({s.shape, s.offset});
+    out.push_back({s.shape, s.offset, s.parts});
   }
   return out;
 }
@@ -199,7 +199,7 @@ void bind_world(py::module_& m) {
           [](dem::WorldBuilder& b, const PyShape& shape, const py::object& material, const py::object& position,
              const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
              std::uint32_t motion, const std::string& label) {
-            return b.add_body({.shape = {shape.shape, shape.offset},
+            return b.add_body({.shape = {shape.shape, shape.offset, shape.parts},
                                .material = material_index(b, material),
                                .position = to_vec3(position, "position"),
                                .rotation = to_quat(rotation, "rotation"),

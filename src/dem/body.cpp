@@ -3,7 +3,16 @@
 #include <cmath>
 #include <limits>
 
+#include "gjkdem/shape/polytope.hpp"
+#include "gjkdem/shape/tessellate.hpp"
+
 namespace gjkdem::dem {
+namespace {
+
+// Support directions per curved part for the hull that bounds a compound.
+constexpr int kCompoundHullDirections = 96;
+
+}  // namespace
 
 ShapeTemplate make_template(const Shape& shape) {
   ShapeTemplate t;
@@ -22,6 +31,45 @@ ShapeTemplate make_wall_template(const Shape& shape) {
   t.curvature_radius = std::numeric_limits<Real>::infinity();
   t.reach = bounding_radius(shape);
   return t;
+}
+
+ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fixed) {
+  std::vector<Vec3> corners;  // of every part, for the hull standing in for the compound
+  for (const PlacedShape& p : parts) {
+    const Tessellation tess = tessellate(p.shape, kCompoundHullDirections);
+    for (const Vec3& v : tess.polytope.data->vertices) corners.push_back(apply(p.pose, v));
+  }
+  const Shape hull{make_polytope(corners)};
+  ShapeTemplate t = fixed ? make_wall_template(hull) : ShapeTemplate{};
+  if (!fixed) {
+    t.shape = hull;
+    t.unit_mass = mass_properties(parts);
+    t.principal = principal_axes(t.unit_mass.inertia);
+    t.curvature_radius = std::cbrt(3 * t.unit_mass.volume / (4 * kPi));
+  }
+  t.reach = 0;
+  for (const PlacedShape& p : parts) {
+    TemplatePart part;
+    part.shape = p.shape;
+    part.pose = p.pose;
+    part.radius = bounding_radius(p.shape);
+    if (fixed) {
+      part.curvature_radius = std::numeric_limits<Real>::infinity();
+    } else {
+      const ShapeTemplate alone = make_template(p.shape);
+      part.curvature_radius = alone.curvature_radius;
+      part.volume = alone.unit_mass.volume;
+    }
+    t.reach = std::fmax(t.reach, length(p.pose.translation - t.unit_mass.centroid) + part.radius);
+    t.parts.push_back(std::move(part));
+  }
+  return t;
+}
+
+PartPose part_pose(const ShapeTemplate& t, const Body& b, std::uint32_t part) noexcept {
+  const Transform pose = shape_pose(t, b);
+  if (t.parts.empty()) return {&t.shape, pose};
+  return {&t.parts[part].shape, compose(pose, t.parts[part].pose)};
 }
 
 Quat shape_orientation(const ShapeTemplate& t, const Body& b) noexcept {

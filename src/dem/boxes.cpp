@@ -15,6 +15,18 @@ using detail::kMinParallelBodies;
 constexpr Real kBatchFraction = 0.5;
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
+// A body's box: of its shape, or of each part of a compound.
+Aabb body_box(const ShapeTemplate& t, const Body& b, Real pad) noexcept {
+  const Transform pose = shape_pose(t, b);
+  if (t.parts.empty()) return aabb(t.shape, pose, pad);
+  Aabb box = aabb(t.parts[0].shape, compose(pose, t.parts[0].pose), pad);
+  for (std::size_t k = 1; k < t.parts.size(); ++k) {
+    const Aabb part = aabb(t.parts[k].shape, compose(pose, t.parts[k].pose), pad);
+    box = {min(box.lo, part.lo), max(box.hi, part.hi)};
+  }
+  return box;
+}
+
 }  // namespace
 
 std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
@@ -66,7 +78,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
     if (!all && ((is_static(b) && static_cast<std::size_t>(i) < old) || cache.moved[i] <= threshold)) continue;
-    cache.boxes[i] = aabb(t.shape, shape_pose(t, b), is_static(b) ? 0 : skin * t.reach);
+    cache.boxes[i] = body_box(t, b, is_static(b) ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;
     ++updated;
@@ -83,7 +95,7 @@ void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const Shap
     at.position = cache.anchor_position[i];
     at.orientation = cache.anchor_orientation[i];
     const ShapeTemplate& t = templates[at.shape];
-    cache.boxes[i] = aabb(t.shape, shape_pose(t, at), is_static(at) ? 0 : skin * t.reach);
+    cache.boxes[i] = body_box(t, at, is_static(at) ? 0 : skin * t.reach);
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <tuple>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/contact/manifold.hpp"
@@ -71,8 +72,8 @@ ContactGeometry body_contact(const Shape& sa, const Transform& pa, const Shape& 
 
 void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                          std::vector<StepContact>& contacts) {
-  struct Key {
-    std::uint32_t body, group;
+  struct Key {  // a moving body's part against one wall group
+    std::uint32_t body, part, group;
     std::size_t index;
   };
   std::vector<Key> keys;
@@ -81,17 +82,20 @@ void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemp
     if (!c.active || c.a_is_plane) continue;
     const Body& a = bodies[c.a];
     const Body& b = bodies[c.b];
-    if (a.group > 0 && !b.fixed) keys.push_back({c.b, a.group, k});
-    else if (b.group > 0 && !a.fixed) keys.push_back({c.a, b.group, k});
+    if (a.group > 0 && !b.fixed) keys.push_back({c.b, c.part_b, a.group, k});
+    else if (b.group > 0 && !a.fixed) keys.push_back({c.a, c.part_a, b.group, k});
   }
   if (keys.empty()) return;
-  std::stable_sort(keys.begin(), keys.end(),
-                   [](const Key& x, const Key& y) { return std::pair(x.body, x.group) < std::pair(y.body, y.group); });
+  std::stable_sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+    return std::tuple(x.body, x.part, x.group) < std::tuple(y.body, y.part, y.group);
+  });
   std::vector<ContactPoint> points;
   std::vector<int> cluster_of;
   for (std::size_t begin = 0; begin < keys.size();) {
     std::size_t end = begin + 1;
-    while (end < keys.size() && keys[end].body == keys[begin].body && keys[end].group == keys[begin].group) ++end;
+    while (end < keys.size() && keys[end].body == keys[begin].body && keys[end].part == keys[begin].part &&
+           keys[end].group == keys[begin].group)
+      ++end;
     if (end - begin > 1) {
       points.clear();
       for (std::size_t k = begin; k < end; ++k) {

@@ -60,24 +60,59 @@ void find_candidates(World& w, int threads) {
   work.candidates_current = true;
 }
 
+// A sphere about each part of a body, world frame (one for a convex body).
+struct PartSphere {
+  Vec3 centre;
+  Real radius;
+};
+
+void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>& out) {
+  out.clear();
+  const Transform pose = shape_pose(t, b);
+  if (t.parts.empty()) {
+    out.push_back({pose.translation, bounding_radius(t.shape)});
+    return;
+  }
+  for (const TemplatePart& p : t.parts) out.push_back({apply(pose, p.pose.translation), p.radius});
+}
+
 // The contact list in pair-key order (bodies are in increasing id order and
 // plane ids lie above every body's): for each body, its candidates with
-// larger indices, then the plane walls its box reaches.
+// larger indices, then the plane walls its box reaches; for compounds, each
+// pair of parts whose bounding spheres meet, in part order.
 void list_contacts(World& w) {
   StepWorkspace& work = w.work;
   std::vector<StepContact>& contacts = work.contacts;
   contacts.clear();
   work.keys.clear();
   const std::vector<BodyPair>& pairs = work.candidates;
+  std::vector<PartSphere> parts_a, parts_b;
   std::size_t k = 0;
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& body = w.bodies[i];
+    const ShapeTemplate& t = w.templates[body.shape];
+    const bool compound = !t.parts.empty();
+    if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
       StepContact c;
       c.a = i;
       c.b = pairs[k].second;
-      contacts.push_back(c);
-      work.keys.push_back(pair_key(body.id, w.bodies[c.b].id));
+      const Body& other = w.bodies[c.b];
+      const ShapeTemplate& to = w.templates[other.shape];
+      if (!compound && to.parts.empty()) {
+        contacts.push_back(c);
+        work.keys.push_back(pair_key(body.id, other.id));
+        continue;
+      }
+      if (!compound) part_spheres(t, body, parts_a);
+      part_spheres(to, other, parts_b);
+      for (std::uint16_t pa = 0; pa < parts_a.size(); ++pa)
+        for (std::uint16_t pb = 0; pb < parts_b.size(); ++pb) {
+          if (length(parts_a[pa].centre - parts_b[pb].centre) > parts_a[pa].radius + parts_b[pb].radius) continue;
+          c.part_a = pa, c.part_b = pb;
+          contacts.push_back(c);
+          work.keys.push_back(pair_key(body.id, other.id, pa, pb));
+        }
     }
     if (body.fixed) continue;
     const Aabb& box = work.boxes.boxes[i];
@@ -90,8 +125,17 @@ void list_contacts(World& w) {
       c.a = p;
       c.b = i;
       c.a_is_plane = true;
-      contacts.push_back(c);
-      work.keys.push_back(pair_key(body.id, wall.id));
+      if (!compound) {
+        contacts.push_back(c);
+        work.keys.push_back(pair_key(body.id, wall.id));
+        continue;
+      }
+      for (std::uint16_t pb = 0; pb < parts_a.size(); ++pb) {
+        if (dot(parts_a[pb].centre - wall.point, wall.normal) > parts_a[pb].radius) continue;
+        c.part_b = pb;
+        contacts.push_back(c);
+        work.keys.push_back(pair_key(body.id, wall.id, pb, 0));
+      }
     }
   }
 }
@@ -119,7 +163,8 @@ ContactSide plane_side(const World& w, const PlaneWall& p) {
   return driven_side(f, f.center, f.velocity);
 }
 
-ContactSide side_of(const World& w, const Body& b) {
+// `part`: of a compound, whose own radius of curvature and volume the laws use.
+ContactSide side_of(const World& w, const Body& b, std::uint32_t part) {
   if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position, b.velocity) : fixed_side();
   ContactSide s;
   const ShapeTemplate& t = w.templates[b.shape];
@@ -128,8 +173,8 @@ ContactSide side_of(const World& w, const Body& b) {
   s.velocity = b.velocity;
   s.spin = angular_velocity_of(w, b);
   s.mass = mass_of(w, b);
-  s.curvature_radius = t.curvature_radius;
-  s.volume = t.unit_mass.volume;
+  s.curvature_radius = t.parts.empty() ? t.curvature_radius : t.parts[part].curvature_radius;
+  s.volume = t.parts.empty() ? t.unit_mass.volume : t.parts[part].volume;
   return s;
 }
 
@@ -166,13 +211,13 @@ StepReport compute_forces(World& w, Real dt) {
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
     const Body& b = w.bodies[c.b];
-    const ShapeTemplate& tb = w.templates[b.shape];
+    const PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
     if (c.a_is_plane) {
-      c.geometry = plane_contact(w.planes[c.a], tb.shape, shape_pose(tb, b), model);
+      c.geometry = plane_contact(w.planes[c.a], *pb.shape, pb.pose, model);
     } else {
       const Body& a = w.bodies[c.a];
-      const ShapeTemplate& ta = w.templates[a.shape];
-      c.geometry = body_contact(ta.shape, shape_pose(ta, a), tb.shape, shape_pose(tb, b), model, &w.pairs[k].gjk,
+      const PartPose pa = part_pose(w.templates[a.shape], a, c.part_a);
+      c.geometry = body_contact(*pa.shape, pa.pose, *pb.shape, pb.pose, model, &w.pairs[k].gjk,
                                 work.overlap[thread_id()]);
     }
     c.active = c.geometry.status == GeometryStatus::Touching;
@@ -186,10 +231,10 @@ StepReport compute_forces(World& w, Real dt) {
     StepContact& c = contacts[k];
     if (!c.active) continue;
     const Body& b = w.bodies[c.b];
-    const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a]);
+    const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a], c.part_a);
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                                         side_of(w, b), w.pairs[k].history, w.settings, dt);
+                                         side_of(w, b, c.part_b), w.pairs[k].history, w.settings, dt);
     c.force = f.force;
     c.torque = f.torque;
     c.history = f.history;

@@ -103,20 +103,35 @@ std::size_t WorldBuilder::moving_count() const noexcept {
       std::count_if(world_.bodies.begin(), world_.bodies.end(), [](const Body& b) { return !b.fixed; }));
 }
 
-std::uint32_t WorldBuilder::add_template(const Shape& shape, bool fixed, const std::string& label) {
+std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, const std::string& label) {
   ShapeTemplate t;
-  if (fixed) {
-    t = make_wall_template(shape);
-  } else {
-    try {
-      t = make_template(shape);
-    } catch (const std::invalid_argument& e) {
-      throw BuildError(label + ": cannot be a moving body: " + e.what());
+  try {
+    if (!shape.parts.empty()) {
+      check_compound(shape.parts, label);
+      t = make_compound_template(shape.parts, fixed);
+    } else {
+      t = fixed ? make_wall_template(shape.shape) : make_template(shape.shape);
     }
+  } catch (const std::invalid_argument& e) {
+    throw BuildError(label + ": cannot be a moving body: " + e.what());
   }
-  world_.templates.push_back(t);
-  given_shapes_.push_back(shape);
+  given_shapes_.push_back(t.shape);  // a compound's hull
+  world_.templates.push_back(std::move(t));
   return static_cast<std::uint32_t>(world_.templates.size() - 1);
+}
+
+// A compound's parts may touch, not overlap (their volumes add up).
+void WorldBuilder::check_compound(std::span<const PlacedShape> parts, const std::string& label) const {
+  if (parts.size() > kMaxCompoundParts)
+    throw BuildError(label + ": a compound has at most " + std::to_string(kMaxCompoundParts) + " parts");
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    for (std::size_t j = i + 1; j < parts.size(); ++j) {
+      const Real size = 2 * std::fmax(bounding_radius(parts[i].shape), bounding_radius(parts[j].shape));
+      const PenetrationResult p = penetration(parts[i].shape, parts[i].pose, parts[j].shape, parts[j].pose);
+      if (p.intersect && p.depth > kCompoundOverlapRelTol * size)
+        throw BuildError(label + ": parts " + std::to_string(i) + " and " + std::to_string(j) + " overlap by " +
+                         number_text(p.depth) + " m (parts may touch, not overlap: their volumes add up)");
+    }
 }
 
 // The body's principal frame from the author's frame (position, rotation) and
@@ -157,7 +172,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     b.shape = index;
     place(b, {given_shapes_[index], pose}, d.position, d.rotation, d.velocity, d.angular_velocity);
   } else {
-    b.shape = add_template(d.shape.shape, d.fixed, label);
+    b.shape = add_template(d.shape, d.fixed, label);
     place(b, d.shape, d.position, d.rotation, d.velocity, d.angular_velocity);
   }
   world_.bodies.push_back(b);
@@ -169,7 +184,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
 }
 
 std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string& label) {
-  shared_.emplace_back(add_template(shape.shape, false, label), shape.pose);
+  shared_.emplace_back(add_template(shape, false, label), shape.pose);
   return static_cast<std::uint32_t>(shared_.size() - 1);
 }
 
@@ -189,7 +204,7 @@ std::uint32_t WorldBuilder::add_fixed_piece(const Shape& shape, const Vec3& posi
                                             std::uint32_t group, const std::string& label, std::uint32_t motion) {
   Body b;
   b.id = next_id();
-  b.shape = add_template(shape, true, label);
+  b.shape = add_template(BodyShape{shape, {}}, true, label);
   b.material = material;
   b.group = group;
   b.fixed = true;
@@ -295,7 +310,7 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   if (d.count == 0 && !std::isfinite(d.stop)) throw BuildError(label + ": give a count or a stop time");
   Inflow f;
   f.cumulative = cumulative_weights(d.weights, d.variants.size(), label);
-  for (const BodyShape& v : d.variants) f.templates.push_back(add_template(v.shape, false, label));
+  for (const BodyShape& v : d.variants) f.templates.push_back(add_template(v, false, label));
   f.lo = d.lo, f.hi = d.hi;
   f.material = d.material;
   f.velocity = d.velocity;
@@ -320,8 +335,8 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   const std::uint32_t first_template = static_cast<std::uint32_t>(world_.templates.size());
   Real diameter = 0;  // of a sphere about each shape frame's origin holding every variant
   for (const BodyShape& s : f.variants) {
-    add_template(s.shape, false, label);
-    diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + bounding_radius(s.shape)));
+    add_template(s, false, label);
+    diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + bounding_radius(given_shapes_.back())));
   }
   // Cells of at least one diameter, the slack spread evenly.
   std::vector<std::pair<Vec3, Quat>> spots;
@@ -482,20 +497,29 @@ void WorldBuilder::prepare_shapes() {
   std::vector<std::size_t> user(world_.templates.size(), 0);  // a body of each template, for messages
   for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
   for (std::size_t t = prepared_templates_; t < world_.templates.size(); ++t) {
-    Shape& s = world_.templates[t].shape;
-    if (solid_polytope(s)) continue;
     const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[t]];
-    if (s.margin == 0 && (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
-                          std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
-                          std::holds_alternative<Box>(s.core)))
-      throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
-                             "thickness, or use model \"hertz\" or \"linear\")",
-                       {static_cast<std::uint32_t>(user[t])});
-    Tessellation tess = tessellate(s, settings_.tessellation);
-    if (!solid_polytope(Shape{tess.polytope}))
-      throw BuildError(who + ": the tessellation of this shape for the volume law is flat");
-    s = Shape{tess.polytope};
+    if (world_.templates[t].parts.empty()) {
+      prepare_for_volume_law(world_.templates[t].shape, who, user[t]);
+    } else {  // the hull stays: it only bounds the parts
+      for (TemplatePart& part : world_.templates[t].parts) prepare_for_volume_law(part.shape, who, user[t]);
+    }
   }
+}
+
+// Under the volume law: a solid polytope as it is, a curved shape as its
+// inscribed polytope; a shape without volume is refused.
+void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std::size_t user) const {
+  if (solid_polytope(s)) return;
+  if (s.margin == 0 && (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
+                        std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
+                        std::holds_alternative<Box>(s.core)))
+    throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
+                           "thickness, or use model \"hertz\" or \"linear\")",
+                     {static_cast<std::uint32_t>(user)});
+  Tessellation tess = tessellate(s, settings_.tessellation);
+  if (!solid_polytope(Shape{tess.polytope}))
+    throw BuildError(who + ": the tessellation of this shape for the volume law is flat");
+  s = Shape{tess.polytope};
 }
 
 World WorldBuilder::build() {

@@ -20,7 +20,7 @@ constexpr const char* kInfo =
     "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; BODY count, per body id(u64) shape(u32) "
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
-    "orientation(4); PAIR count, per pair key(lo,hi u64) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
+    "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
     "spring(3) twist roll(3); LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 "
     "length, bytes) time.";
 
@@ -171,7 +171,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   s = o.begin("PAIR");
   o.u64(w.pairs.size());
   for (const dem::PairState& p : w.pairs) {
-    o.u64(p.key.lo), o.u64(p.key.hi);
+    o.u64(p.key.lo), o.u64(p.key.hi), o.u32(p.key.parts);
     for (const Vec3& d : p.gjk.dirs) o.vec(d);
     o.u32(static_cast<std::uint32_t>(p.gjk.size)), o.u32(static_cast<std::uint32_t>(p.gjk.hint_a));
     o.u32(static_cast<std::uint32_t>(p.gjk.hint_b));
@@ -286,9 +286,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   }
   in.close(end, "BOXS");
   end = in.section("PAIR");
-  std::vector<dem::PairState> pairs(in.count(2 * 8 + 12 * 8 + 3 * 4 + 7 * 8));
+  std::vector<dem::PairState> pairs(in.count(2 * 8 + 4 + 12 * 8 + 3 * 4 + 7 * 8));
   for (dem::PairState& p : pairs) {
-    p.key.lo = in.u64(), p.key.hi = in.u64();
+    p.key.lo = in.u64(), p.key.hi = in.u64(), p.key.parts = in.u32();
     for (Vec3& d : p.gjk.dirs) d = in.vec();
     p.gjk.size = static_cast<int>(in.u32()), p.gjk.hint_a = static_cast<int>(in.u32());
     p.gjk.hint_b = static_cast<int>(in.u32());

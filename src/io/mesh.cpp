@@ -54,6 +54,8 @@ TriangleMesh read_obj(std::istream& in, const std::string& file) {
     if (!(ls >> tag) || tag[0] == '#') continue;
     if (tag == "v") {
       m.vertices.push_back(read_point(ls, file, line_no, "v"));
+    } else if (tag == "o" || tag == "g") {
+      if (m.triangles.size() > m.object_begin.back()) m.object_begin.push_back(m.triangles.size());
     } else if (tag == "f") {
       std::vector<std::uint32_t> poly;
       std::string item;
@@ -204,8 +206,31 @@ ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
     out.warnings.push_back(name + ": the mesh is not watertight (open or non-manifold edges): using its convex hull");
   else if (!out.convex)
     out.warnings.push_back(name + ": the mesh is not convex (volume " + std::to_string(std::fabs(mesh_volume)) +
-                           ", hull " + std::to_string(hull_volume) + "): using its convex hull");
+                           ", hull " + std::to_string(hull_volume) + "): using its convex hull" +
+                           (mesh.object_begin.size() <= 1 ? " (for the grain's true shape, split it into convex parts "
+                                                            "and give them as a compound, docs/scenes.md)"
+                                                          : ""));
   return out;
+}
+
+std::vector<ConvexMesh> convex_parts_from_mesh(const TriangleMesh& mesh, const std::string& name) {
+  std::vector<ConvexMesh> parts;
+  for (std::size_t k = 0; k < mesh.object_begin.size(); ++k) {
+    const std::size_t end = k + 1 < mesh.object_begin.size() ? mesh.object_begin[k + 1] : mesh.triangles.size();
+    TriangleMesh object;  // the object's triangles, on its own vertices
+    std::map<std::uint32_t, std::uint32_t> index;
+    for (std::size_t t = mesh.object_begin[k]; t < end; ++t) {
+      std::array<std::uint32_t, 3> tri;
+      for (int c = 0; c < 3; ++c) {
+        const auto [it, added] = index.try_emplace(mesh.triangles[t][c], static_cast<std::uint32_t>(object.vertices.size()));
+        if (added) object.vertices.push_back(mesh.vertices[mesh.triangles[t][c]]);
+        tri[c] = it->second;
+      }
+      object.triangles.push_back(tri);
+    }
+    parts.push_back(convex_from_mesh(object, name + ", object " + std::to_string(k)));
+  }
+  return parts;
 }
 
 }  // namespace gjkdem::io

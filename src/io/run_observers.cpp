@@ -58,7 +58,7 @@ RunFolderLock::~RunFolderLock() {
 
 FrameWriter::FrameWriter(fs::path dir, const dem::World& world, bool enabled) : dir_(std::move(dir)), enabled_(enabled) {
   if (enabled_)
-    for (const dem::ShapeTemplate& t : world.templates) meshes_.push_back(display_mesh(t.shape));
+    for (const dem::ShapeTemplate& t : world.templates) meshes_.push_back(display_mesh(t));
 }
 
 void FrameWriter::on_output(const dem::World& w, const dem::RunState& state) {

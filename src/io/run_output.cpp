@@ -54,6 +54,20 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
   std::filesystem::rename(tmp, file);
 }
 
+DisplayMesh display_mesh(const dem::ShapeTemplate& t) {
+  if (t.parts.empty()) return display_mesh(t.shape);
+  DisplayMesh m;
+  for (const dem::TemplatePart& p : t.parts) {
+    const DisplayMesh part = display_mesh(p.shape);
+    const std::uint32_t first = static_cast<std::uint32_t>(m.vertices.size()), at = static_cast<std::uint32_t>(m.indices.size());
+    for (const Vec3& v : part.vertices) m.vertices.push_back(apply(p.pose, v));
+    for (const std::uint32_t i : part.indices) m.indices.push_back(first + i);
+    if (m.polygon_begin.empty()) m.polygon_begin.push_back(0);
+    for (std::size_t k = 1; k < part.polygon_begin.size(); ++k) m.polygon_begin.push_back(at + part.polygon_begin[k]);
+  }
+  return m;
+}
+
 DisplayMesh display_mesh(const Shape& shape) {
   DisplayMesh m;
   if (shape.margin == 0) {

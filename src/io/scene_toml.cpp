@@ -384,6 +384,42 @@ class SceneBuilder {
     }
   }
 
+  // A compound's parts: SHAPE tables (`parts`) or the objects of a mesh file
+  // (`file`, `scale`), each the convex hull of its triangles.
+  std::vector<PlacedShape> compound_parts(TableReader& r, const toml::table& t) {
+    std::vector<PlacedShape> parts;
+    if (r.has("file")) {
+      if (r.has("parts")) r.fail("parts", "give either 'parts' or 'file', not both");
+      const std::filesystem::path file = file_of(r, "file");
+      const Real scale = r.positive("scale", 1.0);
+      try {
+        TriangleMesh mesh = read_mesh(file);
+        for (Vec3& v : mesh.vertices) v *= scale;
+        for (ConvexMesh& c : convex_parts_from_mesh(mesh, file.string())) {
+          for (std::string& w : c.warnings) scene_.warnings.push_back(r.where() + ": " + w);
+          parts.push_back({Shape{c.polytope}, {}});
+        }
+      } catch (const MeshError& e) {
+        r.fail("file", e.what());
+      }
+      return parts;
+    }
+    const toml::node* n = r.find("parts");
+    const toml::array* a = n ? n->as_array() : nullptr;
+    if (!a || a->empty() || !a->is_array_of_tables())
+      throw SceneError(r.where() + ": a compound needs 'parts', an array of SHAPE tables, or a mesh 'file'" +
+                       line_of(n ? *n : static_cast<const toml::node&>(t)));
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      const std::string where = r.where() + ".parts[" + std::to_string(k) + "]";
+      const toml::table& part = *(*a)[k].as_table();
+      if (part.get("type") && part.get("type")->value<std::string>() == std::optional<std::string>("compound"))
+        throw SceneError(where + ": a part cannot itself be a compound" + line_of(part));
+      const ShapeSpec p = read_shape_table(part, where);
+      parts.push_back({p.shape, p.pose});
+    }
+    return parts;
+  }
+
   // A SHAPE table: the types of query-format.md, plus platonic and mesh, and
   // for generators random_polyhedron (drawn per variant by the caller).
   ShapeSpec read_shape(TableReader& owner, const std::string& key) {
@@ -410,6 +446,9 @@ class SceneBuilder {
     } else if (type == "mesh") {
       const Real scale = r.positive("scale", 1.0);
       s.shape = Shape{mesh_hull(r, scale)};
+      r.finish();
+    } else if (type == "compound") {
+      s.parts = compound_parts(r, *t);
       r.finish();
     } else {
       std::ostringstream json;
@@ -611,6 +650,8 @@ class SceneBuilder {
       } else {
         base = read_shape_table(*part.table, part.where);
         base_size = 2 * bounding_radius(base.shape);
+        for (const PlacedShape& p : base.parts)  // a compound: of the sphere about its frame holding its parts
+          base_size = std::fmax(base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));
         if (!(base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
       }
       // Number weight of each variant: the part's fraction spread over its
@@ -625,10 +666,12 @@ class SceneBuilder {
             shape.shape = random_polyhedron(static_cast<int>(poly->vertices), draw(rng), rng);
           } else {
             const Real k = sized ? draw(rng) / base_size : 1;
-            shape = {scaled(base.shape, k), base.pose};
+            shape = {scaled(base.shape, k), base.pose, base.parts};
             shape.pose.translation *= k;
+            for (PlacedShape& p : shape.parts) p.shape = scaled(p.shape, k), p.pose.translation *= k;
           }
-          volumes[c].push_back(mass_properties(shape.shape).volume);
+          volumes[c].push_back(shape.parts.empty() ? mass_properties(shape.shape).volume
+                                                   : mass_properties(shape.parts).volume);
           mix.variants.push_back(std::move(shape));
         }
       }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <vector>
 #include <stdexcept>
 
 namespace gjkdem {
@@ -106,6 +107,28 @@ MassProperties mass_properties(const Shape& shape) {
         }
       },
       shape.core);
+}
+
+MassProperties mass_properties(std::span<const PlacedShape> parts) {
+  MassProperties out;
+  std::vector<MassProperties> each;
+  for (const PlacedShape& p : parts) {
+    each.push_back(mass_properties(p.shape));
+    out.volume += each.back().volume;
+    out.centroid += apply(p.pose, each.back().centroid) * each.back().volume;
+  }
+  if (out.volume > 0) out.centroid = out.centroid / out.volume;
+  Real inertia[3][3] = {};
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const Mat3& r = parts[k].pose.rotation;
+    const Mat3 turned = r * each[k].inertia * transpose(r);  // about the part's centroid, compound axes
+    const Vec3 d = apply(parts[k].pose, each[k].centroid) - out.centroid;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        inertia[i][j] += turned.row[i][j] + each[k].volume * ((i == j ? dot(d, d) : 0) - d[i] * d[j]);
+  }
+  for (int i = 0; i < 3; ++i) out.inertia.row[i] = {inertia[i][0], inertia[i][1], inertia[i][2]};
+  return out;
 }
 
 PrincipalAxes principal_axes(const Mat3& inertia) {

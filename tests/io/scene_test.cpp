@@ -9,7 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <tuple>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/run.hpp"
@@ -342,6 +344,71 @@ velocity = [0.0, 0.0, -1.0]
   const dem::RunOutcome outcome = dem::run(w, run, {});
   ASSERT_EQ(outcome.status, dem::RunStatus::Completed) << outcome.error;
   EXPECT_NEAR(static_cast<double>(w.bodies.size()), 41, 1);  // bodies 0..40 due in [0.1, 0.5]
+}
+
+TEST(Scene, CompoundsComeFromPartsOrTheObjectsOfAMesh) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gjkdem_compound_scene";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream obj(dir / "ell.obj");  // two boxes as two objects, as V-HACD writes them
+    for (const auto& [name, x0, x1, z0, z1] : {std::tuple{"foot", 0.0, 0.04, 0.0, 0.01}, std::tuple{"leg", 0.0, 0.01, 0.01, 0.04}}) {
+      obj << "o " << name << "\n";
+      for (int k = 0; k < 8; ++k)
+        obj << "v " << ((k & 1) ? x1 : x0) << " " << ((k & 2) ? 0.005 : -0.005) << " " << ((k & 4) ? z1 : z0) << "\n";
+      for (const char* f : {"1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6"}) {
+        obj << "f";
+        std::istringstream idx(f);
+        for (int i; idx >> i;) obj << " " << -(9 - i);  // relative indices into this object's 8 vertices
+        obj << "\n";
+      }
+    }
+  }
+  const std::string parts_scene = kHead + R"([[body]]
+shape = { type = "compound", parts = [ { type = "box", center = [0.02, 0.0, 0.005], half_extents = [0.02, 0.005, 0.005] },
+                                       { type = "box", center = [0.005, 0.0, 0.025], half_extents = [0.005, 0.005, 0.015] } ] }
+material = "rock"
+position = [0.0, 0.0, 0.1]
+)";
+  const std::string file_scene = kHead + R"([[body]]
+shape = { type = "compound", file = "ell.obj" }
+material = "rock"
+position = [0.0, 0.0, 0.1]
+)";
+  const Scene from_parts = load_scene(parts_scene, "parts.toml", dir);
+  const Scene from_file = load_scene(file_scene, "file.toml", dir);
+  for (const Scene* scene : {&from_parts, &from_file}) {
+    const dem::ShapeTemplate& t = scene->world.templates.at(scene->world.bodies.at(0).shape);
+    ASSERT_EQ(t.parts.size(), 2u);
+    EXPECT_NEAR(t.unit_mass.volume / 2000.0 * 2000.0, 7e-6, 1e-15);
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings.front();
+  }
+  const dem::ShapeTemplate &a = from_parts.world.templates[0], &b = from_file.world.templates[0];
+  EXPECT_LT(length(a.unit_mass.centroid - b.unit_mass.centroid), 1e-15);
+  EXPECT_NEAR(a.principal.moments.z, b.principal.moments.z, 1e-12 * a.principal.moments.z);
+  // A non-convex mesh of one object stays its hull, with a warning that points to compounds.
+  {
+    std::ofstream obj(dir / "one.obj");
+    std::ifstream in(dir / "ell.obj");
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("o ", 0) != 0) obj << line << "\n";
+  }
+  const Scene hull = load_scene(kHead + R"([[body]]
+shape = { type = "mesh", file = "one.obj" }
+material = "rock"
+position = [0.0, 0.0, 0.1]
+)", "one.toml", dir);
+  ASSERT_FALSE(hull.warnings.empty());
+  EXPECT_NE(hull.warnings.front().find("compound"), std::string::npos) << hull.warnings.front();
+  EXPECT_NE(refusal(kHead + R"([[body]]
+shape = { type = "compound", parts = [ { type = "compound", parts = [] } ] }
+material = "rock"
+)"), "(accepted)");
+  EXPECT_NE(refusal(kHead + R"([[body]]
+shape = { type = "compound", parts = [ { type = "box", half_extents = [0.01, 0.01, 0.01] },
+                                       { type = "box", center = [0.01, 0.0, 0.0], half_extents = [0.01, 0.01, 0.01] } ] }
+material = "rock"
+)").find("parts 0 and 1 overlap"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Scene, BuildMessagesNameTheirLines) {

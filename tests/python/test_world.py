@@ -280,3 +280,29 @@ def test_an_inflow_adds_bodies_and_old_views_stay_valid():
     bad.add_material("glass", density=2500, youngs_modulus=1e7)
     with pytest.raises(ValueError, match="give a count or a stop time"):
         bad.add_inflow(gjkdem.Shape("sphere", radius=0.004), [0, 0, 0], [1, 1, 1], "glass", rate=1)
+
+
+def test_a_compound_grain_from_python():
+    foot = gjkdem.Shape("box", half_extents=[0.02, 0.005, 0.005], center=[0.02, 0, 0.005])
+    leg = gjkdem.Shape("box", half_extents=[0.005, 0.005, 0.015], center=[0.005, 0, 0.025])
+    ell = gjkdem.Shape.compound([foot, leg])
+    assert ell.parts == 2 and ell.type == "compound"
+    assert ell.volume == pytest.approx(7e-6, rel=1e-12)
+    with pytest.raises(ValueError, match="queries take one convex shape"):
+        gjkdem.intersect(ell, foot)
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("rock", density=2500, youngs_modulus=1e7)
+    b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+    b.add_body(ell, "rock", position=[0, 0, 0.001])
+    w = b.build()
+    w.run(0.2)
+    assert w.masses()[0] == pytest.approx(2500 * 7e-6, rel=1e-12)
+    assert w.positions[0][2] == pytest.approx(ell.centroid[2], abs=1e-3)  # resting on its foot
+    overlapping = gjkdem.Shape.compound([foot, gjkdem.Shape("box", half_extents=[0.005, 0.005, 0.015],
+                                                            center=[0.005, 0, 0.02])])
+    bad = gjkdem.WorldBuilder(s)
+    bad.add_material("rock", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="parts 0 and 1 overlap"):
+        bad.add_body(overlapping, "rock")

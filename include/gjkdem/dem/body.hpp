@@ -5,12 +5,24 @@
 // MPI datatype or copied to a GPU as it is. What a contact remembers between
 // steps lives in the world's pair store (pair_state.hpp), not in the bodies.
 #include <cstdint>
+#include <span>
+#include <vector>
 #include <type_traits>
 
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem::dem {
+
+/// A convex part of a compound template (a non-convex grain as a rigid union
+/// of convex parts): contacts are found part against part.
+struct TemplatePart {
+  Shape shape;                   ///< as the contact model sees it, in the part's frame
+  Transform pose;                ///< part frame -> the template's shape frame
+  Real radius = 0;               ///< of a sphere about the part frame's origin holding the part
+  Real curvature_radius = 0;     ///< for the Hertz law: of the part alone (as for a template)
+  Real volume = 0;               ///< of the part (0 for fixed pieces)
+};
 
 /// A shape and its mass properties per unit density, computed once and
 /// shared by every body made from it.
@@ -25,6 +37,10 @@ struct ShapeTemplate {
   /// Largest distance of the shape's points from the centre of mass (m):
   /// how far a turn can move them (box skins, generators).
   Real reach = 0;
+  /// A compound's convex parts; empty for one convex `shape`. For a compound
+  /// `shape` is the hull of its parts, used only where a bound will do
+  /// (placing bodies, overlap checks).
+  std::vector<TemplatePart> parts;
 };
 
 /// A template for a moving particle (throws std::invalid_argument for shapes
@@ -34,6 +50,14 @@ ShapeTemplate make_template(const Shape& shape);
 /// A template for fixed pieces (a flat triangle has no volume): no mass, and
 /// its principal frame is the shape's own frame.
 ShapeTemplate make_wall_template(const Shape& shape);
+
+/// A compound of convex parts (placed in the compound's frame), moving
+/// (exact mass properties of the union; throws std::invalid_argument for a
+/// part without volume) or fixed (no mass). Parts must not overlap: the
+/// builder checks it.
+ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fixed);
+
+
 
 struct Body {
   std::uint64_t id = 0;          ///< global id, stable across domains and restarts
@@ -73,6 +97,14 @@ struct DrivenBody {
 /// Pose of a body's shape: its principal frame placed in the world, composed
 /// with the shape's frame relative to its principal frame.
 Transform shape_pose(const ShapeTemplate& shape, const Body& body) noexcept;
+
+/// Part `part` of a body's template (the template itself when it has no
+/// parts) and its pose in the world.
+struct PartPose {
+  const Shape* shape;
+  Transform pose;
+};
+PartPose part_pose(const ShapeTemplate& shape, const Body& body, std::uint32_t part) noexcept;
 
 /// The orientation of the frame the shape was given in (shape frame -> world).
 Quat shape_orientation(const ShapeTemplate& shape, const Body& body) noexcept;

@@ -3,7 +3,8 @@
 // pair of global ids: the GJK warm start while the pair's boxes overlap, and
 // the tangential, twisting and rolling springs while it touches. Keyed by
 // ids, not indices, so the state follows the bodies through a checkpoint, a
-// reordering or (later) a move between MPI domains.
+// reordering or (later) a move between MPI domains. Compounds keep one entry
+// per pair of parts.
 #include <compare>
 #include <cstdint>
 #include <span>
@@ -14,13 +15,19 @@
 
 namespace gjkdem::dem {
 
-/// The ids of a pair, smaller first (a plane wall's id is above every body's).
+/// The ids of a pair, smaller first (a plane wall's id is above every body's),
+/// and for compounds the parts in contact: lo's part << 16 | hi's part.
 struct PairKey {
   std::uint64_t lo = 0, hi = 0;
+  std::uint32_t parts = 0;
   friend constexpr auto operator<=>(const PairKey&, const PairKey&) = default;
 };
 
-constexpr PairKey pair_key(std::uint64_t a, std::uint64_t b) noexcept { return a < b ? PairKey{a, b} : PairKey{b, a}; }
+/// Bodies a and b, parts part_a and part_b (0 for bodies of one convex shape).
+constexpr PairKey pair_key(std::uint64_t a, std::uint64_t b, std::uint32_t part_a = 0,
+                           std::uint32_t part_b = 0) noexcept {
+  return a < b ? PairKey{a, b, part_a << 16 | part_b} : PairKey{b, a, part_b << 16 | part_a};
+}
 
 /// Springs of a touching contact. Each is world-frame and is carried into
 /// the current tangent plane before use (contact_force.hpp).

@@ -19,6 +19,7 @@ namespace gjkdem::dem {
 /// pair store; each slot is written by one thread only.
 struct StepContact {
   std::uint32_t a = 0, b = 0;
+  std::uint16_t part_a = 0, part_b = 0;  ///< of compounds (0 otherwise)
   bool a_is_plane = false;
   bool active = false;      ///< touching, after merging the contacts of a wall
   ContactGeometry geometry;

@@ -37,7 +37,14 @@ inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
 struct BodyShape {
   Shape shape{};
   Transform pose{};
+  /// Non-empty: a compound (a non-convex grain) of these convex parts, placed
+  /// in the shape's frame; `shape` is then ignored. Parts may touch, not
+  /// overlap (checked); contacts are found part against part.
+  std::vector<PlacedShape> parts{};
 };
+
+/// The most parts of a compound (part indices key the pair store in 16 bits).
+inline constexpr std::size_t kMaxCompoundParts = 1024;
 
 struct BodyDef {
   BodyShape shape{};            ///< ignored when `shared_shape` is set
@@ -151,7 +158,8 @@ class WorldBuilder {
   World build();
 
  private:
-  std::uint32_t add_template(const Shape& shape, bool fixed, const std::string& label);
+  std::uint32_t add_template(const BodyShape& shape, bool fixed, const std::string& label);
+  void check_compound(std::span<const PlacedShape> parts, const std::string& label) const;
   std::uint64_t next_id() const noexcept;
   void place(Body& body, const BodyShape& shape, const Vec3& position, const Quat& rotation, const Vec3& velocity,
              const Vec3& spin) const;
@@ -162,6 +170,7 @@ class WorldBuilder {
   void drive(std::uint32_t body, std::uint32_t motion);
   void check_explicit_bodies() const;
   void prepare_shapes();
+  void prepare_for_volume_law(Shape& shape, const std::string& who, std::size_t user) const;
 
   WorldSettings settings_;
   World world_;

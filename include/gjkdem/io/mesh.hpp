@@ -20,6 +20,9 @@ struct MeshError : std::runtime_error {
 struct TriangleMesh {
   std::vector<Vec3> vertices;                          ///< positions (STL corners welded when equal)
   std::vector<std::array<std::uint32_t, 3>> triangles; ///< indices into vertices
+  /// Where each object's triangles start (OBJ `o` and `g` lines begin objects,
+  /// as convex-decomposition tools write them); {0} for one object.
+  std::vector<std::size_t> object_begin{0};
 };
 
 /// Reads .obj or .stl (by extension, case-insensitive; STL ASCII or binary by
@@ -36,8 +39,13 @@ struct ConvexMesh {
 };
 
 /// The mesh as a convex particle: its convex hull, with a warning when the mesh
-/// was not convex or not watertight. Throws MeshError when the mesh is flat
-/// (no volume). `name` is used in messages (usually the file name).
+/// was not convex or not watertight (the warning of a mesh of one object
+/// points to compounds). Throws MeshError when the mesh is flat (no volume).
+/// `name` is used in messages (usually the file name).
 ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name);
+
+/// Each object of the mesh as a convex part of a compound (convex_from_mesh
+/// of its triangles; parts named "name, object k" in messages).
+std::vector<ConvexMesh> convex_parts_from_mesh(const TriangleMesh& mesh, const std::string& name);
 
 }  // namespace gjkdem::io

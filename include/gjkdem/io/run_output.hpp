@@ -25,6 +25,9 @@ struct DisplayMesh {
 /// tessellation (64 directions) of curved shapes.
 DisplayMesh display_mesh(const Shape& shape);
 
+/// Of a template: its shape, or each part of a compound placed in its frame.
+DisplayMesh display_mesh(const dem::ShapeTemplate& shape);
+
 /// One frame: every body's polygons placed in the world, with cell data body
 /// id, fixed flag, velocity and angular velocity. Throws std::runtime_error
 /// when the file cannot be written.

@@ -5,7 +5,10 @@
 // closed form, superellipsoids by Jaklic, Leonardis and Solina's beta-function
 // formulas ("Segmentation and Recovery of Superquadrics", 2000, ch. 2).
 // Many particles share one template, so this runs once per shape.
+#include <span>
+
 #include "gjkdem/math/quat.hpp"
+#include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem {
@@ -20,6 +23,11 @@ struct MassProperties {
 /// triangles, flat polytopes, all without margin) and for margins on cores
 /// other than points and segments (no closed form yet).
 MassProperties mass_properties(const Shape& shape);
+
+/// Of a rigid union of parts that do not overlap (their volumes add): the
+/// parts' inertias turned into the compound's axes and moved to its centre
+/// of mass (parallel axes). Throws as mass_properties(Shape) for a part.
+MassProperties mass_properties(std::span<const PlacedShape> parts);
 
 /// Principal moments (ascending) and the rotation taking principal axes to the
 /// local frame: inertia = R diag(moments) R^T, R = to_matrix(rotation).

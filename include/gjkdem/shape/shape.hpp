@@ -41,10 +41,10 @@ inline Real bounding_radius(const Shape& s) noexcept {
   return std::visit([](const auto& c) { return bounding_radius(c); }, s.core) + s.margin;
 }
 
-/// A shape placed in the world without copying it: x_world = pose * x_local.
+/// A shape placed in a parent frame: a part of a compound, a shape in a scene.
 struct PlacedShape {
-  const Shape* shape;
-  Transform pose;
+  Shape shape;
+  Transform pose;  ///< shape frame -> parent frame
 };
 
 }  // namespace gjkdem
