@@ -171,7 +171,29 @@ void bind_world(py::module_& m) {
       .def_readwrite("rocking_resistance", &dem::WorldSettings::rocking_resistance)
       .def_readwrite("tessellation", &dem::WorldSettings::tessellation)
       .def_readwrite("box_skin", &dem::WorldSettings::box_skin)
-      .def_readwrite("threads", &dem::WorldSettings::threads, "OpenMP threads of a step (0: every core)");
+      .def_readwrite("threads", &dem::WorldSettings::threads, "OpenMP threads of a step (0: every core)")
+      .def_property(
+          "periodic",
+          [](const dem::WorldSettings& s) {
+            py::dict d;
+            const char* names[3] = {"x", "y", "z"};
+            for (int a = 0; a < 3; ++a)
+              if (s.periodic.axes[a]) d[names[a]] = py::make_tuple(s.periodic.lo[a], s.periodic.hi[a]);
+            return d;
+          },
+          [](dem::WorldSettings& s, const py::dict& d) {
+            dem::PeriodicCell cell;
+            for (const auto& [key, value] : d) {
+              const std::string name = key.cast<std::string>();
+              const int a = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+              if (a < 0) fail("periodic", "keys are \"x\", \"y\" and \"z\", not \"" + name + "\"");
+              const auto range = value.cast<std::array<double, 2>>();
+              if (!(range[1] > range[0])) fail("periodic", name + " must be (min, max) with max > min");
+              cell.axes[a] = true, cell.lo[a] = range[0], cell.hi[a] = range[1];
+            }
+            s.periodic = cell;
+          },
+          "Periodic axes and their ranges, e.g. {\"x\": (0, 0.1), \"y\": (0, 0.1)} (docs/scenes.md); {}: none");
 
   py::class_<dem::RunState>(m, "RunState", "Where a run stands (seen by observers).")
       .def_readonly("dt", &dem::RunState::dt)

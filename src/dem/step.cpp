@@ -44,6 +44,11 @@ void find_candidates(World& w, int threads) {
   }
   work.moving_boxes.resize(work.moving.size());
   for (std::size_t k = 0; k < work.moving.size(); ++k) work.moving_boxes[k] = boxes[work.moving[k]];
+  if (w.settings.periodic.active()) {
+    find_periodic_candidates(w, threads);
+    work.candidates_current = true;
+    return;
+  }
   std::vector<BodyPair>& pairs = work.candidates;
   overlapping_pairs(work.moving_boxes, work.sweep, pairs, threads);
   for (BodyPair& p : pairs) p = {work.moving[p.first], work.moving[p.second]};  // moving is increasing
@@ -66,9 +71,10 @@ struct PartSphere {
   Real radius;
 };
 
-void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>& out) {
+void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>& out, const Vec3& shift = {}) {
   out.clear();
-  const Transform pose = shape_pose(t, b);
+  Transform pose = shape_pose(t, b);
+  pose.translation += shift;
   if (t.parts.empty()) {
     out.push_back({pose.translation, bounding_radius(t.shape)});
     return;
@@ -97,6 +103,7 @@ void list_contacts(World& w) {
       StepContact c;
       c.a = i;
       c.b = pairs[k].second;
+      if (!work.candidate_images.empty()) c.shift = image_shift(w.settings.periodic, work.candidate_images[k]);
       const Body& other = w.bodies[c.b];
       const ShapeTemplate& to = w.templates[other.shape];
       if (!compound && to.parts.empty()) {
@@ -105,7 +112,7 @@ void list_contacts(World& w) {
         continue;
       }
       if (!compound) part_spheres(t, body, parts_a);
-      part_spheres(to, other, parts_b);
+      part_spheres(to, other, parts_b, c.shift);
       for (std::uint16_t pa = 0; pa < parts_a.size(); ++pa)
         for (std::uint16_t pb = 0; pb < parts_b.size(); ++pb) {
           if (length(parts_a[pa].centre - parts_b[pb].centre) > parts_a[pa].radius + parts_b[pb].radius) continue;
@@ -164,12 +171,12 @@ ContactSide plane_side(const World& w, const PlaneWall& p) {
 }
 
 // `part`: of a compound, whose own radius of curvature and volume the laws use.
-ContactSide side_of(const World& w, const Body& b, std::uint32_t part) {
-  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position, b.velocity) : fixed_side();
+ContactSide side_of(const World& w, const Body& b, std::uint32_t part, const Vec3& shift = {}) {
+  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position + shift, b.velocity) : fixed_side();
   ContactSide s;
   const ShapeTemplate& t = w.templates[b.shape];
   s.moving = true;
-  s.position = b.position;
+  s.position = b.position + shift;
   s.velocity = b.velocity;
   s.spin = angular_velocity_of(w, b);
   s.mass = mass_of(w, b);
@@ -211,7 +218,8 @@ StepReport compute_forces(World& w, Real dt) {
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
     const Body& b = w.bodies[c.b];
-    const PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
+    PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
+    pb.pose.translation += c.shift;
     if (c.a_is_plane) {
       c.geometry = plane_contact(w.planes[c.a], *pb.shape, pb.pose, model);
     } else {
@@ -234,7 +242,7 @@ StepReport compute_forces(World& w, Real dt) {
     const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a], c.part_a);
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                                         side_of(w, b, c.part_b), w.pairs[k].history, w.settings, dt);
+                                         side_of(w, b, c.part_b, c.shift), w.pairs[k].history, w.settings, dt);
     c.force = f.force;
     c.torque = f.torque;
     c.history = f.history;
@@ -253,7 +261,7 @@ StepReport compute_forces(World& w, Real dt) {
     }
     Body& b = w.bodies[c.b];
     b.force += c.force;
-    b.torque += c.torque - cross(b.position, c.force);
+    b.torque += c.torque - cross(b.position + c.shift, c.force);
     if (!c.a_is_plane) {
       Body& a = w.bodies[c.a];
       a.force -= c.force;
@@ -295,6 +303,7 @@ StepReport step(World& w, Real dt) {
   const int threads = thread_count(w.settings.threads);
   kick(w.bodies, w.templates, w.materials, dt / 2, threads);
   drift(w.bodies, w.templates, w.materials, dt, threads);
+  if (w.settings.periodic.active() && wrap_bodies(w) > 0) w.work.candidates_current = false;  // images changed
   const Real power_before = w.stats.wall_power;
   w.time += dt;
   const std::size_t before = w.bodies.size();

@@ -522,9 +522,34 @@ void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std:
   s = Shape{tess.polytope};
 }
 
+// A periodic cell must hold every body with room to spare: a pair may meet
+// through one image only. Moving bodies start inside it.
+void WorldBuilder::check_periodic_cell() {
+  const PeriodicCell& cell = settings_.periodic;
+  if (!cell.active()) return;
+  Real reach = 0;  // of moving bodies, and of those inflows will insert
+  for (const Body& b : world_.bodies)
+    if (!b.fixed) reach = std::fmax(reach, world_.templates[b.shape].reach);
+  for (const Inflow& f : world_.inflows)
+    for (const std::uint32_t t : f.templates) reach = std::fmax(reach, world_.templates[t].reach);
+  for (int a = 0; a < 3; ++a) {
+    if (!cell.axes[a]) continue;
+    const char* name = a == 0 ? "x" : a == 1 ? "y" : "z";
+    if (!(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a]))
+      throw BuildError(std::string("the periodic cell's ") + name + " range must be finite with max > min");
+    const Real need = 4 * reach * (1 + settings_.box_skin);
+    if (!(cell.hi[a] - cell.lo[a] > need))
+      throw BuildError(std::string("the periodic cell is ") + number_text(cell.hi[a] - cell.lo[a]) + " m long on " +
+                       name + ": it must exceed four times the largest body's reach (" + number_text(need) + " m)");
+  }
+  world_.settings.periodic = cell;
+  wrap_bodies(world_);
+}
+
 World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
+  check_periodic_cell();
   check_explicit_bodies();
   prepare_shapes();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);

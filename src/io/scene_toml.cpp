@@ -275,10 +275,27 @@ class SceneBuilder {
     const std::int64_t seed = r.integer("seed").value_or(1);
     if (seed < 0) r.fail("seed", "must be >= 0");
     scene_.seed = static_cast<std::uint64_t>(seed);
+    Json periodic = Json::object();
+    if (const toml::table* t = r.table("periodic")) {
+      TableReader p(*t, r.where() + ".periodic");
+      const char* names[3] = {"x", "y", "z"};
+      for (int a = 0; a < 3; ++a) {
+        const std::vector<Real> range = p.numbers(names[a], 2);
+        if (range.empty()) continue;
+        if (!(range[1] > range[0])) p.fail(names[a], "must be [min, max] with max > min");
+        settings_.periodic.axes[a] = true;
+        settings_.periodic.lo[a] = range[0];
+        settings_.periodic.hi[a] = range[1];
+        periodic[names[a]] = {range[0], range[1]};
+      }
+      p.finish();
+      if (!settings_.periodic.active()) r.fail("periodic", "needs at least one axis, e.g. { x = [0.0, 0.1] }");
+    }
     r.finish();
     resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
                                {"threads", threads}, {"seed", seed}, {"guards", guards},
                                {"initial_overlaps", overlaps}};
+    if (!periodic.empty()) resolved_["simulation"]["periodic"] = periodic;
   }
 
   void read_output(TableReader& top) {

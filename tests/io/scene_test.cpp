@@ -591,6 +591,12 @@ region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
             "generator[0].shapes[0].fraction: must be > 0"},
         Bad{"bad_fractions", kHead + kCube + kInflow + "rate = 1.0\nfractions = \"volume\"\nsizes = [[0.01, 0.02, 1.0]]\n",
             "inflow[0].fractions: must be \"number\" or \"mass\""},
+        Bad{"periodic_empty", "[simulation]\nduration = 1.0\nperiodic = {}\n" + kNoSim + kCube,
+            "simulation.periodic: needs at least one axis"},
+        Bad{"periodic_reversed", "[simulation]\nduration = 1.0\nperiodic = { x = [1.0, 0.0] }\n" + kNoSim + kCube,
+            "simulation.periodic.x: must be [min, max] with max > min"},
+        Bad{"periodic_too_short", "[simulation]\nduration = 1.0\nperiodic = { x = [0.0, 0.05] }\n" + kNoSim + kCube,
+            "it must exceed four times the largest body's reach"},
         Bad{"motion_nan", kHead + kCube + kPlane + "motion = { angular_velocity = [nan, 0.0, 0.0] }\n",
             "wall[0].motion.angular_velocity: must be finite"},
         // Issue 11: limits stated and checked before anything is drawn.

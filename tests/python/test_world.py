@@ -306,3 +306,19 @@ def test_a_compound_grain_from_python():
     bad.add_material("rock", density=2500, youngs_modulus=1e7)
     with pytest.raises(ValueError, match="parts 0 and 1 overlap"):
         bad.add_body(overlapping, "rock")
+
+
+def test_a_periodic_cell_from_python():
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    s.gravity = [0, 0, 0]
+    s.periodic = {"x": (0.0, 0.1)}
+    assert s.periodic == {"x": (0.0, 0.1)}
+    with pytest.raises(ValueError, match="keys are"):
+        s.periodic = {"w": (0, 1)}
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    b.add_body(gjkdem.Shape("sphere", radius=0.005), "glass", position=[0.09, 0, 0], velocity=[1, 0, 0])
+    w = b.build()
+    w.run(0.03, dt=1e-4)
+    assert w.positions[0][0] == pytest.approx(0.02, abs=1e-9)  # left at x = 0.1, came back at 0

@@ -20,6 +20,7 @@ namespace gjkdem::dem {
 struct StepContact {
   std::uint32_t a = 0, b = 0;
   std::uint16_t part_a = 0, part_b = 0;  ///< of compounds (0 otherwise)
+  Vec3 shift;               ///< periodic worlds: b's image, b's pose moved by this (m)
   bool a_is_plane = false;
   bool active = false;      ///< touching, after merging the contacts of a wall
   ContactGeometry geometry;
@@ -36,12 +37,15 @@ struct StepWorkspace {
   bool static_ready = false;         ///< fixed_tree and moving are built
   SweepWorkspace sweep;
   std::vector<BodyPair> candidates;  ///< body index pairs (i < j) whose boxes overlap, sorted
+  std::vector<std::uint8_t> candidate_images;  ///< periodic worlds: the image of each pair's second body
   bool candidates_current = false;   ///< no box changed since the candidates were found
   std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
   std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies
-  std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep
+  std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep (and their periodic images)
+  std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box
+  std::vector<std::uint8_t> image_code;   ///< and its image
   std::vector<MotionFrame> motion_frames; ///< per motion, at world.time (place_driven)
 };
 

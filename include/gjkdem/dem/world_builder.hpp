@@ -170,6 +170,7 @@ class WorldBuilder {
   void drive(std::uint32_t body, std::uint32_t motion);
   void check_explicit_bodies() const;
   void prepare_shapes();
+  void check_periodic_cell();
   void prepare_for_volume_law(Shape& shape, const std::string& who, std::size_t user) const;
 
   WorldSettings settings_;

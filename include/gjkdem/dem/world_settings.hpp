@@ -2,6 +2,7 @@
 // The settings of a world: fixed when it is built (WorldBuilder), read by
 // every step. Plain data with the defaults of a scene file.
 #include "gjkdem/dem/material.hpp"
+#include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/math/vec3.hpp"
 
 namespace gjkdem::dem {
@@ -37,6 +38,7 @@ struct WorldSettings {
   /// and recomputed only when the body may have left its box (boxes.hpp).
   Real box_skin = 0.05;
   int threads = 1;               ///< OpenMP threads for a step (0: all cores)
+  PeriodicCell periodic;         ///< periodic boundaries (periodic.hpp); none by default
 };
 
 }  // namespace gjkdem::dem
