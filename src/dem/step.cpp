@@ -65,6 +65,11 @@ void find_candidates(World& w, int threads) {
   work.candidates_current = true;
 }
 
+// Where b's image lies from b in a periodic world (zero otherwise).
+Vec3 shift_of(const World& w, const StepContact& c) {
+  return c.image == kNoImage ? Vec3{} : image_shift(w.settings.periodic, c.image);
+}
+
 // A sphere about each part of a body, world frame (one for a convex body).
 struct PartSphere {
   Vec3 centre;
@@ -93,26 +98,28 @@ void list_contacts(World& w) {
   work.keys.clear();
   const std::vector<BodyPair>& pairs = work.candidates;
   std::vector<PartSphere> parts_a, parts_b;
+  // Worlds without compounds never look at templates here.
+  const bool any_compound =
+      std::any_of(w.templates.begin(), w.templates.end(), [](const ShapeTemplate& t) { return !t.parts.empty(); });
   std::size_t k = 0;
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& body = w.bodies[i];
     const ShapeTemplate& t = w.templates[body.shape];
-    const bool compound = !t.parts.empty();
+    const bool compound = any_compound && !t.parts.empty();
     if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
       StepContact c;
       c.a = i;
       c.b = pairs[k].second;
-      if (!work.candidate_images.empty()) c.shift = image_shift(w.settings.periodic, work.candidate_images[k]);
+      if (!work.candidate_images.empty()) c.image = work.candidate_images[k];
       const Body& other = w.bodies[c.b];
-      const ShapeTemplate& to = w.templates[other.shape];
-      if (!compound && to.parts.empty()) {
+      if (!any_compound || (!compound && w.templates[other.shape].parts.empty())) {
         contacts.push_back(c);
         work.keys.push_back(pair_key(body.id, other.id));
         continue;
       }
       if (!compound) part_spheres(t, body, parts_a);
-      part_spheres(to, other, parts_b, c.shift);
+      part_spheres(w.templates[other.shape], other, parts_b, shift_of(w, c));
       for (std::uint16_t pa = 0; pa < parts_a.size(); ++pa)
         for (std::uint16_t pb = 0; pb < parts_b.size(); ++pb) {
           if (length(parts_a[pa].centre - parts_b[pb].centre) > parts_a[pa].radius + parts_b[pb].radius) continue;
@@ -219,7 +226,7 @@ StepReport compute_forces(World& w, Real dt) {
     StepContact& c = contacts[k];
     const Body& b = w.bodies[c.b];
     PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
-    pb.pose.translation += c.shift;
+    pb.pose.translation += shift_of(w, c);
     if (c.a_is_plane) {
       c.geometry = plane_contact(w.planes[c.a], *pb.shape, pb.pose, model);
     } else {
@@ -242,7 +249,7 @@ StepReport compute_forces(World& w, Real dt) {
     const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a], c.part_a);
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                                         side_of(w, b, c.part_b, c.shift), w.pairs[k].history, w.settings, dt);
+                                         side_of(w, b, c.part_b, shift_of(w, c)), w.pairs[k].history, w.settings, dt);
     c.force = f.force;
     c.torque = f.torque;
     c.history = f.history;
@@ -261,7 +268,7 @@ StepReport compute_forces(World& w, Real dt) {
     }
     Body& b = w.bodies[c.b];
     b.force += c.force;
-    b.torque += c.torque - cross(b.position + c.shift, c.force);
+    b.torque += c.torque - cross(b.position + shift_of(w, c), c.force);
     if (!c.a_is_plane) {
       Body& a = w.bodies[c.a];
       a.force -= c.force;

@@ -10,6 +10,7 @@
 #include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
 #include "gjkdem/dem/motion.hpp"
+#include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/dem/pair_state.hpp"
 
 namespace gjkdem::dem {
@@ -20,7 +21,7 @@ namespace gjkdem::dem {
 struct StepContact {
   std::uint32_t a = 0, b = 0;
   std::uint16_t part_a = 0, part_b = 0;  ///< of compounds (0 otherwise)
-  Vec3 shift;               ///< periodic worlds: b's image, b's pose moved by this (m)
+  std::uint8_t image = kNoImage;  ///< periodic worlds: b's image (periodic.hpp: b moved by image_shift)
   bool a_is_plane = false;
   bool active = false;      ///< touching, after merging the contacts of a wall
   ContactGeometry geometry;
