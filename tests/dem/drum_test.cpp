@@ -13,7 +13,7 @@
 
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
-#include "gjkdem/shape/shape_factories.hpp"
+#include "dem/beds.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -42,13 +42,9 @@ World drum_world() {
   }
   b.add_mesh_walls(v, t, 0.004, rock, "drum", b.add_motion({.angular_velocity = {0, kOmega, 0}}, "turn"));
   std::mt19937_64 rng(5);
-  RegionFill fill;
-  for (int k = 0; k < 10; ++k) fill.variants.push_back({random_polyhedron(12, 0.01, rng), {}});
-  fill.count = 90;
-  fill.lo = {-0.04, -0.012, -0.045};
-  fill.hi = {0.04, 0.012, 0.03};
-  fill.material = rock;
-  b.fill_region(fill, rng);
+  test::fill_polyhedra(b, {.count = 90, .variants = 10, .vertices = 12, .size = 0.01, .lo = {-0.04, -0.012, -0.045},
+                           .hi = {0.04, 0.012, 0.03}, .material = rock},
+                       rng);
   return b.build();
 }
 

@@ -12,6 +12,7 @@
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/checkpoint.hpp"
+#include "dem/beds.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::dem {
@@ -77,13 +78,7 @@ World periodic_bed() {
   const std::uint32_t m = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, 0.5});
   b.add_plane({}, {0, 0, 1}, m, "floor");
   std::mt19937_64 rng(3);
-  RegionFill fill;
-  for (int k = 0; k < 5; ++k) fill.variants.push_back({random_polyhedron(10, 0.012, rng), {}});
-  fill.count = 150;
-  fill.lo = {0, 0, 0};
-  fill.hi = {0.08, 0.08, 0.12};
-  fill.material = m;
-  b.fill_region(fill, rng);
+  test::fill_polyhedra(b, {.count = 150, .size = 0.012, .lo = {0, 0, 0}, .hi = {0.08, 0.08, 0.12}, .material = m}, rng);
   return b.build();
 }
 

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "gjkdem/dem/world_builder.hpp"
+#include "dem/beds.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::io {
@@ -46,13 +47,10 @@ dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false) {
   b.add_plane({-0.04, 0, 0}, {1, 0, 0}, rock, "-x");
   b.add_plane({0.04, 0, 0}, {-1, 0, 0}, rock, "+x");
   std::mt19937_64 rng(seed);
-  dem::RegionFill fill;
-  for (int k = 0; k < 5; ++k) fill.variants.push_back({random_polyhedron(10, 0.015, rng), {}});
-  fill.count = static_cast<std::size_t>(grains);
-  fill.lo = {-0.04, -0.04, 0};
-  fill.hi = {0.04, 0.04, 0.12};
-  fill.material = rock;
-  b.fill_region(fill, rng);
+  dem::test::fill_polyhedra(b,
+                            {.count = static_cast<std::size_t>(grains), .size = 0.015, .lo = {-0.04, -0.04, 0},
+                             .hi = {0.04, 0.04, 0.12}, .material = rock},
+                            rng);
   return b.build();
 }
 
