@@ -26,29 +26,53 @@ Quat uniform_rotation(Real u1, Real u2, Real u3) noexcept {
   return normalized(Quat{b * std::cos(t3), a * std::sin(t2), a * std::cos(t2), b * std::sin(t3)});
 }
 
-// The bodies that might touch a body placed in the inflow's region.
-std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f) {
+// The periodic images a body may touch through: no shift first, then one
+// period either way on each periodic axis (just no shift without a cell).
+std::vector<Vec3> image_shifts(const PeriodicCell& cell) {
+  std::vector<Vec3> shifts{Vec3{}};
+  for (std::uint8_t code = 0; code < 27; ++code) {
+    if (code == kNoImage) continue;
+    const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
+    if ((shift[0] && !cell.axes[0]) || (shift[1] && !cell.axes[1]) || (shift[2] && !cell.axes[2])) continue;
+    shifts.push_back(image_shift(cell, code));
+  }
+  return shifts;
+}
+
+// The bodies (or their periodic images) that might touch a body placed in
+// the inflow's region.
+std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f, const std::vector<Vec3>& shifts) {
   Real reach = 0;
   for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
   std::vector<std::uint32_t> near;
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
-    const Vec3 closest = max(f.lo, min(f.hi, b.position));  // of the region, to the body
-    if (length(b.position - closest) < w.templates[b.shape].reach + reach) near.push_back(i);
+    for (const Vec3& s : shifts) {
+      const Vec3 image = b.position + s;
+      const Vec3 closest = max(f.lo, min(f.hi, image));  // of the region, to the body
+      if (length(image - closest) < w.templates[b.shape].reach + reach) {
+        near.push_back(i);
+        break;
+      }
+    }
   }
   return near;
 }
 
-bool is_free(const World& w, const std::vector<std::uint32_t>& near, const ShapeTemplate& t, const Body& body) {
+bool is_free(const World& w, const std::vector<std::uint32_t>& near, const std::vector<Vec3>& shifts,
+             const ShapeTemplate& t, const Body& body) {
   for (const PlaneWall& p : w.planes)
     if (dot(body.position - p.point, p.normal) < t.reach) return false;
   const Transform pose = shape_pose(t, body);
   for (const std::uint32_t i : near) {
     const Body& other = w.bodies[i];
     const ShapeTemplate& o = w.templates[other.shape];
-    if (length(other.position - body.position) < o.reach + t.reach &&
-        intersect(t.shape, pose, o.shape, shape_pose(o, other)))
-      return false;
+    for (const Vec3& s : shifts) {
+      if (!(length(other.position + s - body.position) < o.reach + t.reach)) continue;
+      Transform other_pose = shape_pose(o, other);
+      other_pose.translation += s;
+      if (intersect(t.shape, pose, o.shape, other_pose)) return false;
+    }
   }
   return true;
 }
@@ -86,6 +110,7 @@ std::size_t run_inflows(World& w) {
     if (w.time < f.start) continue;
     const Real elapsed = std::fmin(w.time, f.stop) - f.start;
     std::vector<std::uint32_t> near;
+    const std::vector<Vec3> shifts = image_shifts(w.settings.periodic);
     bool looked = false;
     while (f.count == 0 || s.inserted < f.count) {
       const std::uint32_t v = inflow_variant(f, s.inserted);
@@ -94,7 +119,7 @@ std::size_t run_inflows(World& w) {
       const bool due = f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed
                                   : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
       if (!due) break;
-      if (!looked) near = bodies_near(w, f), looked = true;
+      if (!looked) near = bodies_near(w, f, shifts), looked = true;
       Body body;
       body.shape = f.templates[v];
       body.material = f.material;
@@ -105,7 +130,7 @@ std::size_t run_inflows(World& w) {
         const auto u = [&](Draw d) { return keyed_uniform(f.seed, s.inserted, attempt, d); };
         body.position = f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
         body.orientation = uniform_rotation(u(kTurn1), u(kTurn2), u(kTurn3));
-        placed = is_free(w, near, t, body);
+        placed = is_free(w, near, shifts, t, body);
       }
       if (!placed) {
         ++s.behind;

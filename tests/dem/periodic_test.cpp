@@ -3,7 +3,8 @@
 // out as the same pair colliding in the middle of a world without
 // boundaries (translation invariance); a bed on a floor, periodic across,
 // keeps its grains in the cell, touches across the boundary, and continues
-// from a checkpoint with the same bits; cells too short are refused.
+// from a checkpoint with the same bits; inflows see bodies across the
+// boundary; cells too short are refused.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -114,6 +115,31 @@ TEST(Periodic, ABedTouchesAcrossTheBoundaryAndResumesWithTheSameBits) {
   ASSERT_EQ(resumed.bodies.size(), straight.bodies.size());
   for (std::size_t i = 0; i < straight.bodies.size(); ++i)
     ASSERT_EQ(std::memcmp(&straight.bodies[i], &resumed.bodies[i], sizeof(Body)), 0) << "body " << i;
+}
+
+TEST(Periodic, InflowsSeeBodiesAcrossTheBoundary) {
+  // A ball at x = 0.001 of a cell [0, 0.05): its image at x = 0.051 fills an
+  // inflow region just inside the far face, which a test of the ball itself
+  // would take for empty. Away from the face, the inflow inserts.
+  for (const bool at_face : {true, false}) {
+    WorldBuilder b(periodic_x(0, 0.05));
+    const std::uint32_t m = b.add_material({"glass", 2500, 1e7});
+    b.add_body({.shape = {make_sphere(0.008), {}}, .material = m, .position = {0.001, 0, 0}, .label = "ball"});
+    InflowDef d;
+    d.variants = {{make_sphere(0.002), {}}};
+    d.lo = {at_face ? 0.044 : 0.02, -0.004, -0.004};
+    d.hi = {at_face ? 0.0499 : 0.03, 0.004, 0.004};
+    d.material = m;
+    d.rate = 1000;
+    d.count = 5;
+    b.add_inflow(d);
+    World w = b.build();
+    for (int k = 0; k < 200; ++k) step(w, 1e-4);
+    EXPECT_EQ(w.inflow_states[0].inserted, at_face ? 0u : 5u) << (at_face ? "at the face" : "inside");
+    if (at_face) {
+      EXPECT_GT(w.inflow_states[0].behind, 0u);
+    }
+  }
 }
 
 TEST(Periodic, ACellShorterThanFourReachesIsRefused) {
