@@ -110,7 +110,7 @@ std::size_t run_inflows(World& w) {
     if (w.time < f.start) continue;
     const Real elapsed = std::fmin(w.time, f.stop) - f.start;
     std::vector<std::uint32_t> near;
-    const std::vector<Vec3> shifts = image_shifts(w.settings.periodic);
+    std::vector<Vec3> shifts;  // made once a body is due: most steps insert nothing
     bool looked = false;
     while (f.count == 0 || s.inserted < f.count) {
       const std::uint32_t v = inflow_variant(f, s.inserted);
@@ -119,7 +119,11 @@ std::size_t run_inflows(World& w) {
       const bool due = f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed
                                   : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
       if (!due) break;
-      if (!looked) near = bodies_near(w, f, shifts), looked = true;
+      if (!looked) {
+        shifts = image_shifts(w.settings.periodic);
+        near = bodies_near(w, f, shifts);
+        looked = true;
+      }
       Body body;
       body.shape = f.templates[v];
       body.material = f.material;
