@@ -56,13 +56,14 @@ set -e
 [ "$rc" -eq 130 ] || fail "an interrupted run should exit with 130, got $rc"
 grep -q '"status": "interrupted"' parts/run.json || fail "run.json does not say interrupted"
 "$gjkdem" run --resume parts --quiet || fail "resume did not complete"
-for f in trace.csv energy.csv frames/frame_000006.vtk frames/frames.vtk.series; do
+for f in trace.csv energy.csv frames/frame_000006.vtk frames/frames.vtk.series view/index.csv view/shapes.bin \
+         view/frame_000003.bin view/frame_000006.bin; do
   cmp -s "full/$f" "parts/$f" || fail "$f differs between the uninterrupted and the resumed run"
 done
 
 # One thread gives the same bytes as two.
 "$gjkdem" run "$scene" --out one --threads 1 --quiet || fail "the one-thread run did not complete"
-for f in trace.csv energy.csv frames/frame_000006.vtk; do
+for f in trace.csv energy.csv frames/frame_000006.vtk view/frame_000006.bin; do
   cmp -s "full/$f" "one/$f" || fail "$f differs between 1 and 2 threads"
 done
 
@@ -75,9 +76,10 @@ set -e
 
 # A folder holding a run's files but no run.json is still refused, and with
 # --overwrite only the run's own files go: not unrelated files, in frames/ or not.
-mkdir -p mine/frames
+mkdir -p mine/frames mine/view
 echo keep > mine/notes.txt
 echo keep > mine/frames/photo.png
+echo keep > mine/view/notes.txt
 cp full/trace.csv mine/trace.csv
 set +e
 "$gjkdem" run "$scene" --out mine --quiet 2> refused.txt
@@ -85,7 +87,7 @@ rc=$?
 set -e
 [ "$rc" -eq 2 ] && grep -q "already holds a run (trace.csv)" refused.txt || fail "a folder with a trace.csv was not protected"
 "$gjkdem" run "$scene" --out mine --overwrite --quiet || fail "--overwrite did not run"
-[ -s mine/notes.txt ] && [ -s mine/frames/photo.png ] || fail "--overwrite removed files that are not the run's"
+[ -s mine/notes.txt ] && [ -s mine/frames/photo.png ] && [ -s mine/view/notes.txt ] || fail "--overwrite removed files that are not the run's"
 
 # An edited scene.toml is not continued from a checkpoint of the old one.
 set +e

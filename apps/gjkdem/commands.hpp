@@ -37,3 +37,15 @@ struct RunOptions {
 int run_simulation(const RunOptions& opt);
 
 }  // namespace gjkdem::app
+
+namespace gjkdem::app {
+
+struct ViewOptions {
+  std::string run;   ///< run folder
+  int port = 8765;   ///< 0: any free port
+  std::string web;   ///< the viewer's page folder; empty: found (view_command.cpp)
+};
+/// Serves until killed; throws when it cannot start.
+int view_run(const ViewOptions& opt);
+
+}  // namespace gjkdem::app

@@ -45,6 +45,12 @@ int main(int argc, char** argv) {
   r->get_option("--resume")->excludes(r->get_option("--out"));  // a resumed run writes where it ran
   r->get_option("--resume")->excludes(r->get_option("--overwrite"));
 
+  gjkdem::app::ViewOptions view;
+  CLI::App* v = app.add_subcommand("view", "show a run folder in the browser (serves it on 127.0.0.1)");
+  v->add_option("run", view.run, "run folder (written by gjkdem run)")->required()->check(CLI::ExistingDirectory);
+  v->add_option("--port", view.port, "port (0: any free one)")->capture_default_str()->check(CLI::Range(0, 65535));
+  v->add_option("--web", view.web, "the viewer's page folder (default: the installed one)");
+
   // Bad options exit 2 like any refused input (CLI11's own codes are 100+).
   try {
     app.parse(argc, argv);
@@ -56,6 +62,7 @@ int main(int argc, char** argv) {
     if (q->parsed()) return gjkdem::app::run_query(query);
     if (b->parsed()) return gjkdem::app::run_bench(bench);
     if (r->parsed()) return gjkdem::app::run_simulation(run);
+    if (v->parsed()) return gjkdem::app::view_run(view);
   } catch (const std::exception& e) {
     std::cerr << "gjkdem: " << e.what() << "\n";
     return 2;

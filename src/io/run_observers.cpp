@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gjkdem/io/view_format.hpp"
+
 namespace gjkdem::io {
 
 namespace fs = std::filesystem;
@@ -25,6 +27,13 @@ void prepare_run_folder(const RunPaths& paths, bool overwrite) {
     for (const fs::directory_entry& e : fs::directory_iterator(paths.frames(), ec)) {
       const std::string name = e.path().filename().string();
       if ((name.rfind("frame_", 0) == 0 && e.path().extension() == ".vtk") || name == "frames.vtk.series")
+        ours.push_back(e.path());
+    }
+  if (fs::is_directory(paths.view(), ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(paths.view(), ec)) {
+      const std::string name = e.path().filename().string();
+      if ((name.rfind("frame_", 0) == 0 && e.path().extension() == ".bin") || name == "shapes.bin" ||
+          name == "index.csv")
         ours.push_back(e.path());
     }
   if (!ours.empty() && !overwrite)
@@ -68,6 +77,40 @@ void FrameWriter::on_output(const dem::World& w, const dem::RunState& state) {
   write_vtk_frame(dir_ / name, w, meshes_);
   frames.emplace_back(name, w.time);
   write_frame_series(dir_ / "frames.vtk.series", frames);
+}
+
+ViewWriter::ViewWriter(fs::path dir, const dem::World& world, bool enabled, std::uint64_t resumed_outputs)
+    : dir_(std::move(dir)), enabled_(enabled) {
+  if (!enabled_) return;
+  fs::create_directories(dir_);
+  write_file_atomically(view_shapes_file(dir_), encode(view_shapes(world)));
+  std::string index = view_index_header();
+  if (resumed_outputs > 0) {
+    // The frames the checkpoint had stay; later ones are written again.
+    std::vector<ViewIndexRow> rows;
+    try {
+      rows = read_view_index(view_index_file(dir_));
+    } catch (const ViewFormatError& e) {
+      throw CheckpointError(std::string(e.what()) + ": the run folder was changed");
+    }
+    for (const ViewIndexRow& row : rows)
+      if (row.frame < resumed_outputs) index += view_index_row(row);
+  }
+  write_file_atomically(view_index_file(dir_), index);
+  index_.open(view_index_file(dir_), std::ios::binary | std::ios::app);
+  if (!index_) throw std::runtime_error("cannot open " + view_index_file(dir_).string());
+}
+
+void ViewWriter::on_output(const dem::World& w, const dem::RunState& state) {
+  if (!enabled_) return;
+  const ViewFrame frame = view_frame(w, state.step);
+  const std::uint64_t number = state.outputs - 1;
+  write_file_atomically(view_frame_file(dir_, number), encode(frame));
+  // The row goes in after its frame is whole: a reader polling the index
+  // never opens a frame being written.
+  index_ << view_index_row({number, frame.time, frame.step, frame.body_count(), frame.contact_count()});
+  index_.flush();
+  if (!index_) throw std::runtime_error("cannot write " + view_index_file(dir_).string());
 }
 
 void CsvLog::start(const fs::path& file, const std::string& header) {
@@ -183,6 +226,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
 RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
                                    const Checkpoint* restored)
     : frames_(folder.frames(), world, options.frames),
+      view_(folder.view(), world, options.view, restored ? restored->run.outputs : 0),
       trace_(options.traced),
       checkpoints_(folder.checkpoint(), options.checkpoint_every, options.fingerprint, frames_, trace_, energy_,
                    restored ? restored->logs.wall_seconds : 0),

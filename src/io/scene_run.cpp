@@ -123,6 +123,7 @@ void SceneRun::open_writers(const std::string& text, const std::string& scene_fi
   info["scene"] = Json::parse(scene.resolved_json);
   info["warnings"] = scene.warnings;
   const RunWriterOptions options{.frames = scene.write_frames,
+                                 .view = scene.write_view,
                                  .checkpoint_every = scene.checkpoint_every,
                                  .traced = scene.traced,
                                  .fingerprint = fnv1a64(text),

@@ -310,11 +310,12 @@ class SceneBuilder {
       if (every < 0) r.fail("checkpoint_every", "must be >= 0 (0: no checkpoints)");
       scene_.checkpoint_every = static_cast<int>(every);
       scene_.write_frames = r.boolean("frames", true);
+      scene_.write_view = r.boolean("view", true);
       r.finish();
     }
     resolved_["output"] = {{"dir", scene_.output_dir}, {"every", scene_.output_every},
                            {"overwrite", scene_.overwrite}, {"checkpoint_every", scene_.checkpoint_every},
-                           {"frames", scene_.write_frames}};
+                           {"frames", scene_.write_frames}, {"view", scene_.write_view}};
   }
 
   void read_contact(TableReader& top) {

@@ -22,6 +22,7 @@ namespace gjkdem::io {
 struct RunPaths {
   std::filesystem::path dir;
   std::filesystem::path frames() const { return dir / "frames"; }
+  std::filesystem::path view() const { return dir / "view"; }
   std::filesystem::path checkpoint() const { return dir / "checkpoint.bin"; }
   std::filesystem::path trace() const { return dir / "trace.csv"; }
   std::filesystem::path energy() const { return dir / "energy.csv"; }
@@ -40,6 +41,21 @@ class FrameWriter : public dem::RunObserver {
  private:
   std::filesystem::path dir_;
   std::vector<DisplayMesh> meshes_;
+  bool enabled_;
+};
+
+/// view/ (docs/view-format.md): the templates' surfaces once, then a compact
+/// frame and an index row at every output. A resumed run cuts the index back
+/// to the checkpoint's outputs and writes the later frames again.
+class ViewWriter : public dem::RunObserver {
+ public:
+  /// `resumed_outputs`: outputs the checkpoint had (0 for a new run).
+  ViewWriter(std::filesystem::path dir, const dem::World& world, bool enabled, std::uint64_t resumed_outputs);
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+
+ private:
+  std::filesystem::path dir_;
+  std::ofstream index_;
   bool enabled_;
 };
 
@@ -127,6 +143,7 @@ class RunInfoWriter : public dem::RunObserver {
 /// What a run folder's writers are asked to write.
 struct RunWriterOptions {
   bool frames = true;                ///< VTK frames at every output
+  bool view = true;                  ///< view/ frames at every output (docs/view-format.md)
   int checkpoint_every = 10;         ///< outputs between checkpoints (0: only when stopped)
   std::vector<TracedBody> traced;    ///< bodies logged in trace.csv
   std::uint64_t fingerprint = 0;     ///< of the scene (checkpoints of another are refused)
@@ -134,7 +151,7 @@ struct RunWriterOptions {
 };
 
 /// Every writer of a run folder, made together: frames, trace.csv,
-/// energy.csv, checkpoints and run.json. A new run writes the logs' headers;
+/// view/, energy.csv, checkpoints and run.json. A new run writes the logs' headers;
 /// a resumed one takes the frames, logs and wall clock up from the
 /// checkpoint the world was restored from.
 class RunFolderWriters {
@@ -146,7 +163,7 @@ class RunFolderWriters {
   RunFolderWriters& operator=(const RunFolderWriters&) = delete;
 
   /// In the order a run calls them.
-  std::vector<dem::RunObserver*> observers() { return {&frames_, &trace_, &energy_, &checkpoints_, &info_}; }
+  std::vector<dem::RunObserver*> observers() { return {&frames_, &view_, &trace_, &energy_, &checkpoints_, &info_}; }
   RunInfoWriter& info() { return info_; }
   double wall_seconds() const { return checkpoints_.wall_seconds(); }
 
@@ -155,6 +172,7 @@ class RunFolderWriters {
                    const Checkpoint* restored);
 
   FrameWriter frames_;
+  ViewWriter view_;
   TraceWriter trace_;
   EnergyWriter energy_;
   Checkpointer checkpoints_;
@@ -167,9 +185,10 @@ struct RunFolderError : std::runtime_error {
 };
 
 /// Makes `paths.dir` ready for a new run. A folder holding a run's files
-/// (run.json, scene.toml, the logs, a checkpoint or frames) is refused
-/// unless `overwrite`; then only those files are removed (frames/frame_*.vtk
-/// and frames.vtk.series, never anything else in the folder or in frames/).
+/// (run.json, scene.toml, the logs, a checkpoint, frames or view files) is
+/// refused unless `overwrite`; then only those files are removed
+/// (frames/frame_*.vtk and frames.vtk.series, view/frame_*.bin, shapes.bin
+/// and index.csv; never anything else in the folder, frames/ or view/).
 /// Throws RunFolderError naming the folder.
 void prepare_run_folder(const RunPaths& paths, bool overwrite);
 

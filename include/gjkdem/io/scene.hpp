@@ -31,6 +31,7 @@ struct Scene {
   bool overwrite = false;
   int checkpoint_every = 10;    ///< frames between checkpoints (0: none)
   bool write_frames = true;
+  bool write_view = true;       ///< view/ frames (docs/view-format.md)
   dem::RunGuards guards;        ///< [simulation].guards: "stop" (default), "warn" or "off"
   std::vector<TracedBody> traced;
   std::string resolved_json;    ///< the scene with its defaults filled in (JSON object)

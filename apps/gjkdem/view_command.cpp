@@ -1,0 +1,78 @@
+// gjkdem view OUT: serves a run folder and the browser viewer's page on
+// 127.0.0.1 (cpp-httplib). The page (web/) and its three.js come from the
+// npm registry at build time; nothing is fetched at run time.
+#include <httplib.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "gjkdem/io/view_format.hpp"
+
+namespace gjkdem::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool page_complete(const fs::path& web) {
+  return fs::is_regular_file(web / "index.html") && fs::is_regular_file(web / "node_modules/three/build/three.module.js");
+}
+
+/// The viewer's page: --web, $GJKDEM_WEB_DIR, the installed copy, the source tree's.
+fs::path find_page(const std::string& given) {
+  std::vector<fs::path> tried;
+  if (!given.empty()) tried.push_back(given);
+  if (const char* env = std::getenv("GJKDEM_WEB_DIR")) tried.push_back(env);
+  if (given.empty()) tried.push_back(GJKDEM_WEB_INSTALLED_DIR), tried.push_back(GJKDEM_WEB_SOURCE_DIR);
+  for (const fs::path& p : tried)
+    if (page_complete(p)) return p;
+  std::string names;
+  for (const fs::path& p : tried) names += "\n  " + p.string();
+  throw std::runtime_error("the viewer's page is not built (index.html and node_modules/three) in any of:" + names +
+                           "\nrun `npm ci` in the source tree's web/ folder (./build.sh does)");
+}
+
+}  // namespace
+
+int view_run(const ViewOptions& opt) {
+  const fs::path run = fs::absolute(opt.run);
+  if (!fs::is_regular_file(io::view_index_file(run / "view")))
+    throw std::runtime_error(run.string() + " holds no view frames (view/index.csv): it is not a run folder, or its "
+                             "scene set output.view = false");
+  const fs::path web = find_page(opt.web);
+
+  httplib::Server server;
+  const httplib::Headers no_cache = {{"Cache-Control", "no-store"}};
+  // Only three.js's files are served from node_modules, never the rest of it.
+  server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (req.path.rfind("/node_modules", 0) == 0) {
+      res.status = 404;
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  server.set_file_extension_and_mimetype_mapping("bin", "application/octet-stream");
+  server.set_file_extension_and_mimetype_mapping("csv", "text/csv");
+  server.set_file_extension_and_mimetype_mapping("json", "application/json");
+  // A run still going rewrites its index and logs: the browser must not cache them.
+  if (!server.set_mount_point("/run", run.string(), no_cache) ||
+      !server.set_mount_point("/vendor/three", (web / "node_modules/three/build").string()) ||
+      !server.set_mount_point("/vendor/three-addons", (web / "node_modules/three/examples/jsm").string()) ||
+      !server.set_mount_point("/", web.string(), no_cache))
+    throw std::runtime_error("cannot serve " + run.string() + " or " + web.string());
+
+  const int port = opt.port == 0 ? server.bind_to_any_port("127.0.0.1")
+                                 : (server.bind_to_port("127.0.0.1", opt.port) ? opt.port : -1);
+  if (port < 0)
+    throw std::runtime_error("cannot listen on 127.0.0.1:" + std::to_string(opt.port) +
+                             " (in use?); choose another with --port, or --port 0 for any free one");
+  std::cout << "gjkdem view: serving " << run.string() << " at http://127.0.0.1:" << port << "/ (Ctrl-C stops)"
+            << std::endl;
+  if (!server.listen_after_bind()) throw std::runtime_error("the server stopped on an error");
+  return 0;
+}
+
+}  // namespace gjkdem::app

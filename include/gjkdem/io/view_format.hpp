@@ -1,0 +1,83 @@
+#pragma once
+// The view format (docs/view-format.md): a run's frames in compact binary,
+// for the browser viewer (`gjkdem view`), the measurements (`gjkdem analyze`)
+// and Python. The templates' surfaces are written once (view/shapes.bin);
+// a frame holds the bodies' poses and velocities and the touching contacts
+// in single precision, about 61 bytes per body and 44 per contact.
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::io {
+
+inline constexpr std::uint32_t kViewVersion = 1;
+/// A contact's first side with this bit set is plane wall (side - kViewPlaneSide).
+inline constexpr std::uint32_t kViewPlaneSide = 0x80000000u;
+inline constexpr std::uint8_t kViewFixed = 1, kViewDriven = 2;
+
+struct ViewFormatError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A template's surface in the body's frame.
+struct ViewMesh {
+  std::vector<float> vertices;          ///< x, y, z per vertex
+  std::vector<std::uint32_t> triangles; ///< three vertex indices each, counter-clockwise from outside
+};
+
+struct ViewShapes {
+  std::vector<ViewMesh> templates;
+  std::vector<std::uint32_t> plane_ids;
+};
+
+/// One frame, arrays as stored (structure of arrays, single precision).
+struct ViewFrame {
+  double time = 0;
+  std::uint64_t step = 0;
+  std::vector<float> positions, orientations, velocities, angular_velocities;  ///< 3, 4 (w x y z), 3, 3 per body
+  std::vector<std::uint32_t> templates, ids;
+  std::vector<std::uint8_t> flags;
+  std::vector<std::uint32_t> contact_a, contact_b;           ///< first side (or kViewPlaneSide + plane), second body
+  std::vector<float> contact_points, contact_normals, contact_forces;  ///< 3 per contact; forces on the second body
+  std::vector<float> plane_points, plane_normals;           ///< 3 per plane wall
+  std::size_t body_count() const { return templates.size(); }
+  std::size_t contact_count() const { return contact_b.size(); }
+};
+
+/// The surfaces of the world's templates and its plane walls' ids.
+ViewShapes view_shapes(const dem::World& world);
+/// The world's state now (bodies, touching contacts of the last force
+/// evaluation, plane walls), after `step` steps.
+ViewFrame view_frame(const dem::World& world, std::uint64_t step);
+
+std::string encode(const ViewShapes& shapes);
+std::string encode(const ViewFrame& frame);
+/// Throw ViewFormatError naming what is wrong (magic, version, a length
+/// that does not fit, an index out of range).
+ViewShapes decode_view_shapes(const std::string& bytes);
+ViewFrame decode_view_frame(const std::string& bytes);
+
+/// The files of a run folder's view/ (RunPaths::view()).
+std::filesystem::path view_shapes_file(const std::filesystem::path& view_dir);
+std::filesystem::path view_frame_file(const std::filesystem::path& view_dir, std::uint64_t frame);
+std::filesystem::path view_index_file(const std::filesystem::path& view_dir);
+
+/// A row of view/index.csv.
+struct ViewIndexRow {
+  std::uint64_t frame = 0;
+  double time = 0;
+  std::uint64_t step = 0, bodies = 0, contacts = 0;
+};
+std::string view_index_header();
+std::string view_index_row(const ViewIndexRow& row);
+/// The rows of an index file (ViewFormatError when it is malformed).
+std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file);
+
+/// Whole file as bytes (ViewFormatError when it cannot be read).
+std::string read_bytes(const std::filesystem::path& file);
+
+}  // namespace gjkdem::io

@@ -1,0 +1,131 @@
+"""Reading a run folder's view/ frames (docs/view-format.md) with NumPy.
+
+    run = gjkdem.read_view("out")
+    run.index["time"]                 # one row per frame written so far
+    f = run.frame(-1)                 # the last one
+    f.positions                       # (N, 3) float32, a read-only view of the file's bytes
+    f.contact_forces.sum(axis=0)
+
+Arrays are views of the file's bytes (no copy); they are read-only.
+"""
+import pathlib
+
+import numpy as np
+
+VERSION = 1
+PLANE_SIDE = 0x80000000  # a contact's first side at or above this is plane wall (side - PLANE_SIDE)
+FIXED, DRIVEN = 1, 2     # body flags
+
+_INDEX_DTYPE = [("frame", "u8"), ("time", "f8"), ("step", "u8"), ("bodies", "u8"), ("contacts", "u8")]
+
+
+class ViewFormatError(ValueError):
+    """A view file that is not one, of another version, or damaged."""
+
+
+class _Cursor:
+    def __init__(self, data, what):
+        self.data, self.what, self.at = data, what, 0
+
+    def magic(self, magic):
+        if bytes(self.data[:8]) != magic:
+            raise ViewFormatError(f"{self.what} is not a gjkdem view file (wrong magic)")
+        self.at = 8
+        version = int(self.take("<u4", 1)[0])
+        if version != VERSION:
+            raise ViewFormatError(f"{self.what} has view format version {version}; this gjkdem reads version {VERSION}")
+
+    def take(self, dtype, count, cols=None):
+        dtype = np.dtype(dtype)
+        end = self.at + dtype.itemsize * count
+        if end > len(self.data):
+            raise ViewFormatError(f"{self.what} is cut short")
+        a = np.frombuffer(self.data, dtype=dtype, count=count, offset=self.at)
+        self.at = end
+        return a.reshape(-1, cols) if cols else a
+
+    def pad4(self):
+        self.at += -self.at % 4
+
+    def end(self):
+        if self.at != len(self.data):
+            raise ViewFormatError(f"{self.what} has {len(self.data) - self.at} bytes past its end")
+
+
+class Frame:
+    """One frame: bodies (N), touching contacts (M) and plane walls (P)."""
+
+    def __init__(self, data, what="frame"):
+        c = _Cursor(data, what)
+        c.magic(b"GJKFRAME")
+        n, m, p = (int(x) for x in c.take("<u4", 3))
+        self.time = float(c.take("<f8", 1)[0])
+        self.step = int(c.take("<u8", 1)[0])
+        self.positions = c.take("<f4", 3 * n, 3)
+        self.orientations = c.take("<f4", 4 * n, 4)  # w, x, y, z: body frame to world
+        self.velocities = c.take("<f4", 3 * n, 3)
+        self.angular_velocities = c.take("<f4", 3 * n, 3)
+        self.templates = c.take("<u4", n)
+        self.ids = c.take("<u4", n)
+        self.flags = c.take("u1", n)
+        c.pad4()
+        self.contact_first = c.take("<u4", m)   # body index, or PLANE_SIDE + plane
+        self.contact_second = c.take("<u4", m)  # body index
+        self.contact_points = c.take("<f4", 3 * m, 3)
+        self.contact_normals = c.take("<f4", 3 * m, 3)  # first side -> second
+        self.contact_forces = c.take("<f4", 3 * m, 3)   # on the second body
+        self.plane_points = c.take("<f4", 3 * p, 3)
+        self.plane_normals = c.take("<f4", 3 * p, 3)
+        c.end()
+        first_body = self.contact_first < PLANE_SIDE
+        if (np.any(self.contact_second >= n) or np.any(self.contact_first[first_body] >= n)
+                or np.any(self.contact_first[~first_body] - PLANE_SIDE >= p)):
+            raise ViewFormatError(f"{what} has a contact naming a body or plane it does not have")
+
+    def __len__(self):
+        return len(self.templates)
+
+
+class RunView:
+    """The view/ folder of a run: its templates' surfaces, its index and its frames."""
+
+    def __init__(self, run_dir):
+        self.dir = pathlib.Path(run_dir) / "view"
+        shapes = self.dir / "shapes.bin"
+        if not shapes.is_file():
+            raise FileNotFoundError(f"{self.dir} holds no shapes.bin: not a run folder, or output.view was false")
+        c = _Cursor(shapes.read_bytes(), str(shapes))
+        c.magic(b"GJKSHAPE")
+        t, p, _ = (int(x) for x in c.take("<u4", 3))
+        self.templates = []  # (vertices (V, 3) float32 in the body's frame, triangles (F, 3) uint32)
+        for _ in range(t):
+            v, f = (int(x) for x in c.take("<u4", 2))
+            vertices, triangles = c.take("<f4", 3 * v, 3), c.take("<u4", 3 * f, 3)
+            if np.any(triangles >= v):
+                raise ViewFormatError(f"{shapes} has a triangle naming a vertex it does not have")
+            self.templates.append((vertices, triangles))
+        self.plane_ids = c.take("<u4", p)
+        c.end()
+        self.reload()
+
+    def reload(self):
+        """Reads the index again (a run still going adds frames)."""
+        lines = (self.dir / "index.csv").read_text().splitlines()
+        if not lines or lines[0] != "frame,time,step,bodies,contacts":
+            raise ViewFormatError(f"{self.dir / 'index.csv'} does not start with the view index header")
+        rows = [tuple(int(x) if k != 1 else float(x) for k, x in enumerate(line.split(","))) for line in lines[1:]]
+        self.index = np.array(rows, dtype=_INDEX_DTYPE)
+
+    def __len__(self):
+        return len(self.index)
+
+    def frame(self, k):
+        """Frame k of the index (negative counts from the end)."""
+        number = int(self.index["frame"][k])
+        path = self.dir / f"frame_{number:06d}.bin"
+        return Frame(path.read_bytes(), str(path))
+
+
+def read_view(run_dir):
+    """The view/ frames of the run folder `run_dir` (docs/view-format.md)."""
+    return RunView(run_dir)

@@ -1,0 +1,255 @@
+#include "gjkdem/io/view_format.hpp"
+
+#include <bit>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "gjkdem/io/run_output.hpp"
+
+namespace gjkdem::io {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the view format is written in the machine's byte order");
+
+constexpr char kShapesMagic[8] = {'G', 'J', 'K', 'S', 'H', 'A', 'P', 'E'};
+constexpr char kFrameMagic[8] = {'G', 'J', 'K', 'F', 'R', 'A', 'M', 'E'};
+
+template <class T>
+void put(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+template <class T>
+void put_array(std::string& out, const std::vector<T>& values) {
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+void pad4(std::string& out) { out.append((4 - out.size() % 4) % 4, '\0'); }
+
+void put_vec(std::vector<float>& out, const Vec3& v) {
+  out.push_back(static_cast<float>(v.x)), out.push_back(static_cast<float>(v.y)), out.push_back(static_cast<float>(v.z));
+}
+
+/// Reads fields in order, refusing to run past the end.
+class Reader {
+ public:
+  Reader(const std::string& bytes, const char* what) : bytes_(bytes), what_(what) {}
+  template <class T>
+  T get() {
+    T value;
+    take(&value, sizeof value);
+    return value;
+  }
+  template <class T>
+  void get_array(std::vector<T>& out, std::uint64_t count) {
+    if (count > (bytes_.size() - at_) / sizeof(T)) fail("is cut short: shorter than its counts say");
+    out.resize(count);
+    take(out.data(), count * sizeof(T));
+  }
+  void skip_pad4() { at_ += (4 - at_ % 4) % 4; }
+  void expect_magic(const char (&magic)[8]) {
+    char m[8];
+    take(m, 8);
+    if (std::memcmp(m, magic, 8) != 0) fail("is not a gjkdem view file (wrong magic)");
+    const auto version = get<std::uint32_t>();
+    if (version != kViewVersion)
+      fail("has view format version " + std::to_string(version) + "; this gjkdem reads version " +
+           std::to_string(kViewVersion));
+  }
+  void expect_end() const {
+    if (at_ != bytes_.size()) fail("has " + std::to_string(bytes_.size() - at_) + " bytes past its end");
+  }
+  [[noreturn]] void fail(const std::string& why) const { throw ViewFormatError(std::string(what_) + " " + why); }
+
+ private:
+  void take(void* out, std::size_t n) {
+    if (n > bytes_.size() - at_) fail("is cut short");
+    std::memcpy(out, bytes_.data() + at_, n);
+    at_ += n;
+  }
+  const std::string& bytes_;
+  const char* what_;
+  std::size_t at_ = 0;
+};
+
+ViewMesh view_mesh(const dem::ShapeTemplate& t) {
+  const DisplayMesh polygons = display_mesh(t);
+  // Display meshes are in the template's frame; the view's are in the body's
+  // (principal) frame, so that a body's pose places them directly.
+  const Transform body_from_shape = dem::shape_pose(t, dem::Body{});
+  ViewMesh m;
+  for (const Vec3& v : polygons.vertices) put_vec(m.vertices, apply(body_from_shape, v));
+  for (std::size_t k = 0; k + 1 < polygons.polygon_begin.size(); ++k)
+    for (std::uint32_t i = polygons.polygon_begin[k] + 1; i + 1 < polygons.polygon_begin[k + 1]; ++i)
+      m.triangles.insert(m.triangles.end(),
+                         {polygons.indices[polygons.polygon_begin[k]], polygons.indices[i], polygons.indices[i + 1]});
+  return m;
+}
+
+}  // namespace
+
+ViewShapes view_shapes(const dem::World& w) {
+  ViewShapes s;
+  for (const dem::ShapeTemplate& t : w.templates) s.templates.push_back(view_mesh(t));
+  for (const dem::PlaneWall& p : w.planes) s.plane_ids.push_back(static_cast<std::uint32_t>(p.id));
+  return s;
+}
+
+ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
+  ViewFrame f;
+  f.time = w.time;
+  f.step = step;
+  const std::size_t n = w.bodies.size();
+  f.positions.reserve(3 * n), f.orientations.reserve(4 * n), f.velocities.reserve(3 * n);
+  f.angular_velocities.reserve(3 * n), f.templates.reserve(n), f.ids.reserve(n), f.flags.reserve(n);
+  for (const dem::Body& b : w.bodies) {
+    put_vec(f.positions, b.position);
+    for (const Real c : {b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z})
+      f.orientations.push_back(static_cast<float>(c));
+    put_vec(f.velocities, b.velocity);
+    put_vec(f.angular_velocities, dem::angular_velocity_of(w, b));
+    f.templates.push_back(b.shape);
+    f.ids.push_back(static_cast<std::uint32_t>(b.id));
+    f.flags.push_back(static_cast<std::uint8_t>((b.fixed ? kViewFixed : 0) | (b.motion ? kViewDriven : 0)));
+  }
+  for (const dem::StepContact& c : w.work.contacts) {
+    if (!c.active) continue;
+    f.contact_a.push_back(c.a_is_plane ? kViewPlaneSide + c.a : c.a);
+    f.contact_b.push_back(c.b);
+    put_vec(f.contact_points, c.geometry.point);
+    put_vec(f.contact_normals, c.geometry.normal);
+    put_vec(f.contact_forces, c.force);
+  }
+  for (const dem::PlaneWall& p : w.planes) put_vec(f.plane_points, p.point), put_vec(f.plane_normals, p.normal);
+  return f;
+}
+
+std::string encode(const ViewShapes& s) {
+  std::string out(kShapesMagic, 8);
+  put(out, kViewVersion);
+  put(out, static_cast<std::uint32_t>(s.templates.size()));
+  put(out, static_cast<std::uint32_t>(s.plane_ids.size()));
+  put(out, std::uint32_t{0});
+  for (const ViewMesh& m : s.templates) {
+    put(out, static_cast<std::uint32_t>(m.vertices.size() / 3));
+    put(out, static_cast<std::uint32_t>(m.triangles.size() / 3));
+    put_array(out, m.vertices);
+    put_array(out, m.triangles);
+  }
+  put_array(out, s.plane_ids);
+  return out;
+}
+
+std::string encode(const ViewFrame& f) {
+  const std::size_t n = f.body_count(), m = f.contact_count();
+  std::string out(kFrameMagic, 8);
+  out.reserve(40 + 61 * n + 4 + 44 * m + 24 * (f.plane_points.size() / 3));
+  put(out, kViewVersion);
+  put(out, static_cast<std::uint32_t>(n));
+  put(out, static_cast<std::uint32_t>(m));
+  put(out, static_cast<std::uint32_t>(f.plane_points.size() / 3));
+  put(out, f.time);
+  put(out, f.step);
+  put_array(out, f.positions), put_array(out, f.orientations), put_array(out, f.velocities);
+  put_array(out, f.angular_velocities), put_array(out, f.templates), put_array(out, f.ids), put_array(out, f.flags);
+  pad4(out);
+  put_array(out, f.contact_a), put_array(out, f.contact_b);
+  put_array(out, f.contact_points), put_array(out, f.contact_normals), put_array(out, f.contact_forces);
+  put_array(out, f.plane_points), put_array(out, f.plane_normals);
+  return out;
+}
+
+ViewShapes decode_view_shapes(const std::string& bytes) {
+  Reader r(bytes, "shapes.bin");
+  r.expect_magic(kShapesMagic);
+  const auto templates = r.get<std::uint32_t>(), planes = r.get<std::uint32_t>();
+  r.get<std::uint32_t>();
+  ViewShapes s;
+  for (std::uint32_t t = 0; t < templates; ++t) {
+    ViewMesh m;
+    const auto vertices = r.get<std::uint32_t>(), triangles = r.get<std::uint32_t>();
+    r.get_array(m.vertices, 3ull * vertices);
+    r.get_array(m.triangles, 3ull * triangles);
+    for (const std::uint32_t i : m.triangles)
+      if (i >= vertices) r.fail("has a triangle of template " + std::to_string(t) + " naming a vertex it does not have");
+    s.templates.push_back(std::move(m));
+  }
+  r.get_array(s.plane_ids, planes);
+  r.expect_end();
+  return s;
+}
+
+ViewFrame decode_view_frame(const std::string& bytes) {
+  Reader r(bytes, "frame");
+  r.expect_magic(kFrameMagic);
+  const std::uint64_t n = r.get<std::uint32_t>(), m = r.get<std::uint32_t>(), planes = r.get<std::uint32_t>();
+  ViewFrame f;
+  f.time = r.get<double>();
+  f.step = r.get<std::uint64_t>();
+  r.get_array(f.positions, 3 * n), r.get_array(f.orientations, 4 * n), r.get_array(f.velocities, 3 * n);
+  r.get_array(f.angular_velocities, 3 * n), r.get_array(f.templates, n), r.get_array(f.ids, n);
+  r.get_array(f.flags, n);
+  r.skip_pad4();
+  r.get_array(f.contact_a, m), r.get_array(f.contact_b, m);
+  r.get_array(f.contact_points, 3 * m), r.get_array(f.contact_normals, 3 * m), r.get_array(f.contact_forces, 3 * m);
+  r.get_array(f.plane_points, 3 * planes), r.get_array(f.plane_normals, 3 * planes);
+  r.expect_end();
+  for (std::uint64_t k = 0; k < m; ++k) {
+    const std::uint32_t a = f.contact_a[k];
+    if (f.contact_b[k] >= n || (a & kViewPlaneSide ? a - kViewPlaneSide >= planes : a >= n))
+      r.fail("has contact " + std::to_string(k) + " naming a body or plane it does not have");
+  }
+  return f;
+}
+
+std::filesystem::path view_shapes_file(const std::filesystem::path& view_dir) { return view_dir / "shapes.bin"; }
+
+std::filesystem::path view_frame_file(const std::filesystem::path& view_dir, std::uint64_t frame) {
+  char name[40];
+  std::snprintf(name, sizeof name, "frame_%06llu.bin", static_cast<unsigned long long>(frame));
+  return view_dir / name;
+}
+
+std::filesystem::path view_index_file(const std::filesystem::path& view_dir) { return view_dir / "index.csv"; }
+
+std::string view_index_header() { return "frame,time,step,bodies,contacts\n"; }
+
+std::string view_index_row(const ViewIndexRow& row) {
+  char line[160];
+  std::snprintf(line, sizeof line, "%llu,%.17g,%llu,%llu,%llu\n", static_cast<unsigned long long>(row.frame), row.time,
+                static_cast<unsigned long long>(row.step), static_cast<unsigned long long>(row.bodies),
+                static_cast<unsigned long long>(row.contacts));
+  return line;
+}
+
+std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file) {
+  std::istringstream in(read_bytes(file));
+  std::string line;
+  if (!std::getline(in, line) || line + "\n" != view_index_header())
+    throw ViewFormatError(file.string() + " does not start with the view index header");
+  std::vector<ViewIndexRow> rows;
+  while (std::getline(in, line)) {
+    ViewIndexRow r;
+    unsigned long long frame, step, bodies, contacts;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "%llu,%lf,%llu,%llu,%llu%n", &frame, &r.time, &step, &bodies, &contacts, &used) != 5 ||
+        static_cast<std::size_t>(used) != line.size())
+      throw ViewFormatError(file.string() + " line " + std::to_string(rows.size() + 2) + " is not a view index row");
+    r.frame = frame, r.step = step, r.bodies = bodies, r.contacts = contacts;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::string read_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ViewFormatError("cannot read " + file.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace gjkdem::io

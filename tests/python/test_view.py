@@ -1,0 +1,78 @@
+"""gjkdem.read_view reads what a run wrote to view/ (docs/view-format.md):
+every frame holds, to single precision, what the world held at that output
+(seen by a Python observer through the bindings), and damaged files are refused."""
+import shutil
+
+import numpy as np
+import pytest
+
+import gjkdem
+
+
+@pytest.fixture
+def run_dir(repo, tmp_path):
+    src = repo / "tests" / "data" / "scenes"
+    for name in ("small_pour.toml", "chute.obj"):
+        shutil.copy(src / name, tmp_path / name)
+    seen = []
+
+    def observe(world, state):
+        c = world.contacts()
+        seen.append(dict(time=world.time, step=state.step, positions=world.positions.copy(),
+                         orientations=world.orientations.copy(), velocities=world.velocities.copy(),
+                         ids=world.ids.copy(), fixed=world.fixed.copy(),
+                         contact_ids=c["ids"], contact_forces=c["forces"], contact_points=c["points"]))
+
+    out = tmp_path / "out"
+    assert gjkdem.SceneRun(str(tmp_path / "small_pour.toml"), out=str(out), threads=1).run(observer=observe) == "completed"
+    return out, seen
+
+
+def test_every_frame_holds_what_the_world_held(run_dir):
+    out, seen = run_dir
+    run = gjkdem.read_view(out)
+    assert len(run) == len(seen) == 7
+    assert list(run.index["step"]) == [s["step"] for s in seen]
+    touching = 0
+    for k, s in enumerate(seen):
+        f = run.frame(k)
+        assert f.time == s["time"] and f.step == s["step"]
+        np.testing.assert_allclose(f.positions, s["positions"], atol=1e-7)
+        np.testing.assert_allclose(f.orientations, s["orientations"], atol=1e-7)
+        np.testing.assert_allclose(f.velocities, s["velocities"], rtol=1e-6, atol=1e-7)
+        assert np.array_equal(f.ids, s["ids"])
+        assert np.array_equal(f.flags & gjkdem.view.FIXED, s["fixed"])
+        # Contacts: the same pairs (by id; a plane is its wall id) and forces.
+        ids = f.ids.astype(np.uint64)
+        planes = run.plane_ids.astype(np.uint64)
+        first = np.where(f.contact_first >= gjkdem.view.PLANE_SIDE,
+                         planes[np.minimum(f.contact_first - gjkdem.view.PLANE_SIDE, len(planes) - 1)] if len(planes) else 0,
+                         ids[np.minimum(f.contact_first, len(ids) - 1)])
+        pairs = np.stack([first, ids[f.contact_second]], axis=1)
+        assert np.array_equal(pairs, s["contact_ids"].astype(np.uint64) & 0xFFFFFFFF)
+        np.testing.assert_allclose(f.contact_forces, s["contact_forces"], rtol=1e-6, atol=1e-9)
+        np.testing.assert_allclose(f.contact_points, s["contact_points"], atol=1e-7)
+        touching += len(f.contact_second)
+    assert touching > 0, "the pour touches the ramp and the floor"
+    # The surfaces: one per template, triangles naming their own vertices.
+    assert len(run.templates) == int(max(run.frame(0).templates)) + 1
+    for vertices, triangles in run.templates:
+        assert vertices.shape[1] == 3 and triangles.shape[1] == 3 and triangles.max() < len(vertices)
+    # Views of the file's bytes: read-only.
+    with pytest.raises(ValueError):
+        run.frame(0).positions[0, 0] = 1
+
+
+def test_damaged_view_files_are_refused(run_dir, tmp_path):
+    out, _ = run_dir
+    frame = out / "view" / "frame_000003.bin"
+    data = frame.read_bytes()
+    for damaged, why in [(data[:-3], "cut short"), (data + b"\0", "past its end"), (b"GJKSHAPE" + data[8:], "wrong magic"),
+                         (data[:8] + b"\x02" + data[9:], "version 2")]:
+        with pytest.raises(gjkdem.ViewFormatError, match=why):
+            gjkdem.view.Frame(damaged)
+    (out / "view" / "shapes.bin").write_bytes((out / "view" / "shapes.bin").read_bytes()[:20])
+    with pytest.raises(gjkdem.ViewFormatError):
+        gjkdem.read_view(out)
+    with pytest.raises(FileNotFoundError, match="holds no shapes.bin"):
+        gjkdem.read_view(tmp_path)
