@@ -1,5 +1,6 @@
 #pragma once
 // Subcommands of the gjkdem program; each returns the process exit status.
+#include <cstdint>
 #include <string>
 
 namespace gjkdem::app {
@@ -47,5 +48,18 @@ struct ViewOptions {
 };
 /// Serves until killed; throws when it cannot start.
 int view_run(const ViewOptions& opt);
+
+}  // namespace gjkdem::app
+
+namespace gjkdem::app {
+
+struct AnalyzeOptions {
+  std::string run;              ///< run folder
+  std::string region;           ///< "x0,y0,z0,x1,y1,z1"; empty: around the moving bodies
+  std::uint64_t every = 1;      ///< every this many frames
+  bool quiet = false;
+};
+/// 0 done, 2 refused (bad options, not a run folder).
+int analyze_run(const AnalyzeOptions& opt);
 
 }  // namespace gjkdem::app

@@ -51,6 +51,14 @@ int main(int argc, char** argv) {
   v->add_option("--port", view.port, "port (0: any free one)")->capture_default_str()->check(CLI::Range(0, 65535));
   v->add_option("--web", view.web, "the viewer's page folder (default: the installed one)");
 
+  gjkdem::app::AnalyzeOptions analyze;
+  CLI::App* a = app.add_subcommand("analyze", "measure every frame of a run: solid fraction, coordination, stress, "
+                                               "normal forces (writes OUT/analysis/)");
+  a->add_option("run", analyze.run, "run folder (written by gjkdem run)")->required()->check(CLI::ExistingDirectory);
+  a->add_option("--region", analyze.region, "box x0,y0,z0,x1,y1,z1 (m; default: around the moving bodies)");
+  a->add_option("--every", analyze.every, "analyse every Nth frame")->capture_default_str()->check(CLI::Range(1, 1 << 30));
+  a->add_flag("--quiet", analyze.quiet, "no progress output");
+
   // Bad options exit 2 like any refused input (CLI11's own codes are 100+).
   try {
     app.parse(argc, argv);
@@ -63,6 +71,7 @@ int main(int argc, char** argv) {
     if (b->parsed()) return gjkdem::app::run_bench(bench);
     if (r->parsed()) return gjkdem::app::run_simulation(run);
     if (v->parsed()) return gjkdem::app::view_run(view);
+    if (a->parsed()) return gjkdem::app::analyze_run(analyze);
   } catch (const std::exception& e) {
     std::cerr << "gjkdem: " << e.what() << "\n";
     return 2;

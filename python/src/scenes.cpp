@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bindings.hpp"
+#include "gjkdem/io/analysis.hpp"
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
@@ -34,6 +35,21 @@ void bind_scenes(py::module_& m) {
       py::arg("text"), py::arg("base_dir") = ".", "Reads a scene from TOML text; mesh files are found from base_dir.");
   m.def("default_scene_text", [] { return std::string(io::default_scene_toml()); },
         "The TOML of the built-in default scene.");
+  m.def(
+      "analyze",
+      [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every) {
+        io::AnalysisOptions options;
+        if (region) options.region = dem::MeasureRegion{to_vec3(region->first, "region lo"), to_vec3(region->second, "region hi")};
+        options.every = every;
+        const io::AnalysisSummary s = io::analyze_run(run_dir, options);
+        py::dict d;
+        d["frames"] = s.frames, d["seconds"] = s.seconds, d["largest_frame"] = s.largest_frame;
+        return d;
+      },
+      py::arg("run_dir"), py::arg("region") = py::none(), py::arg("every") = 1,
+      "As `gjkdem analyze`: measures every `every`th frame of a run's view/ in the box region = (lo, hi)\n"
+      "(None: around the moving bodies, frame by frame) and writes run_dir/analysis/measures.csv and\n"
+      "normal_forces.csv (docs/measurements.md). Returns {frames, seconds, largest_frame}.");
 
   py::class_<io::SceneRun, std::unique_ptr<io::SceneRun>>(
       m, "SceneRun",

@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "gjkdem/dem/measure.hpp"
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/checkpoint.hpp"
@@ -495,6 +496,32 @@ void bind_world(py::module_& m) {
           "Returns \"completed\" or \"stopped\"; raises RunError when the run fails (guards, unsupported pairs).")
       .def("critical_time_step", &dem::critical_time_step)
       .def("stable_time_step", &dem::stable_time_step)
+      .def(
+          "measure",
+          [](const World& w, py::object lo, py::object hi) {
+            const dem::MeasureRegion region{to_vec3(lo, "lo"), to_vec3(hi, "hi")};
+            dem::MeasureWorkspace work;
+            dem::Measures r;
+            try {
+              r = dem::measure(w, dem::touching_contacts(w), region, work);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+            py::dict d;
+            d["solid_fraction"] = r.solid_fraction, d["solid_volume"] = r.solid_volume;
+            d["region_volume"] = r.region_volume, d["grains"] = r.grains, d["coordination"] = r.coordination;
+            d["contacts"] = r.contacts, d["mean_normal_force"] = r.mean_normal_force, d["pressure"] = r.pressure;
+            py::array_t<double> stress({py::ssize_t{3}, py::ssize_t{3}});
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) stress.mutable_at(i, j) = r.stress.row[i][j];
+            d["stress"] = stress;
+            d["normal_forces"] = py::array_t<double>(static_cast<py::ssize_t>(r.normal_forces.size()), r.normal_forces.data());
+            return d;
+          },
+          py::arg("lo"), py::arg("hi"),
+          "Measurements in the box [lo, hi] from the last force evaluation (docs/measurements.md): a dict of\n"
+          "solid_fraction, solid_volume, region_volume, grains, coordination, contacts, mean_normal_force,\n"
+          "stress (3, 3; Love-Weber, compression positive, Pa), pressure and normal_forces (the contacts' |F.n|).")
       .def("contacts", &contacts_of,
            "The touching contacts of the last force evaluation: a dict of arrays (ids (M, 2): a wall's or\n"
            "body's id then the body's; points, normals (a -> b) and forces on b (M, 3); depth, overlap_volume).")

@@ -93,13 +93,19 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
   const Json previous = read_run_json(r->folder);
   const std::string text = read_text_file(r->folder.scene());
   const fs::path base = previous["scene_base"].get<std::string>();
-  r->scene = load_scene(text, r->folder.scene().string(), base);
+  r->scene = load_run_scene(dir);
   if (threads >= 0) r->scene.world.settings.threads = threads;
   r->state = plan_scene(r->scene, r->folder.scene().string());
   r->lock_.emplace(r->folder.dir);
   remove_stale_temporaries(r->folder);
   r->open_writers(text, previous.value("scene_file", ""), base, true);
   return r;
+}
+
+Scene load_run_scene(const fs::path& dir) {
+  const RunPaths folder{dir};
+  const Json info = read_run_json(folder);
+  return load_scene(read_text_file(folder.scene()), folder.scene().string(), info["scene_base"].get<std::string>());
 }
 
 std::string run_info_json(const dem::World& world, Real dt) {

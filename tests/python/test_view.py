@@ -1,12 +1,17 @@
 """gjkdem.read_view reads what a run wrote to view/ (docs/view-format.md):
 every frame holds, to single precision, what the world held at that output
-(seen by a Python observer through the bindings), and damaged files are refused."""
+(seen by a Python observer through the bindings), and damaged files are
+refused. gjkdem.analyze of the frames gives what World.measure gave live."""
+import csv
 import shutil
 
 import numpy as np
 import pytest
 
 import gjkdem
+
+
+REGION = ((-0.1, -0.1, -0.1), (0.1, 0.1, 0.05))  # the lower part of small_pour's box
 
 
 @pytest.fixture
@@ -18,10 +23,12 @@ def run_dir(repo, tmp_path):
 
     def observe(world, state):
         c = world.contacts()
+        measures = world.measure(REGION[0], REGION[1])
         seen.append(dict(time=world.time, step=state.step, positions=world.positions.copy(),
                          orientations=world.orientations.copy(), velocities=world.velocities.copy(),
                          ids=world.ids.copy(), fixed=world.fixed.copy(),
-                         contact_ids=c["ids"], contact_forces=c["forces"], contact_points=c["points"]))
+                         contact_ids=c["ids"], contact_forces=c["forces"], contact_points=c["points"],
+                         measures=measures))
 
     out = tmp_path / "out"
     assert gjkdem.SceneRun(str(tmp_path / "small_pour.toml"), out=str(out), threads=1).run(observer=observe) == "completed"
@@ -76,3 +83,25 @@ def test_damaged_view_files_are_refused(run_dir, tmp_path):
         gjkdem.read_view(out)
     with pytest.raises(FileNotFoundError, match="holds no shapes.bin"):
         gjkdem.read_view(tmp_path)
+
+
+def test_the_analysis_of_the_frames_is_the_live_worlds(run_dir):
+    out, seen = run_dir
+    summary = gjkdem.analyze(str(out), region=REGION)
+    assert summary["frames"] == 7
+    rows = list(csv.DictReader(open(out / "analysis" / "measures.csv")))
+    assert len(rows) == len(seen)
+    pressed = 0
+    for row, s in zip(rows, seen):
+        live = s["measures"]
+        assert int(row["grains"]) == live["grains"] and int(row["contacts"]) == live["contacts"]
+        assert float(row["coordination"]) == pytest.approx(live["coordination"], rel=1e-8)
+        # The frames hold single precision: poses and forces to about 1e-7.
+        assert float(row["solid_fraction"]) == pytest.approx(live["solid_fraction"], rel=1e-5, abs=1e-9)
+        assert float(row["pressure"]) == pytest.approx(live["pressure"], rel=1e-4, abs=1e-9)
+        assert float(row["stress_zz"]) == pytest.approx(live["stress"][2, 2], rel=1e-4, abs=1e-9)
+        pressed += live["pressure"] > 0
+    assert pressed > 0
+    world = gjkdem.load_scene(str(out.parent / "small_pour.toml")).world
+    with pytest.raises(ValueError, match="lo < hi"):
+        world.measure((0, 0, 0), (1, 0, 1))

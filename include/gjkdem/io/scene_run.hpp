@@ -31,6 +31,10 @@ const char* version() noexcept;
 /// bodies, shape templates, threads, dt), to which callers add their own.
 std::string run_info_json(const dem::World& world, Real dt);
 
+/// The scene of the run in `dir` (its scene.toml, files relative to where
+/// the scene was read from, which run.json records). Throws SceneError.
+Scene load_run_scene(const std::filesystem::path& dir);
+
 class SceneRun {
  public:
   /// A new run of the scene in `scene_file` (empty: the built-in default

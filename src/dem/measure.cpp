@@ -1,0 +1,147 @@
+#include "gjkdem/dem/measure.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "gjkdem/shape/tessellate.hpp"
+
+namespace gjkdem::dem {
+
+namespace {
+
+bool inside(const MeasureRegion& r, const Vec3& p) noexcept {
+  return p.x >= r.lo.x && p.x <= r.hi.x && p.y >= r.lo.y && p.y <= r.hi.y && p.z >= r.lo.z && p.z <= r.hi.z;
+}
+
+/// Distance from p to the region (0 inside).
+Real distance_to(const MeasureRegion& r, const Vec3& p) noexcept {
+  const Vec3 d{std::fmax(std::fmax(r.lo.x - p.x, p.x - r.hi.x), 0.0), std::fmax(std::fmax(r.lo.y - p.y, p.y - r.hi.y), 0.0),
+               std::fmax(std::fmax(r.lo.z - p.z, p.z - r.hi.z), 0.0)};
+  return length(d);
+}
+
+/// Distance from p to the region's boundary, p inside.
+Real depth_in(const MeasureRegion& r, const Vec3& p) noexcept {
+  return std::fmin(std::fmin(std::fmin(p.x - r.lo.x, r.hi.x - p.x), std::fmin(p.y - r.lo.y, r.hi.y - p.y)),
+                   std::fmin(p.z - r.lo.z, r.hi.z - p.z));
+}
+
+/// An image shifting only along periodic axes.
+bool image_on_periodic_axes(const PeriodicCell& cell, std::uint8_t code) noexcept {
+  const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
+  for (int k = 0; k < 3; ++k)
+    if (shift[k] != 0 && !cell.axes[k]) return false;
+  return true;
+}
+
+/// x_c - x_p to the nearest image on the world's periodic axes.
+Vec3 nearest_image(const World& w, Vec3 d) noexcept {
+  const PeriodicCell& cell = w.settings.periodic;
+  for (int k = 0; k < 3; ++k) {
+    if (!cell.axes[k]) continue;
+    const Real period = cell.hi[k] - cell.lo[k];
+    d[k] -= period * std::round(d[k] / period);
+  }
+  return d;
+}
+
+void add_outer(Mat3& m, const Vec3& a, const Vec3& b) noexcept {
+  for (int i = 0; i < 3; ++i) m.row[i] += b * a[i];
+}
+
+}  // namespace
+
+std::vector<MeasuredContact> touching_contacts(const World& w) {
+  std::vector<MeasuredContact> out;
+  for (const StepContact& c : w.work.contacts)
+    if (c.active) out.push_back({c.a, c.a_is_plane, c.b, c.geometry.point, c.geometry.normal, c.force});
+  return out;
+}
+
+MeasureRegion moving_bodies_box(const World& w) {
+  MeasureRegion box{Vec3{1, 1, 1} * INFINITY, Vec3{1, 1, 1} * -INFINITY};
+  bool any = false;
+  for (const Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const Real reach = w.templates[b.shape].reach;
+    box.lo = min(box.lo, b.position - Vec3{reach, reach, reach});
+    box.hi = max(box.hi, b.position + Vec3{reach, reach, reach});
+    any = true;
+  }
+  return any ? box : MeasureRegion{};
+}
+
+Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, MeasureWorkspace& work) {
+  const ShapeTemplate& t = w.templates[b.shape];
+  if (distance_to(region, b.position) >= t.reach) return 0;
+  if (inside(region, b.position) && depth_in(region, b.position) >= t.reach) return t.unit_mass.volume;
+  const Vec3 half = (region.hi - region.lo) * 0.5;
+  const Shape box{Box{half}};
+  const Transform box_pose = Transform::from(region.lo + half, Quat{});
+  const std::uint32_t parts = t.parts.empty() ? 1 : static_cast<std::uint32_t>(t.parts.size());
+  Real volume = 0;
+  for (std::uint32_t k = 0; k < parts; ++k) {
+    const PartPose part = part_pose(t, b, k);
+    const Real part_volume = t.parts.empty() ? t.unit_mass.volume : t.parts[k].volume;
+    // The part as clipped: its shape, or a tessellation when it is curved
+    // (clipping has no closed form for it), and that solid's own volume.
+    const std::uint64_t key = std::uint64_t{b.shape} << 32 | k;
+    auto found = work.clipped.find(key);
+    if (found == work.clipped.end()) {
+      MeasureWorkspace::ClippedShape c;
+      c.tessellated = overlap(box, box_pose, *part.shape, part.pose, work.overlap).status == OverlapStatus::Unsupported;
+      if (c.tessellated) c.tessellation = Shape{tessellate(*part.shape, kMeasureTessellation).polytope};
+      c.volume = mass_properties(c.tessellated ? c.tessellation : *part.shape).volume;
+      found = work.clipped.emplace(key, std::move(c)).first;
+    }
+    const MeasureWorkspace::ClippedShape& c = found->second;
+    const Shape& solid = c.tessellated ? c.tessellation : *part.shape;
+    volume += overlap(box, box_pose, solid, part.pose, work.overlap).volume / c.volume * part_volume;
+  }
+  return volume;
+}
+
+Measures measure(const World& w, std::span<const MeasuredContact> contacts, const MeasureRegion& region,
+                 MeasureWorkspace& work) {
+  Measures m;
+  m.region_volume = region.volume();
+  if (!(m.region_volume > 0) || !std::isfinite(m.region_volume))
+    throw std::invalid_argument("the measurement region must have lo < hi on every axis, all finite");
+  std::vector<char> counted(w.bodies.size(), 0);
+  for (std::size_t k = 0; k < w.bodies.size(); ++k) {
+    const Body& b = w.bodies[k];
+    if (b.fixed) continue;
+    m.solid_volume += volume_inside(w, b, region, work);
+    // In a periodic world the region also holds the images of the bodies
+    // near the cell's faces (a body straddling one fills both sides).
+    if (w.settings.periodic.active())
+      for (std::uint8_t code = 0; code < 27; ++code) {
+        if (code == kNoImage || !image_on_periodic_axes(w.settings.periodic, code)) continue;
+        Body image = b;
+        image.position += image_shift(w.settings.periodic, code);
+        m.solid_volume += volume_inside(w, image, region, work);
+      }
+    if (inside(region, b.position)) counted[k] = 1, ++m.grains;
+  }
+  m.solid_fraction = m.solid_volume / m.region_volume;
+
+  std::size_t ends = 0;  // contact ends on counted grains
+  Mat3 sum{{Vec3{}, Vec3{}, Vec3{}}};
+  for (const MeasuredContact& c : contacts) {
+    const bool first = !c.first_is_plane && counted[c.first], second = counted[c.second] != 0;
+    if (!first && !second) continue;
+    ++m.contacts;
+    m.normal_forces.push_back(std::fabs(dot(c.force, c.normal)));
+    if (second) add_outer(sum, nearest_image(w, c.point - w.bodies[c.second].position), c.force), ++ends;
+    if (first) add_outer(sum, nearest_image(w, c.point - w.bodies[c.first].position), -c.force), ++ends;
+  }
+  m.coordination = m.grains ? static_cast<Real>(ends) / static_cast<Real>(m.grains) : 0;
+  for (const Real f : m.normal_forces) m.mean_normal_force += f;
+  if (m.contacts) m.mean_normal_force /= static_cast<Real>(m.contacts);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m.stress.row[i][j] = -0.5 * (sum.row[i][j] + sum.row[j][i]) / m.region_volume;
+  m.pressure = (m.stress.row[0].x + m.stress.row[1].y + m.stress.row[2].z) / 3;
+  return m;
+}
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,126 @@
+#include "gjkdem/io/analysis.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+#include "gjkdem/io/run_observers.hpp"
+#include "gjkdem/io/run_output.hpp"
+#include "gjkdem/io/scene_run.hpp"
+
+namespace gjkdem::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Vec3 vec(const std::vector<float>& a, std::size_t k) { return {a[3 * k], a[3 * k + 1], a[3 * k + 2]}; }
+
+std::string number(double x) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.9g", x);
+  return s;
+}
+
+}  // namespace
+
+std::vector<dem::MeasuredContact> load_frame(dem::World& w, const ViewFrame& f) {
+  w.bodies.resize(f.body_count());
+  for (std::size_t k = 0; k < f.body_count(); ++k) {
+    if (f.templates[k] >= w.templates.size())
+      throw ViewFormatError("frame at t = " + std::to_string(f.time) + " names shape template " +
+                            std::to_string(f.templates[k]) + "; the run's scene has " +
+                            std::to_string(w.templates.size()) + ": scene.toml was changed");
+    dem::Body& b = w.bodies[k];
+    b = dem::Body{};
+    b.id = f.ids[k];
+    b.shape = f.templates[k];
+    b.fixed = (f.flags[k] & kViewFixed) ? 1 : 0;
+    b.position = vec(f.positions, k);
+    b.orientation = normalized(Quat{f.orientations[4 * k], f.orientations[4 * k + 1], f.orientations[4 * k + 2],
+                                    f.orientations[4 * k + 3]});
+    b.velocity = vec(f.velocities, k);
+  }
+  if (f.plane_points.size() / 3 != w.planes.size())
+    throw ViewFormatError("frame at t = " + std::to_string(f.time) + " has " + std::to_string(f.plane_points.size() / 3) +
+                          " plane walls; the run's scene has " + std::to_string(w.planes.size()));
+  w.time = f.time;
+  std::vector<dem::MeasuredContact> contacts(f.contact_count());
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const bool plane = (f.contact_a[c] & kViewPlaneSide) != 0;
+    contacts[c] = {plane ? f.contact_a[c] - kViewPlaneSide : f.contact_a[c], plane, f.contact_b[c],
+                   vec(f.contact_points, c), vec(f.contact_normals, c), vec(f.contact_forces, c)};
+  }
+  return contacts;
+}
+
+std::string measures_header() {
+  return "frame,time,solid_fraction,coordination,contacts,mean_normal_force,stress_xx,stress_yy,stress_zz,stress_xy,"
+         "stress_xz,stress_yz,pressure,grains,region_volume\n";
+}
+
+std::string measures_row(std::uint64_t frame, double time, const dem::Measures& m) {
+  const Mat3& s = m.stress;
+  std::string row = std::to_string(frame);
+  row.append(",").append(number(time));
+  for (const double x : {m.solid_fraction, m.coordination, static_cast<double>(m.contacts), m.mean_normal_force,
+                         s.row[0].x, s.row[1].y, s.row[2].z, s.row[0].y, s.row[0].z, s.row[1].z, m.pressure,
+                         static_cast<double>(m.grains), m.region_volume})
+    row.append(",").append(number(x));
+  return row + "\n";
+}
+
+std::string normal_forces_header() { return "frame,time,low,high,count,density\n"; }
+
+std::string normal_forces_rows(std::uint64_t frame, double time, const dem::Measures& m) {
+  std::vector<std::size_t> count(kForceBins + 1, 0);
+  if (m.mean_normal_force > 0)
+    for (const Real f : m.normal_forces) {
+      const auto bin = static_cast<std::size_t>(f / m.mean_normal_force / kForceBinWidth);
+      ++count[std::min<std::size_t>(bin, kForceBins)];
+    }
+  std::string rows;
+  const double total = static_cast<double>(m.normal_forces.size());
+  for (int k = 0; k <= kForceBins; ++k) {
+    const double low = k * kForceBinWidth;
+    const bool last = k == kForceBins;
+    const double density = total > 0 && !last ? static_cast<double>(count[k]) / total / kForceBinWidth : 0;
+    char row[160];
+    std::snprintf(row, sizeof row, "%llu,%.9g,%.9g,%s,%zu,%.9g\n", static_cast<unsigned long long>(frame), time, low,
+                  last ? "inf" : number(low + kForceBinWidth).c_str(), count[k], density);
+    rows += row;
+  }
+  return rows;
+}
+
+AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
+                            const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (options.every == 0) throw std::invalid_argument("--every must be at least 1");
+  const fs::path view = dir / "view";
+  const std::vector<ViewIndexRow> index = read_view_index(view_index_file(view));
+  Scene scene = load_run_scene(dir);
+  dem::World& world = scene.world;
+
+  fs::create_directories(dir / "analysis");
+  std::string measures = measures_header(), forces = normal_forces_header();
+  dem::MeasureWorkspace work;
+  AnalysisSummary summary;
+  const std::size_t todo = (index.size() + options.every - 1) / options.every;
+  for (std::size_t k = 0; k < index.size(); k += options.every) {
+    const ViewFrame frame = decode_view_frame(read_bytes(view_frame_file(view, index[k].frame)));
+    const auto started = std::chrono::steady_clock::now();
+    const std::vector<dem::MeasuredContact> contacts = load_frame(world, frame);
+    const dem::MeasureRegion region = options.region ? *options.region : dem::moving_bodies_box(world);
+    const dem::Measures m = region.volume() > 0 ? dem::measure(world, contacts, region, work) : dem::Measures{};
+    summary.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    measures += measures_row(index[k].frame, frame.time, m);
+    forces += normal_forces_rows(index[k].frame, frame.time, m);
+    summary.largest_frame = std::max(summary.largest_frame, frame.body_count());
+    ++summary.frames;
+    if (progress) progress(summary.frames, todo);
+  }
+  write_file_atomically(dir / "analysis" / "measures.csv", measures);
+  write_file_atomically(dir / "analysis" / "normal_forces.csv", forces);
+  return summary;
+}
+
+}  // namespace gjkdem::io

@@ -1,0 +1,269 @@
+// Browser test of the viewer page (web/): serves a run folder with
+// `gjkdem view RUN --port 0`, opens the page in headless Chromium and checks
+// that it loads cleanly, that the slider, the colouring modes and the force
+// chains change the picture, and that the plots draw and follow the slider.
+// Screenshots go to the artifacts folder, named by check.
+//
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--bench] [--chromium PATH]
+//
+// --bench measures instead (for a big run): page open to first frame drawn,
+// one uncached frame's fetch + decode + draw, and frames per second while
+// playing; printed as one line of JSON.
+// Exit status: 0 passed, 1 failed, 77 skipped (no playwright-core or Chromium).
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+
+const args = { chromium: '/usr/bin/chromium', bench: false };
+for (let i = 2; i < process.argv.length; i++) {
+  const name = process.argv[i].replace(/^--/, '');
+  if (name === 'bench') args.bench = true;
+  else args[name] = process.argv[++i];
+}
+if (!args.gjkdem || !args.run || (!args.artifacts && !args.bench)) {
+  console.error('usage: viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--bench] [--chromium PATH]');
+  process.exit(2);
+}
+
+let chromium;
+try {
+  ({ chromium } = createRequire(new URL('../../web/package.json', import.meta.url))('playwright-core'));
+} catch {
+  console.log('SKIP: playwright-core is not installed (run `npm install` in web/)');
+  process.exit(77);
+}
+if (!fs.existsSync(args.chromium)) {
+  console.log(`SKIP: no Chromium at ${args.chromium}`);
+  process.exit(77);
+}
+if (args.artifacts) fs.mkdirSync(args.artifacts, { recursive: true });
+
+let server, browser;
+const failures = [];
+const check = (ok, what) => {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+};
+async function finish(code) {
+  await browser?.close().catch(() => {});
+  server?.kill();
+  process.exit(code);
+}
+setTimeout(() => {
+  console.error('FAIL: the test took more than 180 s');
+  finish(1);
+}, 180_000).unref();
+
+// `gjkdem view` prints "gjkdem view: serving OUT at http://127.0.0.1:PORT/".
+function startServer() {
+  server = spawn(args.gjkdem, ['view', args.run, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  return new Promise((resolve, reject) => {
+    let text = '';
+    const timer = setTimeout(() => reject(new Error(`gjkdem view printed no address in 10 s (got: ${JSON.stringify(text)})`)), 10_000);
+    server.stdout.on('data', (chunk) => {
+      text += chunk;
+      const url = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (url) {
+        clearTimeout(timer);
+        resolve(url[0]);
+      }
+    });
+    server.on('exit', (code) => reject(new Error(`gjkdem view exited (${code}) before serving`)));
+  });
+}
+
+// Pixels that differ (any channel by more than 8) between two PNGs, inside
+// `rect` (CSS pixels; the whole image when absent). Decoded by the page.
+function differingPixels(page, a, b, rect = null) {
+  return page.evaluate(
+    async ({ a, b, rect }) => {
+      const decode = async (base64) => {
+        const bitmap = await createImageBitmap(new Blob([Uint8Array.from(atob(base64), (c) => c.charCodeAt(0))], { type: 'image/png' }));
+        const ctx = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
+        ctx.drawImage(bitmap, 0, 0);
+        return ctx.getImageData(0, 0, bitmap.width, bitmap.height);
+      };
+      const [p, q] = await Promise.all([decode(a), decode(b)]);
+      const r = rect ?? { x0: 0, y0: 0, x1: p.width, y1: p.height };
+      let count = 0;
+      for (let y = Math.max(0, Math.floor(r.y0)); y < Math.min(p.height, Math.ceil(r.y1)); y++) {
+        for (let x = Math.max(0, Math.floor(r.x0)); x < Math.min(p.width, Math.ceil(r.x1)); x++) {
+          const o = 4 * (y * p.width + x);
+          if (Math.abs(p.data[o] - q.data[o]) > 8 || Math.abs(p.data[o + 1] - q.data[o + 1]) > 8 || Math.abs(p.data[o + 2] - q.data[o + 2]) > 8) count++;
+        }
+      }
+      return count;
+    },
+    { a: a.toString('base64'), b: b.toString('base64'), rect },
+  );
+}
+
+// Pixels of a 2D canvas that are not its background colour (its top-left pixel).
+const inkedPixels = (page, id) =>
+  page.evaluate((id) => {
+    const c = document.getElementById(id), d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let count = 0;
+    for (let o = 0; o < d.length; o += 4) if (d[o] !== d[0] || d[o + 1] !== d[1] || d[o + 2] !== d[2]) count++;
+    return count;
+  }, id);
+
+const canvasData = (page, id) => page.evaluate((id) => document.getElementById(id).toDataURL('image/png').split(',')[1], id).then((b) => Buffer.from(b, 'base64'));
+
+async function shoot(page, name, selector = '#scene') {
+  const png = await page.locator(selector).screenshot();
+  if (args.artifacts) fs.writeFileSync(path.join(args.artifacts, `${name}.png`), png);
+  return png;
+}
+
+// The rectangle around grain-centre boxes (from the page's grainBox()), widened to the grains' outlines.
+function around(...boxes) {
+  const pad = 12;
+  return {
+    x0: Math.min(...boxes.map((b) => b.x0)) - pad,
+    y0: Math.min(...boxes.map((b) => b.y0)) - pad,
+    x1: Math.max(...boxes.map((b) => b.x1)) + pad,
+    y1: Math.max(...boxes.map((b) => b.y1)) + pad,
+  };
+}
+
+// Moves the time slider as a user would and waits until that frame is drawn.
+async function slideTo(page, k) {
+  await page.locator('#slider').fill(String(k));
+  await page.waitForFunction((k) => window.gjkdemViewer.currentFrame === k, k, { timeout: 20_000 });
+}
+
+async function runChecks(page, errors) {
+  const frameCount = await page.evaluate(() => window.gjkdemViewer.frameCount);
+  check(frameCount >= 2, `the run has frames to play (${frameCount})`);
+  if (frameCount < 2) return;
+  const last = frameCount - 1;
+  const contacts = await page.evaluate(async () => {
+    const rows = (await (await fetch('/run/view/index.csv')).text()).trim().split('\n').slice(1);
+    return rows.map((r) => Number(r.split(',')[4]));
+  });
+  const busiest = contacts.reduce((b, c, k) => (c > contacts[b] ? k : b), last);
+
+  // 1. A clean load.
+  check(errors.length === 0, `the page loads with no console or page error${errors.length ? ':\n  ' + errors.join('\n  ') : ''}`);
+
+  // 2. The slider moves the grains.
+  await slideTo(page, 0);
+  const first = await shoot(page, 'slider_first_frame');
+  const box0 = await page.evaluate(() => window.gjkdemViewer.grainBox());
+  await slideTo(page, last);
+  const late = await shoot(page, 'slider_last_frame');
+  const box1 = await page.evaluate(() => window.gjkdemViewer.grainBox());
+  const moved = await differingPixels(page, first, late, around(box0, box1));
+  check(moved > 100, `the slider moves the grains: ${moved} pixels differ between frames 1 and ${frameCount} where grains are`);
+
+  // 3. Each colouring mode changes the picture (where the grains are: the legend changes too).
+  await slideTo(page, busiest);
+  const grains = around(await page.evaluate(() => window.gjkdemViewer.grainBox()));
+  const modes = ['speed', 'force', 'template', 'id'], shots = {};
+  for (const mode of modes) {
+    await page.selectOption('#color-mode', mode);
+    shots[mode] = await shoot(page, `color_${mode}`);
+  }
+  for (let i = 0; i < modes.length; i++) {
+    for (let j = i + 1; j < modes.length; j++) {
+      const d = await differingPixels(page, shots[modes[i]], shots[modes[j]], grains);
+      check(d > 50, `colour by ${modes[i]} and by ${modes[j]} differ (${d} pixels)`);
+    }
+  }
+  await page.selectOption('#color-mode', 'speed');
+
+  // 4. Force chains, at the frame with the most contacts, against the same
+  // faded grains without them.
+  if (contacts[busiest] === 0) {
+    console.log('note: no frame has contacts; force chains not checked');
+  } else {
+    await page.locator('#threshold').fill('0');
+    await page.locator('#chains').check();
+    const shown = await page.evaluate(() => window.gjkdemViewer.chainsShown);
+    const on = await shoot(page, 'chains_on');
+    const opacity = await page.locator('#opacity').inputValue();
+    await page.locator('#chains').uncheck();
+    await page.locator('#opacity').fill(opacity);
+    const off = await shoot(page, 'chains_off');
+    const d = await differingPixels(page, on, off, grains);
+    check(shown > 0 && d > 20, `force chains appear at frame ${busiest + 1} (${contacts[busiest]} contacts, ${shown} chains, ${d} pixels differ)`);
+    await page.locator('#chains').check();
+    await page.locator('#threshold').fill('1');
+    const strongest = await page.evaluate(() => window.gjkdemViewer.chainsShown);
+    check(strongest >= 1 && strongest <= shown, `the threshold hides weaker chains (${strongest} of ${shown} at 100% of max)`);
+    await page.locator('#chains').uncheck();
+  }
+
+  // 5. The plots draw, and their cursor follows the slider.
+  for (const id of ['plot-energy', 'plot-contacts']) {
+    const inked = await inkedPixels(page, id);
+    check(inked > 200, `${id} draws (${inked} pixels off its background)`);
+  }
+  await slideTo(page, 0);
+  const plotsFirst = await canvasData(page, 'plot-energy');
+  await shoot(page, 'plots_first_frame', '#plots');
+  await slideTo(page, last);
+  const plotsLast = await canvasData(page, 'plot-energy');
+  await shoot(page, 'plots_last_frame', '#plots');
+  const cursor = await differingPixels(page, plotsFirst, plotsLast);
+  check(cursor > 20, `the plots' cursor follows the slider (${cursor} pixels differ)`);
+
+  await page.screenshot({ path: path.join(args.artifacts, 'page.png') });
+  check(errors.length === 0, `no console or page error during the checks${errors.length ? ':\n  ' + errors.join('\n  ') : ''}`);
+}
+
+// Open time, one uncached frame, and playback rate (requestAnimationFrame-paced, 1 frame per tick, looping).
+async function runBench(page, openMs) {
+  const result = await page.evaluate(async () => {
+    const v = window.gjkdemViewer, gl = document.getElementById('scene').getContext('webgl2');
+    const drawn = () => gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4)); // waits for the GPU
+    const k = Math.min(1, v.frameCount - 1);
+    v.clearCache();
+    const t0 = performance.now();
+    await v.setFrame(k);
+    drawn();
+    const frameOpenMs = performance.now() - t0;
+    const updateMs = v.stats.lastUpdateMs;
+    v.setLoop(true);
+    v.setSpeed(1);
+    await v.setFrame(0);
+    v.play(true);
+    await new Promise((r) => setTimeout(r, 1000)); // fill the cache, reach a steady rate
+    const n0 = v.stats.framesShown, t1 = performance.now();
+    await new Promise((r) => setTimeout(r, 3000));
+    const fps = ((v.stats.framesShown - n0) * 1000) / (performance.now() - t1);
+    v.play(false);
+    drawn();
+    const renderer = gl.getExtension('WEBGL_debug_renderer_info');
+    return { bodies: v.bodyCount, frameOpenMs, updateMs, fps, frames: v.frameCount, gpu: gl.getParameter(renderer ? renderer.UNMASKED_RENDERER_WEBGL : gl.RENDERER) };
+  });
+  const round = (x) => Math.round(x * 10) / 10;
+  console.log(JSON.stringify({ bodies: result.bodies, frames: result.frames, open_ms: round(openMs), frame_open_ms: round(result.frameOpenMs), frame_update_ms: round(result.updateMs), fps: round(result.fps), gpu: result.gpu }));
+}
+
+try {
+  const url = await startServer();
+  browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
+  page.on('console', (m) => {
+    // The analysis table is optional: its 404 is the one expected error.
+    const optional = m.location().url.endsWith('/run/analysis/measures.csv') && m.text().includes('404');
+    if (m.type() === 'error' && !optional) errors.push(`console: ${m.text()} (${m.location().url})`);
+  });
+  const t0 = Date.now();
+  await page.goto(url);
+  await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+  await Promise.race([
+    page.evaluate(() => window.gjkdemViewer.ready),
+    new Promise((_, reject) => setTimeout(() => reject(new Error(`the first frame was not drawn in 30 s; ${errors.join('; ')}`)), 30_000)),
+  ]);
+  if (args.bench) await runBench(page, Date.now() - t0);
+  else await runChecks(page, errors);
+} catch (error) {
+  check(false, error.stack ?? String(error));
+}
+if (failures.length) console.log(`${failures.length} check(s) failed`);
+await finish(failures.length ? 1 : 0);

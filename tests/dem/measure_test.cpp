@@ -1,0 +1,182 @@
+// Measurements (measure.hpp) against independent answers:
+// - solid fraction: a lattice of cubes (exact fractions, the region cutting
+//   cubes in halves), spheres cut by the region's faces (a half, a quarter,
+//   an eighth), and a bed of random polyhedra in a random box against Monte
+//   Carlo sampling with GJK point tests;
+//   the images of grains across a periodic cell's faces counted;
+// - stress: two grains pushed apart (worked by hand), and a bed at rest on a
+//   floor, periodic across, whose vertical stress times the volume is
+//   g sum m z (the virial theorem: the floor carries the weight);
+// - coordination: contacts counted directly.
+#include "gjkdem/dem/measure.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "dem/beds.hpp"
+#include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/run.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+Material rock() { return {"rock", 2500, 1e7, 0.25, 0.3, 0.5}; }
+
+// Hertz: the templates keep the shapes as given (the volume law's are
+// tessellated for the contact model).
+World with_bodies(const std::vector<std::pair<Shape, Vec3>>& bodies) {
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder b(settings);
+  const std::uint32_t m = b.add_material(rock());
+  b.accept_initial_overlaps();
+  for (const auto& [shape, at] : bodies) b.add_body({.shape = {shape, {}}, .material = m, .position = at});
+  return b.build();
+}
+
+TEST(Measure, CubesOnALatticeFillExactlyTheirShare) {
+  // Cubes of side 0.6 at spacing 1: a fraction of 0.216 in any box of whole cells.
+  std::vector<std::pair<Shape, Vec3>> cubes;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k) cubes.push_back({Shape{Box{{0.3, 0.3, 0.3}}}, Vec3{i + 0.5, j + 0.5, k + 0.5}});
+  const World w = with_bodies(cubes);
+  MeasureWorkspace work;
+  EXPECT_NEAR(measure(w, {}, {{0, 0, 0}, {4, 4, 4}}, work).solid_fraction, 0.216, 1e-12);
+  EXPECT_NEAR(measure(w, {}, {{1, 1, 1}, {3, 2, 4}}, work).solid_fraction, 0.216, 1e-12);
+  // A box from the middle of a layer of cubes to 0.1 past the middle of the
+  // next: the parts inside count (0.3 and 0.4 of each cube's height).
+  const Measures cut = measure(w, {}, {{0, 0, 0.5}, {4, 4, 1.6}}, work);
+  EXPECT_NEAR(cut.solid_volume, 16 * 0.36 * (0.3 + 0.4), 1e-12);
+  EXPECT_EQ(cut.grains, 32u) << "the grains whose centres are inside, faces included";
+  // One cube cut at 0.1 from its centre on x, and at its centre on y.
+  EXPECT_NEAR(measure(w, {}, {{0.6, 0.5, 0.2}, {1.0, 1.0, 0.8}}, work).solid_volume, 0.2 * 0.3 * 0.6, 1e-12);
+}
+
+TEST(Measure, SpheresCutByTheRegionKeepTheirPartInside) {
+  const Real r = 0.5, full = 4.0 / 3.0 * kPi * r * r * r;
+  const World w = with_bodies({{Shape{Point{}, r}, Vec3{0, 0, 0}}});
+  MeasureWorkspace work;
+  // Curved shapes are clipped as tessellations scaled to the true volume.
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], {{-1, -1, -1}, {1, 1, 1}}, work), full, 1e-12);
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], {{0, -1, -1}, {1, 1, 1}}, work) / full, 0.5, 2e-3);
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], {{0, 0, -1}, {1, 1, 1}}, work) / full, 0.25, 2e-3);
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], {{0, 0, 0}, {1, 1, 1}}, work) / full, 0.125, 2e-3);
+  EXPECT_EQ(volume_inside(w, w.bodies[0], {{0.5, -1, -1}, {1, 1, 1}}, work), 0);
+  // A cap of height h = r/2: pi h^2 (3r - h) / 3.
+  const Real h = r / 2, cap = kPi * h * h * (3 * r - h) / 3;
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], {{-1, -1, r - h}, {1, 1, 1}}, work) / cap, 1, 5e-3);
+}
+
+// A bed of random polyhedra (placed without overlap) in a box that cuts many
+// of them, against the fraction of random points that fall in a grain.
+TEST(Measure, ABedsSolidFractionMatchesMonteCarlo) {
+  WorldBuilder b;
+  const std::uint32_t m = b.add_material(rock());
+  std::mt19937_64 rng(11);
+  test::fill_polyhedra(b, {.count = 120, .variants = 6, .vertices = 9, .size = 0.2, .lo = {0, 0, 0}, .hi = {1.2, 1.2, 1.2}, .material = m},
+                       rng);
+  const World w = b.build();
+  const MeasureRegion region{{0.17, 0.23, 0.11}, {0.93, 0.71, 1.0}};
+  MeasureWorkspace work;
+  const Measures measured = measure(w, {}, region, work);
+  std::uniform_real_distribution<Real> u(0, 1);
+  const Shape point{Point{}};
+  const int samples = 200000;
+  int hits = 0;
+  for (int s = 0; s < samples; ++s) {
+    const Vec3 p{region.lo.x + u(rng) * (region.hi.x - region.lo.x), region.lo.y + u(rng) * (region.hi.y - region.lo.y),
+                 region.lo.z + u(rng) * (region.hi.z - region.lo.z)};
+    for (const Body& body : w.bodies)
+      if (length(p - body.position) < w.templates[body.shape].reach &&
+          intersect(point, Transform::from(p, Quat{}), w.templates[body.shape].shape, shape_pose(w, body))) {
+        ++hits;
+        break;
+      }
+  }
+  const Real fraction = static_cast<Real>(hits) / samples;
+  const Real sigma = std::sqrt(fraction * (1 - fraction) / samples);
+  EXPECT_GT(measured.solid_fraction, 0.04);
+  EXPECT_NEAR(measured.solid_fraction, fraction, 4 * sigma) << "Monte Carlo: " << fraction << " +- " << sigma;
+}
+
+// Two grains pushed apart by a force F along x at a contact halfway: the
+// stress is 2 r F / V on xx (compression positive), zero elsewhere.
+TEST(Measure, TwoGrainsPushedApartCompressAlongTheirLine) {
+  const Real r = 0.1, force = 3;
+  const World w = with_bodies({{Shape{Point{}, r}, Vec3{0, 0, 0}}, {Shape{Point{}, r}, Vec3{2 * r, 0, 0}}});
+  const MeasuredContact c{0, false, 1, {r, 0, 0}, {1, 0, 0}, {force, 0, 0}};
+  MeasureWorkspace work;
+  const MeasureRegion region{{-1, -1, -1}, {1, 1, 1}};
+  const Measures m = measure(w, {&c, 1}, region, work);
+  EXPECT_NEAR(m.stress.row[0].x, 2 * r * force / 8, 1e-15);
+  EXPECT_NEAR(m.pressure, 2 * r * force / 8 / 3, 1e-15);
+  EXPECT_EQ(m.stress.row[1].y, 0);
+  EXPECT_EQ(m.stress.row[0].y, 0);
+  EXPECT_EQ(m.coordination, 1);
+  EXPECT_EQ(m.contacts, 1u);
+  EXPECT_EQ(m.mean_normal_force, force);
+  // Only the second grain in the region: its half of the sum, and its contact.
+  const Measures half = measure(w, {&c, 1}, {{0.15, -1, -1}, {1, 1, 1}}, work);
+  EXPECT_EQ(half.grains, 1u);
+  EXPECT_NEAR(half.stress.row[0].x * half.region_volume, r * force, 1e-15);
+}
+
+// 60 polyhedra settled on a floor in a cell periodic on x and y. At rest the
+// floor carries the weight and the Love-Weber vertical stress of the whole
+// bed is g sum m z / V; with the bodies' own forces it is exact at any time.
+TEST(Measure, ABedAtRestCarriesItsWeight) {
+  WorldSettings s;
+  s.model = ContactModel::Hertz;
+  s.periodic.axes[0] = s.periodic.axes[1] = true;
+  s.periodic.hi = {0.08, 0.08, 0};
+  WorldBuilder b(s);
+  const std::uint32_t m = b.add_material({"rock", 2500, 1e7, 0.25, 0.1, 0.5});
+  b.add_plane({}, {0, 0, 1}, m, "floor");
+  std::mt19937_64 rng(4);
+  test::fill_polyhedra(b, {.count = 60, .size = 0.012, .lo = {0, 0, 0}, .hi = {0.08, 0.08, 0.05}, .material = m}, rng);
+  World w = b.build();
+  RunState run = plan_run(1.0, critical_time_step(w), 1.0);
+  ASSERT_EQ(dem::run(w, run, {}).status, RunStatus::Completed);
+  ASSERT_LT(kinetic_energy(w), 1e-3 * potential_energy(w)) << "the bed should be at rest";
+
+  const std::vector<MeasuredContact> contacts = touching_contacts(w);
+  const MeasureRegion region{{0, 0, -0.01}, {0.08, 0.08, 0.1}};  // grains press a little into the floor
+  MeasureWorkspace work;
+  const Measures measured = measure(w, contacts, region, work);
+  ASSERT_EQ(measured.grains, 60u);
+  Real weight_moment = 0, exact = 0;
+  std::size_t ends = 0;
+  for (const Body& body : w.bodies) {
+    if (body.fixed) continue;
+    const Real mass = mass_of(w, body);
+    weight_moment += -w.settings.gravity.z * mass * body.position.z;
+    // -(sum over contacts of z_c f_z) + z_p (F - m g)_z: the contacts between grains cancel.
+    exact += body.position.z * (body.force.z - mass * w.settings.gravity.z);
+  }
+  for (const MeasuredContact& c : contacts) {
+    ends += c.first_is_plane ? 1 : 2;
+    if (c.first_is_plane) exact -= c.point.z * c.force.z;  // the floor's contacts, at about z = 0
+  }
+  const Real vertical = measured.stress.row[2].z * measured.region_volume;
+  EXPECT_NEAR(vertical, exact, 1e-9 * std::fabs(exact));
+  EXPECT_NEAR(vertical / weight_moment, 1, 0.01);
+  EXPECT_NEAR(measured.coordination, static_cast<Real>(ends) / 60, 1e-12);
+  EXPECT_GT(measured.coordination, 2);
+  // The region spans the cell: every grain counts whole, across the faces too.
+  Real volume = 0, straddling = 0;
+  for (const Body& body : w.bodies) {
+    if (body.fixed) continue;
+    volume += w.templates[body.shape].unit_mass.volume;
+    const Real reach = w.templates[body.shape].reach;
+    straddling += body.position.x < reach || body.position.x > 0.08 - reach;
+  }
+  EXPECT_GT(straddling, 5);
+  EXPECT_NEAR(measured.solid_volume, volume, 1e-9 * volume);
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
