@@ -4,7 +4,8 @@
 #                      scene (2,000 polyhedra through a hopper; outputs in ./out, replaced each time)
 #   ./build.sh test    install what is missing, build, run every test
 #   ./build.sh bench   install the peer libraries too, build, run the benchmarks
-# Packages come from Debian's archive only (apt-get); nothing is downloaded elsewhere.
+# Packages come from Debian's archive (apt-get) and, for the browser viewer's page (web/), from
+# the npm registry through web/package-lock.json (npm ci); nothing is downloaded elsewhere.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -14,7 +15,8 @@ base_pkgs=(cmake make g++ pkg-config libgtest-dev libbenchmark-dev nlohmann-json
            python3 python3-dev pybind11-dev python3-numpy python3-scipy)
 # VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
 # example plots with matplotlib.
-test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib)
+# Chromium runs the viewer's browser tests (tests/browser), headless.
+test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib chromium)
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev yade)  # yade: bench/yade_*.py
 
 install_missing() {
@@ -28,6 +30,16 @@ install_missing() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
 
+# The viewer's page: three.js (and, for the tests, playwright-core) as web/package-lock.json
+# pins them. Node.js and npm come from Debian when the machine has none.
+web_packages() {
+  command -v npm >/dev/null 2>&1 || install_missing nodejs npm
+  if ! cmp -s web/package-lock.json web/node_modules/.gjkdem-lock; then
+    (cd web && npm ci --no-audit --no-fund)
+    cp web/package-lock.json web/node_modules/.gjkdem-lock
+  fi
+}
+
 build() {
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@"
   cmake --build build -j"$(nproc)"
@@ -36,11 +48,14 @@ build() {
 case "$mode" in
   run)
     install_missing "${base_pkgs[@]}"
+    web_packages
     build
     build/gjkdem run --out out --overwrite
+    echo "build.sh: to watch it in a browser: build/gjkdem view out"
     ;;
   test)
     install_missing "${base_pkgs[@]}" "${test_pkgs[@]}"
+    web_packages
     build
     ctest --test-dir build --output-on-failure -j"$(nproc)"
     ;;

@@ -21,12 +21,19 @@ bool page_complete(const fs::path& web) {
   return fs::is_regular_file(web / "index.html") && fs::is_regular_file(web / "node_modules/three/build/three.module.js");
 }
 
-/// The viewer's page: --web, $GJKDEM_WEB_DIR, the installed copy, the source tree's.
+/// The viewer's page: --web, $GJKDEM_WEB_DIR, the copy installed beside this
+/// program (PREFIX/share/gjkdem/web), the one installed where it was
+/// configured to go, the source tree's.
 fs::path find_page(const std::string& given) {
   std::vector<fs::path> tried;
   if (!given.empty()) tried.push_back(given);
   if (const char* env = std::getenv("GJKDEM_WEB_DIR")) tried.push_back(env);
-  if (given.empty()) tried.push_back(GJKDEM_WEB_INSTALLED_DIR), tried.push_back(GJKDEM_WEB_SOURCE_DIR);
+  if (given.empty()) {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) tried.push_back(self.parent_path().parent_path() / "share/gjkdem/web");
+    tried.push_back(GJKDEM_WEB_INSTALLED_DIR), tried.push_back(GJKDEM_WEB_SOURCE_DIR);
+  }
   for (const fs::path& p : tried)
     if (page_complete(p)) return p;
   std::string names;
@@ -45,6 +52,17 @@ int view_run(const ViewOptions& opt) {
   const fs::path web = find_page(opt.web);
 
   httplib::Server server;
+  // The page fetches many frames at once, and a browser holds its idle
+  // keep-alive connections open, each taking a worker: with the default pool
+  // (8) and keep-alive (5 s), fetches past the eighth waited seconds.
+  server.new_task_queue = [] { return new httplib::ThreadPool(32); };
+  server.set_keep_alive_timeout(1);
+  // httplib's default sets SO_REUSEPORT, which lets a second server share a
+  // busy port (requests then go to either run): a busy port must be refused.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   const httplib::Headers no_cache = {{"Cache-Control", "no-store"}};
   // Only three.js's files are served from node_modules, never the rest of it.
   server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# gjkdem view: serves the page, three.js and the run folder on 127.0.0.1, and
+# nothing else (not the rest of node_modules, nothing above the run folder);
+# refuses a folder that is not a run, a busy port, and a page not built.
+set -euo pipefail
+gjkdem="$1"
+run="$2"    # a run folder (the browser tests' fixture)
+web="$3"    # the page's folder (web/)
+[ -f "$web/node_modules/three/build/three.module.js" ] || { echo "SKIP: web/node_modules not installed (npm ci in web/)"; exit 77; }
+work="$(mktemp -d)"
+pid=""
+trap '[ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$gjkdem" view "$run" --port 0 --web "$web" > "$work/said.txt" &
+pid=$!
+for _ in $(seq 1 100); do grep -q "http://127.0.0.1:" "$work/said.txt" && break; sleep 0.1; done
+url="$(grep -o 'http://127.0.0.1:[0-9]*/' "$work/said.txt")" || fail "no address printed: $(cat "$work/said.txt")"
+port="${url#http://127.0.0.1:}"; port="${port%/}"
+
+/usr/bin/python3 - "$url" "$run" <<'PY' || fail "the routes"
+import sys, urllib.request, urllib.error, http.client
+url, run = sys.argv[1], sys.argv[2]
+def get(path):
+    try:
+        with urllib.request.urlopen(url + path.lstrip("/")) as r:
+            return r.status, r.read(), r.headers
+    except urllib.error.HTTPError as e:
+        return e.code, b"", e.headers
+status, body, _ = get("/")
+assert status == 200 and b"<html" in body.lower(), ("page", status)
+status, body, _ = get("/vendor/three/three.module.js")
+assert status == 200 and len(body) > 100000, ("three.js", status)
+status, body, headers = get("/run/view/index.csv")
+assert status == 200 and body == open(run + "/view/index.csv", "rb").read(), ("index", status)
+assert headers.get("Cache-Control") == "no-store", "a live run's files must not be cached"
+status, body, _ = get("/run/view/frame_000000.bin")
+assert status == 200 and body[:8] == b"GJKFRAME", ("frame", status)
+assert get("/node_modules/three/package.json")[0] == 404, "node_modules is not served"
+assert get("/run/nothing_here.txt")[0] == 404
+# A path climbing out of the run folder (sent raw: urllib would clean it up).
+c = http.client.HTTPConnection(url.split("//")[1].rstrip("/"))
+c.request("GET", "/run/../../../etc/passwd")
+r = c.getresponse()
+assert r.status in (400, 404) and b"root:" not in r.read(), ("traversal", r.status)
+PY
+
+# Refusals: exit 2 with a message.
+refused() {  # refused EXPECTED ARGS...
+  local expected="$1"; shift
+  set +e
+  "$gjkdem" view "$@" > /dev/null 2> "$work/err.txt"
+  local rc=$?
+  set -e
+  [ "$rc" -eq 2 ] && grep -q "$expected" "$work/err.txt" || fail "view $* should be refused with \"$expected\" (rc $rc): $(cat "$work/err.txt")"
+}
+mkdir "$work/empty"
+refused "holds no view frames" "$work/empty" --port 0 --web "$web"
+refused "cannot listen on 127.0.0.1:$port" "$run" --port "$port" --web "$web"
+refused "the viewer's page is not built" "$run" --port 0 --web "$work/empty"
+echo "view: ok"

@@ -1,0 +1,89 @@
+// Readers of a run's view/ files (docs/view-format.md) and its CSV tables.
+// Frames are decoded as typed-array views into the fetched buffer: no copy,
+// so a 100,000-body frame decodes in microseconds.
+
+const PLANE_BIT = 0x80000000;
+export { PLANE_BIT };
+
+function checkMagic(buffer, magic, what) {
+  const bytes = new Uint8Array(buffer, 0, Math.min(8, buffer.byteLength));
+  const text = String.fromCharCode(...bytes);
+  if (text !== magic) throw new Error(`${what}: not a ${magic} file`);
+  const version = new DataView(buffer).getUint32(8, true);
+  if (version !== 1) throw new Error(`${what}: version ${version} unknown (this viewer reads 1)`);
+}
+
+// shapes.bin: each template's triangle mesh (body frame) and the plane walls' ids.
+export function parseShapes(buffer) {
+  checkMagic(buffer, 'GJKSHAPE', 'shapes.bin');
+  const dv = new DataView(buffer);
+  const T = dv.getUint32(12, true), P = dv.getUint32(16, true);
+  const templates = [];
+  let o = 24;
+  for (let t = 0; t < T; t++) {
+    const V = dv.getUint32(o, true), F = dv.getUint32(o + 4, true);
+    o += 8;
+    if (o + 12 * V + 12 * F > buffer.byteLength) throw new Error(`shapes.bin: template ${t} runs past the end`);
+    const vertices = new Float32Array(buffer, o, 3 * V);
+    o += 12 * V;
+    const triangles = new Uint32Array(buffer, o, 3 * F);
+    o += 12 * F;
+    templates.push({ vertices, triangles });
+  }
+  if (o + 4 * P > buffer.byteLength) throw new Error('shapes.bin: plane ids run past the end');
+  return { templates, planeIds: new Uint32Array(buffer, o, P) };
+}
+
+// frame_NNNNNN.bin: bodies, touching contacts and plane walls at one output.
+export function parseFrame(buffer) {
+  checkMagic(buffer, 'GJKFRAME', 'frame');
+  const dv = new DataView(buffer);
+  const n = dv.getUint32(12, true), m = dv.getUint32(16, true), p = dv.getUint32(20, true);
+  const expected = ((40 + 61 * n + 3) & ~3) + 44 * m + 24 * p;
+  if (buffer.byteLength < expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header needs ${expected}`);
+  let o = 40;
+  const take = (Type, count) => {
+    const a = new Type(buffer, o, count);
+    o += count * Type.BYTES_PER_ELEMENT;
+    return a;
+  };
+  const f = {
+    n, m, p,
+    time: dv.getFloat64(24, true),
+    steps: Number(dv.getBigUint64(32, true)),
+    byteLength: buffer.byteLength,
+    position: take(Float32Array, 3 * n),
+    quaternion: take(Float32Array, 4 * n), // w, x, y, z
+    velocity: take(Float32Array, 3 * n),
+    angularVelocity: take(Float32Array, 3 * n),
+    template: take(Uint32Array, n),
+    id: take(Uint32Array, n),
+    flags: take(Uint8Array, n),
+  };
+  o = (o + 3) & ~3;
+  f.contactFirst = take(Uint32Array, m); // body index, or PLANE_BIT + plane
+  f.contactSecond = take(Uint32Array, m);
+  f.contactPoint = take(Float32Array, 3 * m);
+  f.contactNormal = take(Float32Array, 3 * m);
+  f.contactForce = take(Float32Array, 3 * m); // on the second body
+  f.planePoint = take(Float32Array, 3 * p);
+  f.planeNormal = take(Float32Array, 3 * p);
+  return f;
+}
+
+// A numeric CSV with a header row: {columns: {name: Float64Array}, rows}.
+// A last line without its newline is still being written by the run: skipped.
+export function parseCsv(text) {
+  const lines = text.split('\n');
+  lines.pop(); // the part after the last newline
+  while (lines.length > 0 && lines[lines.length - 1].trim() === '') lines.pop();
+  if (lines.length === 0) return { columns: {}, rows: 0 };
+  const names = lines[0].split(',').map((s) => s.trim());
+  const rows = lines.length - 1;
+  const columns = Object.fromEntries(names.map((name) => [name, new Float64Array(rows)]));
+  for (let r = 0; r < rows; r++) {
+    const cells = lines[r + 1].split(',');
+    for (let c = 0; c < names.length; c++) columns[names[c]][r] = Number(cells[c]);
+  }
+  return { columns, rows };
+}

@@ -1,0 +1,416 @@
+// The viewer page: wires the run's data, the 3D scene, the controls and the
+// plots together, plays the frames, and exposes window.gjkdemViewer for tests.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { ForceChains } from './chains.js';
+import { MODES, colorBodies } from './coloring.js';
+import { CHAINS, VIRIDIS, paintBar } from './colors.js';
+import { Grains } from './grains.js';
+import { Plot, formatNumber } from './plots.js';
+import { RunSource } from './run_source.js';
+import { showSummary } from './summary.js';
+import { parseCsv } from './view_format.js';
+
+const POLL_MS = 2000; // index.csv is re-read this often, so a run still going shows its new frames
+const PREFETCH = 8; // frames read ahead while playing
+
+const $ = (id) => document.getElementById(id);
+const source = new RunSource();
+const state = { frame: null, k: -1, mode: 'speed', chains: false, threshold: 0.1, playing: false, speed: 1, loop: true, acc: 0 };
+// lastFrameLoadMs: fetch + decode + update + draw of the last frame asked for;
+// lastUpdateMs: the page's own work on a frame (colours, matrices, chains, labels).
+const stats = { fps: 0, lastFrameLoadMs: 0, lastUpdateMs: 0, lastRenderMs: 0, framesShown: 0 };
+let run = null; // run.json
+let grains = null;
+let loadToken = 0;
+const fit = { box: new THREE.Box3(), center: new THREE.Vector3(), planeSize: 1, chainWidth: 0.01 };
+
+// --- 3D scene -------------------------------------------------------------
+const canvas = $('scene');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio || 1);
+renderer.setClearColor(0x262b33);
+const scene = new THREE.Scene();
+const camera = new THREE.PerspectiveCamera(35, 1, 1e-3, 1e3);
+scene.add(camera, new THREE.HemisphereLight(0xffffff, 0x404850, 1.2));
+const headlight = new THREE.DirectionalLight(0xffffff, 1.8);
+headlight.position.set(0.3, 0.6, 1); // over the viewer's shoulder, so every view is lit
+headlight.target.position.set(0, 0, -1);
+camera.add(headlight, headlight.target);
+const chains = new ForceChains(scene);
+let controls = null;
+const axes = { up: new THREE.Vector3(0, 0, 1), side: new THREE.Vector3(1, 0, 0), depth: new THREE.Vector3(0, 1, 0) };
+
+function render() {
+  renderer.render(scene, camera);
+}
+
+new ResizeObserver(() => {
+  const { clientWidth: w, clientHeight: h } = $('view');
+  renderer.setSize(w, h, false);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+  render();
+}).observe($('view'));
+
+// Up is against gravity (run.json's scene), along its main axis; z when unknown.
+function setAxes(gravity) {
+  if (!gravity || gravity.every((g) => g === 0)) return;
+  const a = [0, 1, 2].reduce((b, i) => (Math.abs(gravity[i]) > Math.abs(gravity[b]) ? i : b), 0);
+  const s = gravity[a] > 0 ? -1 : 1, unit = (i, k) => new THREE.Vector3().setComponent(i, k);
+  axes.up = unit(a, s);
+  axes.side = unit((a + 1) % 3, s);
+  axes.depth = unit((a + 2) % 3, 1); // side x depth = up
+}
+
+// Camera looking at the scene's box from a preset direction, at the nearest
+// distance where all eight corners are inside the field of view.
+function setPreset(name) {
+  const { up, side, depth } = axes, dir = new THREE.Vector3();
+  if (name === 'front') dir.copy(depth).negate();
+  else if (name === 'side') dir.copy(side);
+  else if (name === 'top') dir.copy(up).addScaledVector(depth, -1e-3);
+  else dir.copy(side).sub(depth).addScaledVector(up, 0.8);
+  dir.normalize();
+  const right = new THREE.Vector3().crossVectors(up, dir).normalize(), upward = new THREE.Vector3().crossVectors(dir, right);
+  const tanV = Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2), tanH = tanV * camera.aspect;
+  const corner = new THREE.Vector3(), { min, max } = fit.box;
+  let distance = 0;
+  for (let c = 0; c < 8; c++) {
+    corner.set(c & 1 ? max.x : min.x, c & 2 ? max.y : min.y, c & 4 ? max.z : min.z).sub(fit.center);
+    const z = corner.dot(dir);
+    distance = Math.max(distance, z + Math.abs(corner.dot(right)) / tanH, z + Math.abs(corner.dot(upward)) / tanV);
+  }
+  distance *= 1.08; // a margin around the scene
+  camera.up.copy(up);
+  camera.position.copy(fit.center).addScaledVector(dir, distance);
+  camera.near = distance / 100;
+  camera.far = distance * 100;
+  camera.updateProjectionMatrix();
+  controls.target.copy(fit.center);
+  controls.update();
+  render();
+}
+
+// Scene extent from the first frame: camera fit, plane squares, chain width.
+function measureScene(frame) {
+  const box = grains.bounds(frame);
+  for (let k = 0; k < frame.p; k++) box.expandByPoint(new THREE.Vector3().fromArray(frame.planePoint, 3 * k));
+  if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+  fit.box = box;
+  box.getCenter(fit.center);
+  const diagonal = box.getSize(new THREE.Vector3()).length();
+  fit.planeSize = 1.2 * diagonal;
+  const radii = [];
+  for (let i = 0; i < frame.n; i++) if (!(frame.flags[i] & 1)) radii.push(grains.radius[frame.template[i]]);
+  radii.sort((a, b) => a - b);
+  fit.chainWidth = 0.3 * (radii.length ? radii[radii.length >> 1] : diagonal / 100);
+}
+
+// --- drawing a frame --------------------------------------------------------
+function apply(frame, k) {
+  const t0 = performance.now();
+  state.frame = frame;
+  state.k = k;
+  const coloring = colorBodies(frame, state.mode, grains.geometries.length);
+  grains.update(frame, coloring.colors);
+  grains.updatePlanes(frame, fit.center, fit.planeSize);
+  if (state.chains) chains.update(frame, state.threshold, grains.radius, fit.chainWidth);
+  chains.setVisible(state.chains);
+  showLegend(coloring);
+  $('slider').value = k;
+  showTimeLabel();
+  $('frame-info').textContent = `${frame.n} bodies, ${frame.m} contacts` + (state.chains ? `, ${chains.shown} chains drawn` : '') + `, step ${frame.steps}`;
+  for (const plot of plots) plot.setCursor(frame.time);
+  const t1 = performance.now();
+  render();
+  stats.lastUpdateMs = t1 - t0;
+  stats.lastRenderMs = performance.now() - t1; // the GL calls; a busy GPU makes them wait
+  countShown();
+}
+
+function showTimeLabel() {
+  $('time-label').textContent = `frame ${state.k + 1} / ${source.frameCount} \u00b7 t = ${state.frame.time.toPrecision(4)} s`;
+}
+
+function redraw() {
+  if (state.frame) apply(state.frame, state.k);
+}
+
+function showLegend({ min, max, categories }) {
+  const { label, unit } = MODES[state.mode];
+  $('legend-title').textContent = unit ? `${label} (${unit})` : label;
+  $('legend-min').textContent = categories ? String(min) : formatNumber(min);
+  $('legend-max').textContent = categories ? String(max) : formatNumber(max);
+  $('chain-legend').hidden = !state.chains;
+  if (state.chains) {
+    $('chain-min').textContent = formatNumber(state.threshold * chains.maxForce);
+    $('chain-max').textContent = formatNumber(chains.maxForce);
+  }
+}
+
+function paintLegendBar() {
+  paintBar($('legend-bar'), VIRIDIS, state.mode === 'template' ? grains.geometries.length : 0);
+}
+
+// Shows slider position k once its frame is loaded; a later request wins.
+async function setFrame(k) {
+  k = Math.max(0, Math.min(source.frameCount - 1, Math.round(k)));
+  const token = ++loadToken, t0 = performance.now();
+  try {
+    const frame = await source.load(k);
+    if (token !== loadToken) return;
+    apply(frame, k);
+    stats.lastFrameLoadMs = performance.now() - t0;
+  } catch (error) {
+    fail(error);
+  }
+}
+
+// --- playback ----------------------------------------------------------------
+let fpsWindow = { t: 0, shown: 0 };
+
+function countShown() {
+  stats.framesShown++;
+  const now = performance.now();
+  if (!state.playing) {
+    fpsWindow = { t: now, shown: stats.framesShown };
+    return;
+  }
+  if (now - fpsWindow.t >= 500) {
+    stats.fps = ((stats.framesShown - fpsWindow.shown) * 1000) / (now - fpsWindow.t);
+    fpsWindow = { t: now, shown: stats.framesShown };
+    $('perf').textContent = `${stats.fps.toFixed(0)} frames/s, frame update ${stats.lastUpdateMs.toFixed(1)} ms`;
+  }
+}
+
+function setPlaying(on) {
+  state.playing = on && source.frameCount > 1;
+  state.acc = 0;
+  $('play').innerHTML = state.playing ? '&#10074;&#10074;' : '&#9654;';
+  if (state.playing && !state.loop && state.k >= source.frameCount - 1) setFrame(0);
+}
+
+// Each animation frame advances `speed` frames (fractions accumulate) when
+// the next one is decoded; otherwise it waits for it rather than skip.
+function tick() {
+  requestAnimationFrame(tick);
+  if (!state.playing || !state.frame) return;
+  const count = source.frameCount;
+  state.acc += state.speed;
+  if (state.acc >= 1) {
+    const step = Math.floor(state.acc);
+    let next = state.k + step;
+    if (next >= count) {
+      if (state.loop) next %= count;
+      else {
+        next = count - 1;
+        setPlaying(false);
+      }
+    }
+    try {
+      const frame = source.get(next);
+      if (frame) {
+        state.acc -= step;
+        loadToken++; // supersedes a slider load still in flight
+        apply(frame, next);
+      } else {
+        state.acc = Math.min(state.acc, Math.max(1, state.speed));
+      }
+    } catch (error) {
+      setPlaying(false);
+      fail(error);
+    }
+  }
+  source.prefetch(state.k, PREFETCH, state.loop);
+}
+
+// --- plots -------------------------------------------------------------------
+const plotEnergy = new Plot($('plot-energy'), 'energy (J)', [
+  { name: 'kinetic', color: '#4fc3f7' },
+  { name: 'potential', color: '#81c784' },
+  { name: 'elastic', color: '#ffb74d' },
+  { name: 'dissipated', color: '#e57373' },
+]);
+const plotContacts = new Plot($('plot-contacts'), 'contacts', [{ name: '', color: '#ce93d8' }]);
+const analysisPlots = [
+  ['solid_fraction', new Plot($('plot-solid-fraction'), 'solid fraction', [{ name: '', color: '#4db6ac' }])],
+  ['coordination', new Plot($('plot-coordination'), 'coordination', [{ name: '', color: '#fff176' }])],
+  ['pressure', new Plot($('plot-pressure'), 'pressure (Pa)', [{ name: '', color: '#f48fb1' }])],
+];
+const plots = [plotEnergy, plotContacts, ...analysisPlots.map(([, p]) => p)];
+
+async function loadTables() {
+  const energy = await source.text('energy.csv');
+  if (energy !== null) {
+    const { columns: c } = parseCsv(energy);
+    plotEnergy.setData(c.time, [c.kinetic, c.potential, c.elastic, c.dissipated]);
+    plotContacts.setData(c.time, [c.contacts]);
+  }
+  // analysis/measures.csv exists once `gjkdem analyze` ran: a 404 is normal.
+  const measures = await source.text('analysis/measures.csv');
+  for (const [name, plot] of analysisPlots) {
+    plot.canvas.hidden = measures === null;
+    if (measures !== null) {
+      const { columns: c } = parseCsv(measures);
+      plot.setData(c.time, [c[name]]);
+    }
+  }
+}
+
+async function loadRunJson() {
+  const text = await source.text('run.json');
+  if (text === null) return;
+  run = JSON.parse(text);
+  showSummary(run, source.frameCount);
+}
+
+// Re-reads what a running run appends (the index, then the tables), every
+// POLL_MS after the last reading ended.
+async function poll() {
+  try {
+    const changed = await source.refreshIndex();
+    if (changed || !run || run.status === 'running') await loadRunJson();
+    if (changed) {
+      $('slider').max = Math.max(0, source.frameCount - 1);
+      await loadTables();
+      if (state.frame && state.k >= source.frameCount && source.frameCount > 0) {
+        await setFrame(source.frameCount - 1); // a resumed run cut its index back
+      } else if (state.frame) {
+        showTimeLabel();
+      }
+    }
+    if (!state.frame && source.frameCount > 0) await showFirstFrame();
+  } catch (error) {
+    fail(error);
+  }
+  setTimeout(poll, POLL_MS);
+}
+
+// --- start -------------------------------------------------------------------
+function fail(error) {
+  console.error(error);
+  $('message').textContent = String(error.message ?? error);
+}
+
+let firstFrameDrawn;
+const ready = new Promise((resolve) => (firstFrameDrawn = resolve));
+
+async function showFirstFrame() {
+  const frame = await source.load(0);
+  measureScene(frame);
+  $('message').textContent = '';
+  apply(frame, 0);
+  setPreset('iso');
+  firstFrameDrawn();
+}
+
+async function start() {
+  let shapes;
+  while (!(shapes = await source.loadShapes())) {
+    $('message').textContent = 'waiting for view/shapes.bin (is the run writing its view/ folder?)';
+    await new Promise((r) => setTimeout(r, POLL_MS));
+  }
+  await loadRunJson();
+  grains = new Grains(scene, shapes);
+  setAxes(run?.scene?.simulation?.gravity);
+  camera.up.copy(axes.up); // OrbitControls takes its up axis when made
+  controls = new OrbitControls(camera, canvas);
+  controls.addEventListener('change', render);
+  paintBar($('chain-bar'), CHAINS);
+  paintLegendBar();
+  $('message').textContent = 'waiting for frames...';
+  await poll();
+  requestAnimationFrame(tick);
+}
+
+// --- controls ------------------------------------------------------------------
+function setColorMode(mode) {
+  if (!(mode in MODES)) throw new Error(`unknown colour mode ${mode}`);
+  state.mode = $('color-mode').value = mode;
+  paintLegendBar();
+  redraw();
+}
+
+// Chains on fade the grains so that the chains inside the pack show; off
+// makes them opaque again (the opacity slider can change either).
+function setChains(on, threshold = state.threshold) {
+  if (on !== state.chains) setOpacity(on ? 0.2 : 1);
+  state.chains = $('chains').checked = on;
+  state.threshold = threshold;
+  $('threshold').value = threshold;
+  $('threshold-value').textContent = `${Math.round(threshold * 100)}% of max`;
+  redraw();
+}
+
+function setOpacity(opacity) {
+  $('opacity').value = opacity;
+  grains?.setOpacity(opacity);
+}
+
+$('color-mode').addEventListener('change', (e) => setColorMode(e.target.value));
+$('chains').addEventListener('change', (e) => setChains(e.target.checked));
+$('threshold').addEventListener('input', (e) => setChains(state.chains, Number(e.target.value)));
+$('opacity').addEventListener('input', (e) => {
+  setOpacity(Number(e.target.value));
+  render();
+});
+$('slider').addEventListener('input', (e) => setFrame(Number(e.target.value)));
+$('play').addEventListener('click', () => setPlaying(!state.playing));
+$('speed').addEventListener('change', (e) => (state.speed = Number(e.target.value)));
+$('loop').addEventListener('change', (e) => (state.loop = e.target.checked));
+$('presets').addEventListener('click', (e) => e.target.dataset.preset && controls && setPreset(e.target.dataset.preset));
+window.addEventListener('keydown', (e) => {
+  if (e.target !== document.body || !state.frame) return;
+  if (e.key === ' ') setPlaying(!state.playing);
+  else if (e.key === 'ArrowRight') setFrame(state.k + 1);
+  else if (e.key === 'ArrowLeft') setFrame(state.k - 1);
+  else return;
+  e.preventDefault();
+});
+$('threshold-value').textContent = `${Math.round(state.threshold * 100)}% of max`;
+
+// Screen rectangle (CSS pixels of the 3D view) around the free bodies' centres.
+function grainBox() {
+  const f = state.frame, v = new THREE.Vector3(), box = { x0: Infinity, y0: Infinity, x1: -Infinity, y1: -Infinity };
+  const { clientWidth: w, clientHeight: h } = canvas;
+  for (let i = 0; i < f.n; i++) {
+    if (f.flags[i] & 1) continue;
+    v.fromArray(f.position, 3 * i).project(camera);
+    const x = ((v.x + 1) / 2) * w, y = ((1 - v.y) / 2) * h;
+    box.x0 = Math.min(box.x0, x);
+    box.x1 = Math.max(box.x1, x);
+    box.y0 = Math.min(box.y0, y);
+    box.y1 = Math.max(box.y1, y);
+  }
+  return box;
+}
+
+// The test hook: deterministic control of the page from tests and benchmarks.
+window.gjkdemViewer = {
+  ready,
+  get frameCount() {
+    return source.frameCount;
+  },
+  get currentFrame() {
+    return state.k;
+  },
+  get bodyCount() {
+    return state.frame ? state.frame.n : 0;
+  },
+  get chainsShown() {
+    return state.chains ? chains.shown : 0;
+  },
+  grainBox,
+  stats,
+  setFrame,
+  setColorMode,
+  setChains,
+  setPreset,
+  play: setPlaying,
+  setSpeed: (s) => (state.speed = $('speed').value = s),
+  setLoop: (on) => (state.loop = $('loop').checked = on),
+  clearCache: () => source.clear(),
+};
+
+start().catch(fail);
