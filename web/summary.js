@@ -10,7 +10,7 @@ export function showSummary(run, frames) {
     ['wall time', run.wall_time_s !== undefined ? fmtSeconds(run.wall_time_s) : undefined],
     ['bodies', run.bodies],
     ['templates', run.shape_templates],
-    ['dt', run.dt !== undefined ? `${run.dt} s` : undefined],
+    ['dt', run.dt !== undefined ? `${Number(run.dt).toPrecision(4)} s` : undefined],
     ['threads', run.threads],
     ['frames', frames],
     ['version', run.version],

@@ -155,6 +155,7 @@ function paintLegendBar() {
 
 // Shows slider position k once its frame is loaded; a later request wins.
 async function setFrame(k) {
+  await ready; // the first frame sets up the scene's box and camera
   k = Math.max(0, Math.min(source.frameCount - 1, Math.round(k)));
   const token = ++loadToken, t0 = performance.now();
   try {
