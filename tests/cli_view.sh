@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# gjkdem view: serves the page, three.js and the run folder on 127.0.0.1, and
-# nothing else (not the rest of node_modules, nothing above the run folder);
+# gjkdem view: serves the page, three.js and the run folder on 127.0.0.1,
+# uncompressed, and nothing else (not the rest of node_modules, nothing above
+# the run folder);
 # refuses a folder that is not a run, a busy port, and a page not built.
 set -euo pipefail
 gjkdem="$1"
@@ -37,6 +38,10 @@ assert headers.get("Cache-Control") == "no-store", "a live run's files must not 
 status, body, _ = get("/run/view/frame_000000.bin")
 assert status == 200 and body[:8] == b"GJKFRAME", ("frame", status)
 assert get("/node_modules/three/package.json")[0] == 404, "node_modules is not served"
+# Not compressed, though the browser accepts it (httplib's Brotli took 1.9 s for three.js).
+req = urllib.request.Request(url + "vendor/three/three.module.js", headers={"Accept-Encoding": "gzip, deflate, br"})
+with urllib.request.urlopen(req) as r:
+    assert r.headers.get("Content-Encoding") is None, r.headers.get("Content-Encoding")
 assert get("/run/nothing_here.txt")[0] == 404
 # A path climbing out of the run folder (sent raw: urllib would clean it up).
 c = http.client.HTTPConnection(url.split("//")[1].rstrip("/"))

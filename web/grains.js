@@ -9,6 +9,21 @@ const FIXED_GREY = 0.45; // linear grey of fixed bodies (walls, obstacles)
 const Z = new THREE.Vector3(0, 0, 1);
 const normal = new THREE.Vector3();
 
+// Radius of the sphere of the closed mesh's volume (divergence theorem); the
+// circumradius's third for a flat one.
+function equalVolumeRadius(vertices, triangles) {
+  let volume = 0, r2 = 0;
+  for (let k = 0; k < triangles.length; k += 3) {
+    const a = 3 * triangles[k], b = 3 * triangles[k + 1], c = 3 * triangles[k + 2];
+    const v = vertices;
+    volume += v[a] * (v[b + 1] * v[c + 2] - v[b + 2] * v[c + 1]) - v[a + 1] * (v[b] * v[c + 2] - v[b + 2] * v[c]) + v[a + 2] * (v[b] * v[c + 1] - v[b + 1] * v[c]);
+  }
+  volume /= 6;
+  if (volume > 0) return Math.cbrt((3 * volume) / (4 * Math.PI));
+  for (let i = 0; i < vertices.length; i += 3) r2 = Math.max(r2, vertices[i] ** 2 + vertices[i + 1] ** 2 + vertices[i + 2] ** 2);
+  return Math.sqrt(r2) / 3;
+}
+
 export class Grains {
   constructor(scene, shapes) {
     this.scene = scene;
@@ -18,8 +33,10 @@ export class Grains {
       g.setIndex(new THREE.BufferAttribute(triangles, 1));
       return g;
     });
-    // Each template's circumradius (its reach from the body's centre) and box.
+    // Each template's circumradius (its reach from the body's centre), the
+    // radius of the sphere of its volume, and its box.
     this.radius = new Float32Array(shapes.templates.length);
+    this.volumeRadius = new Float32Array(shapes.templates.length);
     this.boxes = shapes.templates.map(({ vertices }, t) => {
       let r2 = 0;
       const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
@@ -31,6 +48,7 @@ export class Grains {
         }
       }
       this.radius[t] = Math.sqrt(r2);
+      this.volumeRadius[t] = equalVolumeRadius(vertices, shapes.templates[t].triangles);
       if (vertices.length === 0) return { center: [0, 0, 0], half: [0, 0, 0] };
       return { center: lo.map((l, a) => (l + hi[a]) / 2), half: lo.map((l, a) => (hi[a] - l) / 2) };
     });
@@ -42,6 +60,14 @@ export class Grains {
     this.planes = [];
     this.planeMaterial = new THREE.MeshBasicMaterial({ color: 0x6f8fb0, transparent: true, opacity: 0.22, side: THREE.DoubleSide, depthWrite: false });
     this.planeEdge = new THREE.LineBasicMaterial({ color: 0x9fb8d0, transparent: true, opacity: 0.6 });
+  }
+
+  // Free grains shown as meshes (or not: drawn as spheres meanwhile).
+  setFreeVisible(on) {
+    this.batches.forEach((batch, b) => {
+      if (batch && !(b & 1)) batch.mesh.visible = on;
+    });
+    this.freeVisible = on;
   }
 
   // Opacity of the free grains (faded to see force chains inside the pack).
@@ -65,6 +91,7 @@ export class Grains {
     mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
     mesh.instanceColor = new THREE.InstancedBufferAttribute(new Float32Array(3 * capacity), 3).setUsage(THREE.DynamicDrawUsage);
     mesh.frustumCulled = false; // its bounding sphere would go stale as grains move
+    mesh.visible = b & 1 || this.freeVisible !== false;
     this.scene.add(mesh);
     batch = this.batches[b] = { mesh, capacity };
     return batch;

@@ -6,6 +6,7 @@ import { ForceChains } from './chains.js';
 import { MODES, colorBodies } from './coloring.js';
 import { CHAINS, VIRIDIS, paintBar } from './colors.js';
 import { Grains } from './grains.js';
+import { Spheres } from './spheres.js';
 import { Plot, formatNumber } from './plots.js';
 import { RunSource } from './run_source.js';
 import { showSummary } from './summary.js';
@@ -16,7 +17,8 @@ const PREFETCH = 8; // frames read ahead while playing
 
 const $ = (id) => document.getElementById(id);
 const source = new RunSource();
-const state = { frame: null, k: -1, mode: 'speed', chains: false, threshold: 0.1, playing: false, speed: 1, loop: true, acc: 0 };
+
+const state = { frame: null, k: -1, mode: 'speed', draw: 'auto', chains: false, threshold: 0.1, playing: false, speed: 1, loop: true, acc: 0 };
 // lastFrameLoadMs: fetch + decode + update + draw of the last frame asked for;
 // lastUpdateMs: the page's own work on a frame (colours, matrices, chains, labels).
 const stats = { fps: 0, lastFrameLoadMs: 0, lastUpdateMs: 0, lastRenderMs: 0, framesShown: 0 };
@@ -27,7 +29,7 @@ const fit = { box: new THREE.Box3(), center: new THREE.Vector3(), planeSize: 1, 
 
 // --- 3D scene -------------------------------------------------------------
 const canvas = $('scene');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: false });
 renderer.setPixelRatio(window.devicePixelRatio || 1);
 renderer.setClearColor(0x262b33);
 const scene = new THREE.Scene();
@@ -38,11 +40,34 @@ headlight.position.set(0.3, 0.6, 1); // over the viewer's shoulder, so every vie
 headlight.target.position.set(0, 0, -1);
 camera.add(headlight, headlight.target);
 const chains = new ForceChains(scene);
+const spheres = new Spheres(scene);
+// 'auto' draws the free grains as spheres while playing a frame of more than
+// AUTO_SPHERES_BODIES bodies, and always beyond AUTO_SPHERES_ALWAYS (a
+// software renderer takes seconds over a million triangles); as their shapes
+// otherwise.
+const AUTO_SPHERES_BODIES = 5000;
+const AUTO_SPHERES_ALWAYS = 50000;
+const CURSOR_MS = 100;
+let cursorDrawn = -Infinity;
 let controls = null;
 const axes = { up: new THREE.Vector3(0, 0, 1), side: new THREE.Vector3(1, 0, 0), depth: new THREE.Vector3(0, 1, 0) };
 
+// Drawing happens once per animation frame, however many changes asked for
+// it: a slider dragged over many frames would otherwise queue a draw for each
+// (seconds of work for a software renderer) and the page would lag behind.
+// The promise resolves once drawn.
+let drawQueued = null;
 function render() {
-  renderer.render(scene, camera);
+  drawQueued ??= new Promise((resolve) =>
+    requestAnimationFrame(() => {
+      drawQueued = null;
+      const t0 = performance.now();
+      spheres.fit(camera, renderer);
+      renderer.render(scene, camera);
+      stats.lastRenderMs = performance.now() - t0; // the GL calls; a busy GPU makes them wait
+      resolve();
+    }));
+  return drawQueued;
 }
 
 new ResizeObserver(() => {
@@ -89,7 +114,7 @@ function setPreset(name) {
   camera.updateProjectionMatrix();
   controls.target.copy(fit.center);
   controls.update();
-  render();
+  return render();
 }
 
 // Scene extent from the first frame: camera fit, plane squares, chain width.
@@ -114,6 +139,11 @@ function apply(frame, k) {
   state.k = k;
   const coloring = colorBodies(frame, state.mode, grains.geometries.length);
   grains.update(frame, coloring.colors);
+  const asSpheres = state.draw === 'spheres' ||
+    (state.draw === 'auto' && (frame.n > AUTO_SPHERES_ALWAYS || (state.playing && frame.n > AUTO_SPHERES_BODIES)));
+  if (asSpheres) spheres.update(frame, coloring.colors, grains.volumeRadius);
+  spheres.visible = asSpheres;
+  grains.setFreeVisible(!asSpheres);
   grains.updatePlanes(frame, fit.center, fit.planeSize);
   if (state.chains) chains.update(frame, state.threshold, grains.radius, fit.chainWidth);
   chains.setVisible(state.chains);
@@ -121,12 +151,16 @@ function apply(frame, k) {
   $('slider').value = k;
   showTimeLabel();
   $('frame-info').textContent = `${frame.n} bodies, ${frame.m} contacts` + (state.chains ? `, ${chains.shown} chains drawn` : '') + `, step ${frame.steps}`;
-  for (const plot of plots) plot.setCursor(frame.time);
-  const t1 = performance.now();
-  render();
-  stats.lastUpdateMs = t1 - t0;
-  stats.lastRenderMs = performance.now() - t1; // the GL calls; a busy GPU makes them wait
+  // Plot cursors at most every CURSOR_MS while playing: redrawing five
+  // canvases each frame cost a software renderer a fifth of its frame rate.
+  const now = performance.now();
+  if (!state.playing || now - cursorDrawn >= CURSOR_MS) {
+    for (const plot of plots) plot.setCursor(frame.time);
+    cursorDrawn = now;
+  }
+  stats.lastUpdateMs = performance.now() - t0;
   countShown();
+  return render();
 }
 
 function showTimeLabel() {
@@ -134,7 +168,7 @@ function showTimeLabel() {
 }
 
 function redraw() {
-  if (state.frame) apply(state.frame, state.k);
+  return state.frame ? apply(state.frame, state.k) : Promise.resolve();
 }
 
 function showLegend({ min, max, categories }) {
@@ -161,7 +195,7 @@ async function setFrame(k) {
   try {
     const frame = await source.load(k);
     if (token !== loadToken) return;
-    apply(frame, k);
+    await apply(frame, k);
     stats.lastFrameLoadMs = performance.now() - t0;
   } catch (error) {
     fail(error);
@@ -190,6 +224,7 @@ function setPlaying(on) {
   state.acc = 0;
   $('play').innerHTML = state.playing ? '&#10074;&#10074;' : '&#9654;';
   if (state.playing && !state.loop && state.k >= source.frameCount - 1) setFrame(0);
+  else if (!state.playing && state.draw === 'auto') redraw(); // shapes again when paused
 }
 
 // Each animation frame advances `speed` frames (fractions accumulate) when
@@ -302,7 +337,7 @@ async function showFirstFrame() {
   measureScene(frame);
   $('message').textContent = '';
   apply(frame, 0);
-  setPreset('iso');
+  await setPreset('iso');
   firstFrameDrawn();
 }
 
@@ -326,11 +361,19 @@ async function start() {
 }
 
 // --- controls ------------------------------------------------------------------
+// How free grains are drawn: 'shapes', 'spheres', or 'auto' (spheres while
+// playing big frames).
+function setDraw(mode) {
+  if (!['shapes', 'spheres', 'auto'].includes(mode)) throw new Error(`unknown drawing ${mode}`);
+  state.draw = $('draw').value = mode;
+  return redraw();
+}
+
 function setColorMode(mode) {
   if (!(mode in MODES)) throw new Error(`unknown colour mode ${mode}`);
   state.mode = $('color-mode').value = mode;
   paintLegendBar();
-  redraw();
+  return redraw();
 }
 
 // Chains on fade the grains so that the chains inside the pack show; off
@@ -341,7 +384,7 @@ function setChains(on, threshold = state.threshold) {
   state.threshold = threshold;
   $('threshold').value = threshold;
   $('threshold-value').textContent = `${Math.round(threshold * 100)}% of max`;
-  redraw();
+  return redraw();
 }
 
 function setOpacity(opacity) {
@@ -350,6 +393,7 @@ function setOpacity(opacity) {
 }
 
 $('color-mode').addEventListener('change', (e) => setColorMode(e.target.value));
+$('draw').addEventListener('change', (e) => setDraw(e.target.value));
 $('chains').addEventListener('change', (e) => setChains(e.target.checked));
 $('threshold').addEventListener('input', (e) => setChains(state.chains, Number(e.target.value)));
 $('opacity').addEventListener('input', (e) => {
@@ -406,6 +450,7 @@ window.gjkdemViewer = {
   stats,
   setFrame,
   setColorMode,
+  setDraw,
   setChains,
   setPreset,
   play: setPlaying,

@@ -1,14 +1,15 @@
 // Browser test of the viewer page (web/): serves a run folder with
 // `gjkdem view RUN --port 0`, opens the page in headless Chromium and checks
-// that it loads cleanly, that the slider, the colouring modes and the force
-// chains change the picture, and that the plots draw and follow the slider.
+// that it loads cleanly, that the slider, the colouring modes, drawing grains
+// as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
 //   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--bench] [--chromium PATH]
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
-// playing; printed as one line of JSON.
+// playing, from an empty cache and with every frame decoded; printed as one
+// line of JSON.
 // Exit status: 0 passed, 1 failed, 77 skipped (no playwright-core or Chromium).
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
@@ -173,6 +174,16 @@ async function runChecks(page, errors) {
   }
   await page.selectOption('#color-mode', 'speed');
 
+  // 3b. Grains drawn as spheres of equal volume (what big runs play with)
+  // are a different picture from their shapes.
+  await page.selectOption('#draw', 'spheres');
+  const asSpheres = await shoot(page, 'draw_spheres');
+  await page.selectOption('#draw', 'shapes');
+  const asShapes = await shoot(page, 'draw_shapes');
+  const drawn = await differingPixels(page, asSpheres, asShapes, grains);
+  check(drawn > 50, `grains drawn as spheres and as shapes differ (${drawn} pixels)`);
+  await page.selectOption('#draw', 'auto');
+
   // 4. Force chains, at the frame with the most contacts, against the same
   // faded grains without them.
   if (contacts[busiest] === 0) {
@@ -234,12 +245,20 @@ async function runBench(page, openMs) {
     await new Promise((r) => setTimeout(r, 3000));
     const fps = ((v.stats.framesShown - n0) * 1000) / (performance.now() - t1);
     v.play(false);
+    // Again with every frame decoded once (the cache holds them): the drawing alone.
+    for (let f = 0; f < v.frameCount; f++) await v.setFrame(f);
+    v.play(true);
+    await new Promise((r) => setTimeout(r, 500));
+    const n1 = v.stats.framesShown, t2 = performance.now();
+    await new Promise((r) => setTimeout(r, 3000));
+    const fpsCached = ((v.stats.framesShown - n1) * 1000) / (performance.now() - t2);
+    v.play(false);
     drawn();
     const renderer = gl.getExtension('WEBGL_debug_renderer_info');
-    return { bodies: v.bodyCount, frameOpenMs, updateMs, fps, frames: v.frameCount, gpu: gl.getParameter(renderer ? renderer.UNMASKED_RENDERER_WEBGL : gl.RENDERER) };
+    return { bodies: v.bodyCount, frameOpenMs, updateMs, fps, fpsCached, frames: v.frameCount, gpu: gl.getParameter(renderer ? renderer.UNMASKED_RENDERER_WEBGL : gl.RENDERER) };
   });
   const round = (x) => Math.round(x * 10) / 10;
-  console.log(JSON.stringify({ bodies: result.bodies, frames: result.frames, open_ms: round(openMs), frame_open_ms: round(result.frameOpenMs), frame_update_ms: round(result.updateMs), fps: round(result.fps), gpu: result.gpu }));
+  console.log(JSON.stringify({ bodies: result.bodies, frames: result.frames, open_ms: round(openMs), frame_open_ms: round(result.frameOpenMs), frame_update_ms: round(result.updateMs), fps: round(result.fps), fps_cached: round(result.fpsCached), gpu: result.gpu }));
 }
 
 try {
