@@ -4,15 +4,19 @@
 // as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
-//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--bench] [--chromium PATH]
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--bench] [--chromium PATH]
+//
+// --live-scene also opens a run of SCENE that is still going (stopped, then
+// resumed beside the open page) and checks that the page follows it.
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
 // playing, from an empty cache and with every frame decoded; printed as one
 // line of JSON.
 // Exit status: 0 passed, 1 failed, 77 skipped (no playwright-core or Chromium).
-import { spawn } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
+import os from 'node:os';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 
@@ -40,7 +44,7 @@ if (!fs.existsSync(args.chromium)) {
 }
 if (args.artifacts) fs.mkdirSync(args.artifacts, { recursive: true });
 
-let server, browser;
+let server, liveServer, browser;
 const failures = [];
 const check = (ok, what) => {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
@@ -49,6 +53,7 @@ const check = (ok, what) => {
 async function finish(code) {
   await browser?.close().catch(() => {});
   server?.kill();
+  liveServer?.kill();
   process.exit(code);
 }
 setTimeout(() => {
@@ -57,21 +62,28 @@ setTimeout(() => {
 }, 180_000).unref();
 
 // `gjkdem view` prints "gjkdem view: serving OUT at http://127.0.0.1:PORT/".
-function startServer() {
-  server = spawn(args.gjkdem, ['view', args.run, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-  return new Promise((resolve, reject) => {
+function serve(run) {
+  const proc = spawn(args.gjkdem, ['view', run, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const url = new Promise((resolve, reject) => {
     let text = '';
     const timer = setTimeout(() => reject(new Error(`gjkdem view printed no address in 10 s (got: ${JSON.stringify(text)})`)), 10_000);
-    server.stdout.on('data', (chunk) => {
+    proc.stdout.on('data', (chunk) => {
       text += chunk;
-      const url = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (url) {
+      const found = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (found) {
         clearTimeout(timer);
-        resolve(url[0]);
+        resolve(found[0]);
       }
     });
-    server.on('exit', (code) => reject(new Error(`gjkdem view exited (${code}) before serving`)));
+    proc.on('exit', (code) => reject(new Error(`gjkdem view exited (${code}) before serving`)));
   });
+  return { proc, url };
+}
+
+function startServer() {
+  const s = serve(args.run);
+  server = s.proc;
+  return s.url;
 }
 
 // Pixels that differ (any channel by more than 8) between two PNGs, inside
@@ -261,6 +273,47 @@ async function runBench(page, openMs) {
   console.log(JSON.stringify({ bodies: result.bodies, frames: result.frames, open_ms: round(openMs), frame_open_ms: round(result.frameOpenMs), frame_update_ms: round(result.updateMs), fps: round(result.fps), fps_cached: round(result.fpsCached), gpu: result.gpu }));
 }
 
+// 6. A run still going: the page shows the frames so far, then the rest as
+// they come. A run of the scene stopped after 250 steps (3 frames) is
+// opened, then resumed beside the open page; the page must reach its 7
+// frames and say it completed, with no error.
+async function runLive(errors) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_live_'));
+  try {
+    const stopped = spawnSync(args.gjkdem, ['run', args['live-scene'], '--out', dir, '--quiet', '--stop-after', '250']);
+    check(stopped.status === 130, `the live run stops after 250 steps (exit ${stopped.status})`);
+    const live = serve(dir);
+    liveServer = live.proc;
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`live page error: ${e.message}`));
+    page.on('console', (m) => {
+      const optional = m.location().url.endsWith('/run/analysis/measures.csv') && m.text().includes('404');
+      if (m.type() === 'error' && !optional) errors.push(`live console: ${m.text()} (${m.location().url})`);
+    });
+    await page.goto(await live.url);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    const before = await page.evaluate(() => window.gjkdemViewer.frameCount);
+    const statusBefore = await page.locator('#summary').innerText();
+    check(before === 3 && statusBefore.includes('interrupted'), `a stopped run shows its ${before} frames and says so`);
+    const resumed = spawnSync(args.gjkdem, ['run', '--resume', dir, '--quiet']);
+    check(resumed.status === 0, `the run resumes to its end (exit ${resumed.status})`);
+    await page.waitForFunction(() => window.gjkdemViewer.frameCount === 7, null, { timeout: 15_000 }).catch(() => {});
+    const after = await page.evaluate(() => window.gjkdemViewer.frameCount);
+    await page.waitForFunction(() => document.getElementById('summary').innerText.includes('completed'), null, { timeout: 15_000 }).catch(() => {});
+    const statusAfter = await page.locator('#summary').innerText();
+    check(after === 7 && statusAfter.includes('completed'), `the open page follows the run to its ${after} frames and its completion`);
+    await page.evaluate(() => window.gjkdemViewer.setFrame(6));
+    check((await page.evaluate(() => window.gjkdemViewer.currentFrame)) === 6, 'the new frames can be shown');
+    await shoot(page, 'live_completed');
+    check(errors.length === 0, `no console or page error following the live run${errors.length ? ': ' + errors.join('; ') : ''}`);
+    await page.close();
+  } finally {
+    liveServer?.kill();
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 try {
   const url = await startServer();
   browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
@@ -281,6 +334,7 @@ try {
   ]);
   if (args.bench) await runBench(page, Date.now() - t0);
   else await runChecks(page, errors);
+  if (args['live-scene'] && !args.bench) await runLive(errors);
 } catch (error) {
   check(false, error.stack ?? String(error));
 }
