@@ -43,6 +43,17 @@ req = urllib.request.Request(url + "vendor/three/three.module.js", headers={"Acc
 with urllib.request.urlopen(req) as r:
     assert r.headers.get("Content-Encoding") is None, r.headers.get("Content-Encoding")
 assert get("/run/nothing_here.txt")[0] == 404
+for sneaky in ("/./node_modules/three/package.json", "//node_modules/three/package.json",
+               "/vendor/../node_modules/three/package.json"):
+    c = http.client.HTTPConnection(url.split("//")[1].rstrip("/"))
+    c.request("GET", sneaky)
+    assert c.getresponse().status in (400, 404), sneaky
+# Another Host (a rebound name) is refused; localhost is this server too.
+port = url.split(":")[2].rstrip("/")
+for host, expected in (("evil.example:" + port, 403), ("localhost:" + port, 200)):
+    c = http.client.HTTPConnection(url.split("//")[1].rstrip("/"))
+    c.request("GET", "/run/view/index.csv", headers={"Host": host})
+    assert c.getresponse().status == expected, host
 # A path climbing out of the run folder (sent raw: urllib would clean it up).
 c = http.client.HTTPConnection(url.split("//")[1].rstrip("/"))
 c.request("GET", "/run/../../../etc/passwd")

@@ -5,7 +5,8 @@
 const PLANE_BIT = 0x80000000;
 export { PLANE_BIT };
 
-function checkMagic(buffer, magic, what) {
+function checkMagic(buffer, magic, what, header) {
+  if (buffer.byteLength < header) throw new Error(`${what}: ${buffer.byteLength} bytes, shorter than its header`);
   const bytes = new Uint8Array(buffer, 0, Math.min(8, buffer.byteLength));
   const text = String.fromCharCode(...bytes);
   if (text !== magic) throw new Error(`${what}: not a ${magic} file`);
@@ -15,7 +16,7 @@ function checkMagic(buffer, magic, what) {
 
 // shapes.bin: each template's triangle mesh (body frame) and the plane walls' ids.
 export function parseShapes(buffer) {
-  checkMagic(buffer, 'GJKSHAPE', 'shapes.bin');
+  checkMagic(buffer, 'GJKSHAPE', 'shapes.bin', 24);
   const dv = new DataView(buffer);
   const T = dv.getUint32(12, true), P = dv.getUint32(16, true);
   const templates = [];
@@ -28,6 +29,8 @@ export function parseShapes(buffer) {
     o += 12 * V;
     const triangles = new Uint32Array(buffer, o, 3 * F);
     o += 12 * F;
+    for (let i = 0; i < triangles.length; i++)
+      if (triangles[i] >= V) throw new Error(`shapes.bin: template ${t} has a triangle naming vertex ${triangles[i]} of ${V}`);
     templates.push({ vertices, triangles });
   }
   if (o + 4 * P > buffer.byteLength) throw new Error('shapes.bin: plane ids run past the end');
@@ -36,11 +39,12 @@ export function parseShapes(buffer) {
 
 // frame_NNNNNN.bin: bodies, touching contacts and plane walls at one output.
 export function parseFrame(buffer) {
-  checkMagic(buffer, 'GJKFRAME', 'frame');
+  checkMagic(buffer, 'GJKFRAME', 'frame', 40);
   const dv = new DataView(buffer);
   const n = dv.getUint32(12, true), m = dv.getUint32(16, true), p = dv.getUint32(20, true);
-  const expected = ((40 + 61 * n + 3) & ~3) + 44 * m + 24 * p;
-  if (buffer.byteLength < expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header needs ${expected}`);
+  const align4 = (x) => Math.ceil(x / 4) * 4; // arithmetic, not bit operations: sizes may pass 2^31
+  const expected = align4(40 + 61 * n) + 44 * m + 24 * p;
+  if (buffer.byteLength !== expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header says ${expected}`);
   let o = 40;
   const take = (Type, count) => {
     const a = new Type(buffer, o, count);
@@ -60,7 +64,7 @@ export function parseFrame(buffer) {
     id: take(Uint32Array, n),
     flags: take(Uint8Array, n),
   };
-  o = (o + 3) & ~3;
+  o = align4(o);
   f.contactFirst = take(Uint32Array, m); // body index, or PLANE_BIT + plane
   f.contactSecond = take(Uint32Array, m);
   f.contactPoint = take(Float32Array, 3 * m);
@@ -68,6 +72,11 @@ export function parseFrame(buffer) {
   f.contactForce = take(Float32Array, 3 * m); // on the second body
   f.planePoint = take(Float32Array, 3 * p);
   f.planeNormal = take(Float32Array, 3 * p);
+  for (let c = 0; c < m; c++) {
+    const first = f.contactFirst[c];
+    if (f.contactSecond[c] >= n || (first >= PLANE_BIT ? first - PLANE_BIT >= p : first >= n))
+      throw new Error(`frame: contact ${c} names a body or plane it does not have`);
+  }
   return f;
 }
 

@@ -65,15 +65,30 @@ int view_run(const ViewOptions& opt) {
   });
   const httplib::Headers no_cache = {{"Cache-Control", "no-store"}};
   // Only three.js's files are served from node_modules, never the rest of it.
-  server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
-    if (req.path.rfind("/node_modules", 0) == 0) {
+  int port = 0;
+  server.set_pre_routing_handler([&port](const httplib::Request& req, httplib::Response& res) {
+    // Only three.js of node_modules, under /vendor/ (any spelling of a path
+    // through node_modules: /./node_modules, //node_modules, ...).
+    if (req.path.find("node_modules") != std::string::npos) {
       res.status = 404;
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // A page of another site that rebinds its name to 127.0.0.1 would send
+    // its own Host: only this address serves the run.
+    const std::string host = req.get_header_value("Host");
+    const std::size_t colon = host.rfind(':');
+    const std::string name = host.substr(0, colon);
+    const std::string number = colon == std::string::npos ? std::string() : host.substr(colon + 1);
+    if ((name != "127.0.0.1" && name != "localhost") || number != std::to_string(port)) {
+      res.status = 403;
       return httplib::Server::HandlerResponse::Handled;
     }
     // Files on this machine gain nothing from compression, and cpp-httplib
     // compresses text with Brotli at its slowest setting when the browser
     // accepts it (1.9 s for three.js, where sending it takes 2 ms). The
-    // request is httplib's own, not const: the handler only sees it as const.
+    // request is httplib's own, not const: the handler only sees it as const
+    // (cpp-httplib 0.11: the request is a local of the server's loop, and the
+    // encoding is chosen after routing).
     const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
     return httplib::Server::HandlerResponse::Unhandled;
   });
@@ -87,8 +102,8 @@ int view_run(const ViewOptions& opt) {
       !server.set_mount_point("/", web.string(), no_cache))
     throw std::runtime_error("cannot serve " + run.string() + " or " + web.string());
 
-  const int port = opt.port == 0 ? server.bind_to_any_port("127.0.0.1")
-                                 : (server.bind_to_port("127.0.0.1", opt.port) ? opt.port : -1);
+  port = opt.port == 0 ? server.bind_to_any_port("127.0.0.1")
+                       : (server.bind_to_port("127.0.0.1", opt.port) ? opt.port : -1);
   if (port < 0)
     throw std::runtime_error("cannot listen on 127.0.0.1:" + std::to_string(opt.port) +
                              " (in use?); choose another with --port, or --port 0 for any free one");

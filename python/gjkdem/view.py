@@ -110,7 +110,9 @@ class RunView:
 
     def reload(self):
         """Reads the index again (a run still going adds frames)."""
-        lines = (self.dir / "index.csv").read_text().splitlines()
+        text = (self.dir / "index.csv").read_text()
+        # A last line without its newline is still being written: left for the next read.
+        lines = text[:text.rfind("\n") + 1].splitlines()
         if not lines or lines[0] != "frame,time,step,bodies,contacts":
             raise ViewFormatError(f"{self.dir / 'index.csv'} does not start with the view index header")
         rows = [tuple(int(x) if k != 1 else float(x) for k, x in enumerate(line.split(","))) for line in lines[1:]]

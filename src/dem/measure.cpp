@@ -26,6 +26,13 @@ Real depth_in(const MeasureRegion& r, const Vec3& p) noexcept {
                    std::fmin(p.z - r.lo.z, r.hi.z - p.z));
 }
 
+/// Shapes overlap() clips exactly (contact/overlap.hpp); the others are
+/// clipped as tessellations.
+bool clipped_exactly(const Shape& s) noexcept {
+  return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core) ||
+                           std::holds_alternative<Triangle>(s.core));
+}
+
 /// An image shifting only along periodic axes.
 bool image_on_periodic_axes(const PeriodicCell& cell, std::uint8_t code) noexcept {
   const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
@@ -58,7 +65,7 @@ std::vector<MeasuredContact> touching_contacts(const World& w) {
   return out;
 }
 
-MeasureRegion moving_bodies_box(const World& w) {
+std::optional<MeasureRegion> moving_bodies_box(const World& w) {
   MeasureRegion box{Vec3{1, 1, 1} * INFINITY, Vec3{1, 1, 1} * -INFINITY};
   bool any = false;
   for (const Body& b : w.bodies) {
@@ -68,7 +75,8 @@ MeasureRegion moving_bodies_box(const World& w) {
     box.hi = max(box.hi, b.position + Vec3{reach, reach, reach});
     any = true;
   }
-  return any ? box : MeasureRegion{};
+  if (!any) return std::nullopt;
+  return box;
 }
 
 Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, MeasureWorkspace& work) {
@@ -89,7 +97,7 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
     auto found = work.clipped.find(key);
     if (found == work.clipped.end()) {
       MeasureWorkspace::ClippedShape c;
-      c.tessellated = overlap(box, box_pose, *part.shape, part.pose, work.overlap).status == OverlapStatus::Unsupported;
+      c.tessellated = !clipped_exactly(*part.shape);
       if (c.tessellated) c.tessellation = Shape{tessellate(*part.shape, kMeasureTessellation).polytope};
       c.volume = mass_properties(c.tessellated ? c.tessellation : *part.shape).volume;
       found = work.clipped.emplace(key, std::move(c)).first;
@@ -105,7 +113,8 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
                  MeasureWorkspace& work) {
   Measures m;
   m.region_volume = region.volume();
-  if (!(m.region_volume > 0) || !std::isfinite(m.region_volume))
+  if (!(region.lo.x < region.hi.x && region.lo.y < region.hi.y && region.lo.z < region.hi.z) ||
+      !std::isfinite(m.region_volume))
     throw std::invalid_argument("the measurement region must have lo < hi on every axis, all finite");
   std::vector<char> counted(w.bodies.size(), 0);
   for (std::size_t k = 0; k < w.bodies.size(); ++k) {

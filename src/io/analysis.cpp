@@ -109,8 +109,14 @@ AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
     const ViewFrame frame = decode_view_frame(read_bytes(view_frame_file(view, index[k].frame)));
     const auto started = std::chrono::steady_clock::now();
     const std::vector<dem::MeasuredContact> contacts = load_frame(world, frame);
-    const dem::MeasureRegion region = options.region ? *options.region : dem::moving_bodies_box(world);
-    const dem::Measures m = region.volume() > 0 ? dem::measure(world, contacts, region, work) : dem::Measures{};
+    const std::optional<dem::MeasureRegion> region = options.region ? options.region : dem::moving_bodies_box(world);
+    dem::Measures m;  // zeros: no region given and no moving body
+    if (region) try {
+        m = dem::measure(world, contacts, *region, work);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("frame " + std::to_string(index[k].frame) + " (t = " + std::to_string(frame.time) +
+                                    " s): " + e.what());
+      }
     summary.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     measures += measures_row(index[k].frame, frame.time, m);
     forces += normal_forces_rows(index[k].frame, frame.time, m);

@@ -32,8 +32,8 @@ void prepare_run_folder(const RunPaths& paths, bool overwrite) {
   if (fs::is_directory(paths.view(), ec))
     for (const fs::directory_entry& e : fs::directory_iterator(paths.view(), ec)) {
       const std::string name = e.path().filename().string();
-      if ((name.rfind("frame_", 0) == 0 && e.path().extension() == ".bin") || name == "shapes.bin" ||
-          name == "index.csv")
+      if ((name.rfind("frame_", 0) == 0 && (e.path().extension() == ".bin" || name.ends_with(".bin.tmp"))) ||
+          name == "shapes.bin" || name == "index.csv" || name == "shapes.bin.tmp" || name == "index.csv.tmp")
         ours.push_back(e.path());
     }
   if (!ours.empty() && !overwrite)
@@ -48,6 +48,9 @@ void remove_stale_temporaries(const RunPaths& paths) {
   std::error_code ec;
   fs::remove(paths.checkpoint().string() + ".tmp", ec);
   fs::remove(paths.run_json().string() + ".tmp", ec);
+  if (fs::is_directory(paths.view(), ec))
+    for (const fs::directory_entry& e : fs::directory_iterator(paths.view(), ec))
+      if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
 }
 
 RunFolderLock::RunFolderLock(const fs::path& dir) {

@@ -49,7 +49,13 @@ class Reader {
     out.resize(count);
     take(out.data(), count * sizeof(T));
   }
-  void skip_pad4() { at_ += (4 - at_ % 4) % 4; }
+  void skip_pad4() {
+    const std::size_t pad = (4 - at_ % 4) % 4;
+    if (pad > bytes_.size() - at_) fail("is cut short");
+    for (std::size_t k = 0; k < pad; ++k)
+      if (bytes_[at_ + k] != 0) fail("has padding that is not zero");
+    at_ += pad;
+  }
   void expect_magic(const char (&magic)[8]) {
     char m[8];
     take(m, 8);
@@ -226,7 +232,11 @@ std::string view_index_row(const ViewIndexRow& row) {
 }
 
 std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file) {
-  std::istringstream in(read_bytes(file));
+  std::string text = read_bytes(file);
+  // A row is complete with its newline: a last line without one is still
+  // being written (a run going on) and is left for the next read.
+  text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
+  std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line) || line + "\n" != view_index_header())
     throw ViewFormatError(file.string() + " does not start with the view index header");

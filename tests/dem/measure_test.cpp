@@ -71,6 +71,22 @@ TEST(Measure, SpheresCutByTheRegionKeepTheirPartInside) {
   EXPECT_NEAR(volume_inside(w, w.bodies[0], {{-1, -1, r - h}, {1, 1, 1}}, work) / cap, 1, 5e-3);
 }
 
+// Whether a template is clipped exactly or as a tessellation depends on its
+// shape, not on the first body met: an ellipsoid near the region but not in
+// it (overlap() says empty before it says unsupported) must not make the next
+// one, cut in half by the region's face, count nothing.
+TEST(Measure, ACurvedGrainNearTheRegionDoesNotHideTheNextOnesVolume) {
+  const Shape ellipsoid{Ellipsoid{{0.5, 0.1, 0.1}}};
+  // The first lies along x beside the region (its reach, 0.5, reaches in; the
+  // ellipsoid, 0.1 thick in y, does not); the second straddles x = 0.
+  const World w = with_bodies({{ellipsoid, Vec3{0.2, 1.35, 0}}, {ellipsoid, Vec3{0, 0, 0}}});
+  MeasureWorkspace work;
+  const MeasureRegion region{{0, -1, -1}, {2, 1, 1}};
+  EXPECT_EQ(volume_inside(w, w.bodies[0], region, work), 0);
+  const Real full = 4.0 / 3.0 * kPi * 0.5 * 0.1 * 0.1;
+  EXPECT_NEAR(volume_inside(w, w.bodies[1], region, work) / full, 0.5, 2e-3);
+}
+
 // A bed of random polyhedra (placed without overlap) in a box that cuts many
 // of them, against the fraction of random points that fall in a grain.
 TEST(Measure, ABedsSolidFractionMatchesMonteCarlo) {

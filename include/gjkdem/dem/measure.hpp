@@ -6,6 +6,7 @@
 // (touching_contacts) and to a frame read back from a run folder alike
 // (`gjkdem analyze`, io/analysis.hpp). Conventions: docs/measurements.md.
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <span>
 #include <vector>
@@ -63,8 +64,8 @@ inline constexpr int kMeasureTessellation = 2048;
 std::vector<MeasuredContact> touching_contacts(const World& world);
 
 /// The box around the moving bodies (each its reach around its centre);
-/// an empty box when there are none.
-MeasureRegion moving_bodies_box(const World& world);
+/// none when there are none.
+std::optional<MeasureRegion> moving_bodies_box(const World& world);
 
 /// Volume (m^3) of the part of a body inside the region: its shape (or each
 /// part) clipped by the region, exact for polytope-like shapes; a curved one
