@@ -151,6 +151,14 @@ TEST(ViewFormat, DamagedFilesAreRefused) {
   refused(decode_view_frame, frame.substr(0, frame.size() - 5), "cut short");
   refused(decode_view_frame, frame.substr(0, 30), "cut short");
   refused(decode_view_frame, frame + "x", "past its end");
+  // Cut inside the padding after the flags (the bed's body count is not a
+  // multiple of 4): refused, not read past the end.
+  const std::size_t flags_end = 40 + 61 * bed().bodies.size();
+  ASSERT_NE(flags_end % 4, 0u);
+  refused(decode_view_frame, frame.substr(0, flags_end + 1), "cut short");
+  std::string padded = frame;
+  padded[flags_end] = 7;
+  refused(decode_view_frame, padded, "padding");
   refused(decode_view_frame, shapes, "wrong magic");
   refused(decode_view_shapes, frame, "wrong magic");
   refused(decode_view_shapes, shapes.substr(0, shapes.size() / 2), "");
