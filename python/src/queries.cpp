@@ -50,12 +50,29 @@ const char* overlap_status_name(OverlapStatus s) {
 
 Transform placed(const PyShape& s, const Transform& pose) { return compose(pose, s.offset); }
 
-// One side of a batch: a shape for every pair, and their poses.
+// Shapes packed for batches (gjkdem.ShapeSet).
+struct ShapeSet {
+  std::vector<Shape> shapes;
+  std::vector<Transform> offsets;  // each shape's frame -> the user's
+};
+
+// One side of a batch: a shape for every pair (or one for all), and their
+// poses. The shapes are the Python objects of a list, or a ShapeSet's
+// contiguous arrays.
 struct Side {
-  std::vector<const PyShape*> shapes;  // one, or one per pair
+  std::vector<const PyShape*> shapes;  // one, or one per pair (a list)
+  const ShapeSet* set = nullptr;       // or these
   std::vector<Transform> poses;        // empty (identity), or one per pair
-  const PyShape& shape(std::size_t k) const { return *shapes[shapes.size() == 1 ? 0 : k]; }
-  Transform pose(std::size_t k) const { return placed(shape(k), poses.empty() ? Transform{} : poses[k]); }
+  std::size_t size() const { return set ? set->shapes.size() : shapes.size(); }
+  const Shape& shape(std::size_t k) const {
+    const std::size_t i = size() == 1 ? 0 : k;
+    return set ? set->shapes[i] : shapes[i]->shape;
+  }
+  Transform pose(std::size_t k) const {
+    const std::size_t i = size() == 1 ? 0 : k;
+    const Transform& offset = set ? set->offsets[i] : shapes[i]->offset;
+    return poses.empty() ? offset : compose(poses[k], offset);
+  }
 };
 
 // The shape held by a Python object, or null. Lists of thousands of shapes
@@ -71,12 +88,14 @@ const PyShape* shape_of(const py::handle& item) {
 
 Side read_side(const py::handle& shapes, const py::handle& poses, const std::string& name) {
   Side s;
-  if (const PyShape* one = shape_of(shapes)) {
+  if (py::isinstance<ShapeSet>(shapes)) {
+    s.set = &shapes.cast<const ShapeSet&>();
+  } else if (const PyShape* one = shape_of(shapes)) {
     convex_of(*one, name.c_str());
     s.shapes.push_back(one);
   } else {
     if (!PyList_Check(shapes.ptr()) && !PyTuple_Check(shapes.ptr()))
-      fail(name, "expected a gjkdem.Shape or a list of them");
+      fail(name, "expected a gjkdem.Shape, a list of them or a ShapeSet");
     const py::sequence items = py::reinterpret_borrow<py::sequence>(shapes);
     s.shapes.reserve(items.size());
     for (const auto& item : items) {
@@ -101,8 +120,8 @@ Side read_side(const py::handle& shapes, const py::handle& poses, const std::str
 std::size_t pair_count(const Side& a, const Side& b) {
   std::size_t n = 1;
   bool known = false;
-  for (const std::size_t count : {a.shapes.size() > 1 ? a.shapes.size() : 0, a.poses.size(),
-                                  b.shapes.size() > 1 ? b.shapes.size() : 0, b.poses.size()}) {
+  for (const std::size_t count : {a.size() > 1 ? a.size() : 0, a.poses.size(), b.size() > 1 ? b.size() : 0,
+                                  b.poses.size()}) {
     if (count == 0) continue;
     if (known && count != n)
       throw py::value_error("batch: the shape lists and pose arrays must have one entry per pair (got " +
@@ -267,9 +286,26 @@ void bind_queries(py::module_& m) {
     m.def(name, batch, py::arg("a"), py::arg("b"), py::arg("poses_a") = py::none(), py::arg("poses_b") = py::none(),
           py::arg("threads") = 0, doc);
   };
+  py::class_<ShapeSet>(m, "ShapeSet",
+                       "Convex shapes packed once into contiguous arrays, for batches over the same shapes again\n"
+                       "and again (thousands of distinct shapes: the queries then read memory as the C++ does).")
+      .def(py::init([](const py::sequence& items) {
+             ShapeSet set;
+             set.shapes.reserve(items.size()), set.offsets.reserve(items.size());
+             for (const auto& item : items) {
+               const PyShape* shape = shape_of(item);
+               if (!shape) fail("ShapeSet", "expected a list of gjkdem.Shape");
+               set.shapes.push_back(convex_of(*shape, "ShapeSet"));
+               set.offsets.push_back(shape->offset);
+             }
+             if (set.shapes.empty()) fail("ShapeSet", "the list of shapes is empty");
+             return set;
+           }),
+           py::arg("shapes"))
+      .def("__len__", [](const ShapeSet& set) { return set.shapes.size(); });
   const char* batch_doc =
-      "Batched query: a and b are a Shape or a list of N shapes; poses_a and poses_b None or (N, 7) arrays.\n"
-      "Returns a dict of arrays, row k for pair k. threads = 0 uses every core.";
+      "Batched query: a and b are a Shape, a list of N shapes or a ShapeSet of N; poses_a and poses_b None or\n"
+      "(N, 7) arrays. Returns a dict of arrays, row k for pair k. threads = 0 uses every core.";
   def_batch(
       "intersect_batch",
       [](const py::object& a, const py::object& b, const py::object& pa, const py::object& pb, int threads) {
@@ -277,7 +313,7 @@ void bind_queries(py::module_& m) {
         Columns out(in.n);
         bool* hit = out.flags("intersect");
         in.for_each([&](std::size_t k, OverlapWorkspace&) {
-          hit[k] = intersect(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+          hit[k] = intersect(in.a.shape(k), in.a.pose(k), in.b.shape(k), in.b.pose(k));
         });
         return out.arrays;
       },
@@ -291,7 +327,7 @@ void bind_queries(py::module_& m) {
         double* dist = out.numbers("distance");
         double *wa = out.rows("witness_a"), *wb = out.rows("witness_b"), *normal = out.rows("normal");
         in.for_each([&](std::size_t k, OverlapWorkspace&) {
-          const DistanceResult r = distance(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+          const DistanceResult r = distance(in.a.shape(k), in.a.pose(k), in.b.shape(k), in.b.pose(k));
           hit[k] = r.intersect, dist[k] = r.distance;
           put(wa, k, r.witness_a), put(wb, k, r.witness_b), put(normal, k, r.normal);
         });
@@ -308,7 +344,7 @@ void bind_queries(py::module_& m) {
         double *wa = out.rows("witness_a"), *wb = out.rows("witness_b"), *normal = out.rows("normal");
         in.for_each([&](std::size_t k, OverlapWorkspace&) {
           const PenetrationResult r =
-              penetration(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k));
+              penetration(in.a.shape(k), in.a.pose(k), in.b.shape(k), in.b.pose(k));
           hit[k] = r.intersect, dist[k] = r.distance, depth[k] = r.depth;
           put(wa, k, r.witness_a), put(wb, k, r.witness_b), put(normal, k, r.normal);
         });
@@ -324,7 +360,7 @@ void bind_queries(py::module_& m) {
         double *normal = out.rows("contact_normal"), *area = out.numbers("contact_area");
         std::atomic<bool> unsupported = false;
         in.for_each([&](std::size_t k, OverlapWorkspace& w) {
-          const OverlapResult r = overlap(in.a.shape(k).shape, in.a.pose(k), in.b.shape(k).shape, in.b.pose(k), w);
+          const OverlapResult r = overlap(in.a.shape(k), in.a.pose(k), in.b.shape(k), in.b.pose(k), w);
           if (r.status == OverlapStatus::Unsupported) unsupported = true;
           volume[k] = r.volume, area[k] = r.contact_area;
           put(centroid, k, r.status == OverlapStatus::Overlapping ? r.centroid : Vec3{NAN, NAN, NAN});

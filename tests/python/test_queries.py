@@ -80,6 +80,33 @@ def test_batches_give_the_single_answers_for_any_thread_count():
     assert np.array_equal(d["distance"], one["distance"])
 
 
+def test_shape_sets_give_the_lists_answers():
+    rng = np.random.default_rng(9)
+    # Shapes whose frames differ from the user's (a box off its centre, a
+    # polytope about its centroid) check that the offsets go with the set.
+    a = [random_polytope(rng) for _ in range(150)] + [gjkdem.Shape("box", half_extents=[0.5, 0.3, 0.2])]
+    b = [random_polytope(rng, 6) for _ in range(151)]
+    pa, pb = random_poses(rng, 151), random_poses(rng, 151)
+    sa, sb = gjkdem.ShapeSet(a), gjkdem.ShapeSet(b)
+    assert len(sa) == 151
+    for batch in (gjkdem.intersect_batch, gjkdem.distance_batch, gjkdem.penetration_batch, gjkdem.overlap_batch):
+        lists, sets = batch(a, b, pa, pb), batch(sa, sb, pa, pb)
+        for key in lists:
+            assert np.array_equal(lists[key], sets[key], equal_nan=True), (batch.__name__, key)
+    # A set against one shape, without poses for the set.
+    mixed = gjkdem.penetration_batch(sa, b[0], None, pb)
+    assert np.array_equal(mixed["depth"], gjkdem.penetration_batch(a, b[0], None, pb)["depth"])
+    with pytest.raises(ValueError, match="ShapeSet"):
+        gjkdem.ShapeSet([a[0], "rock"])
+    with pytest.raises(ValueError, match="empty"):
+        gjkdem.ShapeSet([])
+    with pytest.raises(ValueError, match="compound"):
+        gjkdem.ShapeSet([gjkdem.Shape.compound([gjkdem.Shape("sphere", radius=0.1),
+                                                gjkdem.Shape("sphere", radius=0.1, center=[1, 0, 0])])])
+    with pytest.raises(ValueError, match="one entry per pair"):
+        gjkdem.intersect_batch(sa, gjkdem.ShapeSet(b[:10]))
+
+
 def test_overlap_batch_matches_single_overlaps_and_marks_empty_rows():
     rng = np.random.default_rng(3)
     a = [random_polytope(rng) for _ in range(100)]
