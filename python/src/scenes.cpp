@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "gjkdem/io/analysis.hpp"
+#include "gjkdem/io/checkpoint.hpp"
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
@@ -35,6 +36,22 @@ void bind_scenes(py::module_& m) {
       py::arg("text"), py::arg("base_dir") = ".", "Reads a scene from TOML text; mesh files are found from base_dir.");
   m.def("default_scene_text", [] { return std::string(io::default_scene_toml()); },
         "The TOML of the built-in default scene.");
+  m.def(
+      "load_run",
+      [](const std::string& run_dir) {
+        const io::RunPaths folder{run_dir};
+        io::Scene scene = io::load_run_scene(folder.dir);
+        // Checkpoints of a run folder carry the fingerprint of its scene.toml.
+        const std::uint64_t fingerprint = io::fnv1a64(io::read_text_file(folder.scene()));
+        if (!std::filesystem::exists(folder.checkpoint()))
+          throw io::SceneError(folder.dir.string() + " holds no checkpoint.bin (the run kept none: "
+                               "output.checkpoint_every = 0, or it was not stopped)");
+        io::load_checkpoint(folder.checkpoint(), scene.world, fingerprint);
+        return scene;
+      },
+      py::arg("run_dir"),
+      "The scene of a run folder (written by `gjkdem run` or SceneRun) with its world restored from the\n"
+      "folder's checkpoint: the run's last saved state, to measure or continue from Python.");
   m.def(
       "analyze",
       [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every) {

@@ -105,3 +105,21 @@ def test_the_analysis_of_the_frames_is_the_live_worlds(run_dir):
     world = gjkdem.load_scene(str(out.parent / "small_pour.toml")).world
     with pytest.raises(ValueError, match="lo < hi"):
         world.measure((0, 0, 0), (1, 0, 1))
+
+
+def test_a_run_folder_loads_at_its_last_checkpoint(run_dir):
+    out, seen = run_dir
+    scene = gjkdem.load_run(str(out))
+    w = scene.world
+    # small_pour checkpoints every 2 outputs: its last is output 6 of 7 (frame 5).
+    k = [s["time"] for s in seen].index(w.time)
+    assert k == 5
+    f = gjkdem.read_view(out).frame(k)
+    np.testing.assert_allclose(w.positions, f.positions, atol=1e-7)
+    assert w.contact_count == len(f.contact_second)
+    # A checkpoint of a run folder is of its scene: a world built otherwise is refused.
+    other = gjkdem.load_scene(str(out.parent / "small_pour.toml")).world
+    with pytest.raises(ValueError, match="scene"):
+        other.load_checkpoint(str(out / "checkpoint.bin"))
+    with pytest.raises(ValueError, match="run.json is missing"):
+        gjkdem.load_run(str(out.parent))  # not a run folder
