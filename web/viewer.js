@@ -122,6 +122,7 @@ function measureScene(frame) {
   const box = grains.bounds(frame);
   for (let k = 0; k < frame.p; k++) box.expandByPoint(new THREE.Vector3().fromArray(frame.planePoint, 3 * k));
   if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+  showPeriodicCell(box);
   fit.box = box;
   box.getCenter(fit.center);
   const diagonal = box.getSize(new THREE.Vector3()).length();
@@ -130,6 +131,24 @@ function measureScene(frame) {
   for (let i = 0; i < frame.n; i++) if (!(frame.flags[i] & 1)) radii.push(grains.radius[frame.template[i]]);
   radii.sort((a, b) => a - b);
   fit.chainWidth = 0.3 * (radii.length ? radii[radii.length >> 1] : diagonal / 100);
+}
+
+// A periodic world's cell (run.json's scene, simulation.periodic: [lo, hi]
+// per periodic axis) as a wire box; along the other axes it spans `box`,
+// which it then widens. Bodies leave it on one side and come back on the other.
+let cell = null;
+function showPeriodicCell(box) {
+  const periodic = run?.scene?.simulation?.periodic;
+  if (!periodic || cell) return;
+  const lo = box.min.clone(), hi = box.max.clone();
+  ['x', 'y', 'z'].forEach((axis, a) => {
+    if (!periodic[axis]) return;
+    lo.setComponent(a, periodic[axis][0]);
+    hi.setComponent(a, periodic[axis][1]);
+  });
+  cell = new THREE.Box3Helper(new THREE.Box3(lo, hi), 0xffd54f);
+  scene.add(cell);
+  box.union(cell.box);
 }
 
 // --- drawing a frame --------------------------------------------------------
@@ -445,6 +464,9 @@ window.gjkdemViewer = {
   },
   get chainsShown() {
     return state.chains ? chains.shown : 0;
+  },
+  get periodicCell() {
+    return cell ? { min: cell.box.min.toArray(), max: cell.box.max.toArray() } : null;
   },
   grainBox,
   stats,

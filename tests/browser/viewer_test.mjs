@@ -4,10 +4,11 @@
 // as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
-//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--bench] [--chromium PATH]
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--bench] [--chromium PATH]
 //
 // --live-scene also opens a run of SCENE that is still going (stopped, then
-// resumed beside the open page) and checks that the page follows it.
+// resumed beside the open page) and checks that the page follows it;
+// --periodic-scene SCENE, that a periodic world's cell is drawn.
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
@@ -314,6 +315,32 @@ async function runLive(errors) {
   }
 }
 
+// 7. A periodic world: its cell is drawn, as run.json's scene gives it.
+async function runPeriodic(errors) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_periodic_'));
+  try {
+    const started = spawnSync(args.gjkdem, ['run', args['periodic-scene'], '--out', dir, '--quiet', '--stop-after', '10']);
+    check(started.status === 130, `the periodic run starts (exit ${started.status})`);
+    const periodic = JSON.parse(fs.readFileSync(path.join(dir, 'run.json'), 'utf8')).scene.simulation.periodic;
+    const s = serve(dir);
+    liveServer = s.proc;
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`periodic page error: ${e.message}`));
+    await page.goto(await s.url);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    const drawn = await page.evaluate(() => window.gjkdemViewer.periodicCell);
+    const matches = drawn && ['x', 'y', 'z'].every((axis, a) =>
+      !periodic[axis] || (Math.abs(drawn.min[a] - periodic[axis][0]) < 1e-12 && Math.abs(drawn.max[a] - periodic[axis][1]) < 1e-12));
+    check(Boolean(matches), `the periodic cell is drawn where the scene puts it (${JSON.stringify(drawn)} for ${JSON.stringify(periodic)})`);
+    await shoot(page, 'periodic_cell');
+    await page.close();
+  } finally {
+    liveServer?.kill();
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 try {
   const url = await startServer();
   browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
@@ -335,6 +362,7 @@ try {
   if (args.bench) await runBench(page, Date.now() - t0);
   else await runChecks(page, errors);
   if (args['live-scene'] && !args.bench) await runLive(errors);
+  if (args['periodic-scene'] && !args.bench) await runPeriodic(errors);
 } catch (error) {
   check(false, error.stack ?? String(error));
 }
