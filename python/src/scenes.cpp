@@ -7,7 +7,6 @@
 
 #include "bindings.hpp"
 #include "gjkdem/io/analysis.hpp"
-#include "gjkdem/io/checkpoint.hpp"
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
@@ -38,17 +37,7 @@ void bind_scenes(py::module_& m) {
         "The TOML of the built-in default scene.");
   m.def(
       "load_run",
-      [](const std::string& run_dir) {
-        const io::RunPaths folder{run_dir};
-        io::Scene scene = io::load_run_scene(folder.dir);
-        // Checkpoints of a run folder carry the fingerprint of its scene.toml.
-        const std::uint64_t fingerprint = io::fnv1a64(io::read_text_file(folder.scene()));
-        if (!std::filesystem::exists(folder.checkpoint()))
-          throw io::SceneError(folder.dir.string() + " holds no checkpoint.bin (the run kept none: "
-                               "output.checkpoint_every = 0, or it was not stopped)");
-        io::load_checkpoint(folder.checkpoint(), scene.world, fingerprint);
-        return scene;
-      },
+      [](const std::string& run_dir) { return io::load_run_checkpoint(run_dir); },
       py::arg("run_dir"),
       "The scene of a run folder (written by `gjkdem run` or SceneRun) with its world restored from the\n"
       "folder's checkpoint: the run's last saved state, to measure or continue from Python.");

@@ -26,19 +26,6 @@ Quat uniform_rotation(Real u1, Real u2, Real u3) noexcept {
   return normalized(Quat{b * std::cos(t3), a * std::sin(t2), a * std::cos(t2), b * std::sin(t3)});
 }
 
-// The periodic images a body may touch through: no shift first, then one
-// period either way on each periodic axis (just no shift without a cell).
-std::vector<Vec3> image_shifts(const PeriodicCell& cell) {
-  std::vector<Vec3> shifts{Vec3{}};
-  for (std::uint8_t code = 0; code < 27; ++code) {
-    if (code == kNoImage) continue;
-    const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
-    if ((shift[0] && !cell.axes[0]) || (shift[1] && !cell.axes[1]) || (shift[2] && !cell.axes[2])) continue;
-    shifts.push_back(image_shift(cell, code));
-  }
-  return shifts;
-}
-
 // The bodies (or their periodic images) that might touch a body placed in
 // the inflow's region.
 std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f, const std::vector<Vec3>& shifts) {

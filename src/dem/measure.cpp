@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 
 namespace gjkdem::dem {
@@ -31,14 +32,6 @@ Real depth_in(const MeasureRegion& r, const Vec3& p) noexcept {
 bool clipped_exactly(const Shape& s) noexcept {
   return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core) ||
                            std::holds_alternative<Triangle>(s.core));
-}
-
-/// An image shifting only along periodic axes.
-bool image_on_periodic_axes(const PeriodicCell& cell, std::uint8_t code) noexcept {
-  const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
-  for (int k = 0; k < 3; ++k)
-    if (shift[k] != 0 && !cell.axes[k]) return false;
-  return true;
 }
 
 /// x_c - x_p to the nearest image on the world's periodic axes.
@@ -117,19 +110,17 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
       !std::isfinite(m.region_volume))
     throw std::invalid_argument("the measurement region must have lo < hi on every axis, all finite");
   std::vector<char> counted(w.bodies.size(), 0);
+  // In a periodic world the region also holds the images of the bodies near
+  // the cell's faces (a body straddling one fills both sides).
+  const std::vector<Vec3> shifts = image_shifts(w.settings.periodic);
   for (std::size_t k = 0; k < w.bodies.size(); ++k) {
     const Body& b = w.bodies[k];
     if (b.fixed) continue;
-    m.solid_volume += volume_inside(w, b, region, work);
-    // In a periodic world the region also holds the images of the bodies
-    // near the cell's faces (a body straddling one fills both sides).
-    if (w.settings.periodic.active())
-      for (std::uint8_t code = 0; code < 27; ++code) {
-        if (code == kNoImage || !image_on_periodic_axes(w.settings.periodic, code)) continue;
-        Body image = b;
-        image.position += image_shift(w.settings.periodic, code);
-        m.solid_volume += volume_inside(w, image, region, work);
-      }
+    for (const Vec3& shift : shifts) {
+      Body image = b;
+      image.position += shift;
+      m.solid_volume += volume_inside(w, image, region, work);
+    }
     if (inside(region, b.position)) counted[k] = 1, ++m.grains;
   }
   m.solid_fraction = m.solid_volume / m.region_volume;

@@ -7,6 +7,17 @@
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
+
+std::vector<Vec3> image_shifts(const PeriodicCell& cell) {
+  std::vector<Vec3> shifts{Vec3{}};
+  for (std::uint8_t code = 0; code < 27; ++code) {
+    if (code == kNoImage) continue;
+    const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
+    if ((shift[0] && !cell.axes[0]) || (shift[1] && !cell.axes[1]) || (shift[2] && !cell.axes[2])) continue;
+    shifts.push_back(image_shift(cell, code));
+  }
+  return shifts;
+}
 namespace {
 
 struct Candidate {

@@ -15,11 +15,6 @@ namespace {
 
 Vec3 vec(const std::vector<float>& a, std::size_t k) { return {a[3 * k], a[3 * k + 1], a[3 * k + 2]}; }
 
-std::string number(double x) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.9g", x);
-  return s;
-}
 
 }  // namespace
 
@@ -61,11 +56,14 @@ std::string measures_header() {
 std::string measures_row(std::uint64_t frame, double time, const dem::Measures& m) {
   const Mat3& s = m.stress;
   std::string row = std::to_string(frame);
-  row.append(",").append(number(time));
+  row += ',';
+  append_number(row, time);
   for (const double x : {m.solid_fraction, m.coordination, static_cast<double>(m.contacts), m.mean_normal_force,
                          s.row[0].x, s.row[1].y, s.row[2].z, s.row[0].y, s.row[0].z, s.row[1].z, m.pressure,
-                         static_cast<double>(m.grains), m.region_volume})
-    row.append(",").append(number(x));
+                         static_cast<double>(m.grains), m.region_volume}) {
+    row += ',';
+    append_number(row, x);
+  }
   return row + "\n";
 }
 
@@ -84,10 +82,19 @@ std::string normal_forces_rows(std::uint64_t frame, double time, const dem::Meas
     const double low = k * kForceBinWidth;
     const bool last = k == kForceBins;
     const double density = total > 0 && !last ? static_cast<double>(count[k]) / total / kForceBinWidth : 0;
-    char row[160];
-    std::snprintf(row, sizeof row, "%llu,%.9g,%.9g,%s,%zu,%.9g\n", static_cast<unsigned long long>(frame), time, low,
-                  last ? "inf" : number(low + kForceBinWidth).c_str(), count[k], density);
-    rows += row;
+    rows += std::to_string(frame);
+    rows += ',';
+    append_number(rows, time);
+    rows += ',';
+    append_number(rows, low);
+    rows += ',';
+    if (last) rows += "inf";
+    else append_number(rows, low + kForceBinWidth);
+    rows += ',';
+    rows += std::to_string(count[k]);
+    rows += ',';
+    append_number(rows, density);
+    rows += '\n';
   }
   return rows;
 }
@@ -106,7 +113,7 @@ AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
   AnalysisSummary summary;
   const std::size_t todo = (index.size() + options.every - 1) / options.every;
   for (std::size_t k = 0; k < index.size(); k += options.every) {
-    const ViewFrame frame = decode_view_frame(read_bytes(view_frame_file(view, index[k].frame)));
+    const ViewFrame frame = read_view_frame(view_frame_file(view, index[k].frame));
     const auto started = std::chrono::steady_clock::now();
     const std::vector<dem::MeasuredContact> contacts = load_frame(world, frame);
     const std::optional<dem::MeasureRegion> region = options.region ? options.region : dem::moving_bodies_box(world);

@@ -327,13 +327,9 @@ void save_checkpoint(const std::filesystem::path& file, const dem::World& w, con
 }
 
 Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw CheckpointError("cannot read checkpoint " + file.string());
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw CheckpointError("cannot read checkpoint " + file.string());
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return decode_checkpoint(bytes.str(), w, fingerprint, file.string());
+  const std::optional<std::string> bytes = read_file(file);
+  if (!bytes) throw CheckpointError("cannot read checkpoint " + file.string());
+  return decode_checkpoint(*bytes, w, fingerprint, file.string());
 }
 
 }  // namespace gjkdem::io

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/tessellate.hpp"
@@ -14,12 +15,6 @@ namespace gjkdem::io {
 namespace {
 
 constexpr int kDisplayDirections = 64;
-
-void append(std::string& s, Real v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back to the same double
-  s.append(buf, r.ptr);
-}
 
 // Legacy VTK binary is big-endian.
 template <class T>
@@ -42,6 +37,23 @@ void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
 }
 
 }  // namespace
+
+void append_number(std::string& text, Real value) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, value);
+  text.append(buf, r.ptr);
+}
+
+std::optional<std::string> read_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return std::move(bytes).str();
+}
 
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
   const std::filesystem::path tmp = file.string() + ".tmp";
@@ -95,7 +107,7 @@ void write_vtk_frame(const std::filesystem::path& file, const dem::World& w, std
     indices += m.indices.size();
   }
   std::string out = "# vtk DataFile Version 3.0\ngjkdem frame t=";
-  append(out, w.time);
+  append_number(out, w.time);
   out += "\nBINARY\nDATASET POLYDATA\nPOINTS " + std::to_string(points) + " double\n";
   for (const dem::Body& b : w.bodies) {
     const Transform pose = dem::shape_pose(w, b);
@@ -146,7 +158,7 @@ void write_frame_series(const std::filesystem::path& file, std::span<const std::
   std::string out = "{\n  \"file-series-version\": \"1.0\",\n  \"files\": [\n";
   for (std::size_t k = 0; k < frames.size(); ++k) {
     out += "    {\"name\": \"" + frames[k].first + "\", \"time\": ";
-    append(out, frames[k].second);
+    append_number(out, frames[k].second);
     out += k + 1 < frames.size() ? "},\n" : "}\n";
   }
   out += "  ]\n}\n";
@@ -159,7 +171,7 @@ std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,
 
 std::string trace_row(const dem::World& w, const std::string& name, const dem::Body& b) {
   std::string s;
-  append(s, w.time);
+  append_number(s, w.time);
   s += "," + name;
   // The orientation of the body frame the author gave: principal frame -> world
   // composed with the template's shape frame.
@@ -168,7 +180,7 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   for (Real v : {b.position.x, b.position.y, b.position.z, q.w, q.x, q.y, q.z, b.velocity.x, b.velocity.y,
                  b.velocity.z, spin.x, spin.y, spin.z}) {
     s += ',';
-    append(s, v);
+    append_number(s, v);
   }
   s += '\n';
   return s;
@@ -179,13 +191,13 @@ std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,
 std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   std::string s;
   for (Real v : {time, e.kinetic, e.potential, e.elastic, e.dissipated}) {
-    append(s, v);
+    append_number(s, v);
     s += ',';
   }
   s += std::to_string(contacts) + ",";
-  append(s, e.wall_work);
+  append_number(s, e.wall_work);
   s += ',';
-  append(s, e.inflow);
+  append_number(s, e.inflow);
   s += "\n";
   return s;
 }

@@ -36,6 +36,19 @@ Json read_run_json(const RunPaths& folder) {
   return j;
 }
 
+// What a run folder keeps of its scene: the text (its checkpoints carry its
+// fingerprint), where its files were read from and the scene file's name.
+struct FolderScene {
+  std::string text;
+  fs::path base;
+  std::string scene_file;
+};
+
+FolderScene read_folder_scene(const RunPaths& folder) {
+  const Json info = read_run_json(folder);
+  return {read_text_file(folder.scene()), info["scene_base"].get<std::string>(), info.value("scene_file", "")};
+}
+
 // The run of a scene, its errors named after `source`.
 dem::RunState plan_scene(const Scene& scene, const std::string& source) {
   try {
@@ -90,22 +103,31 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
   r->folder.dir = dir;
   if (!fs::exists(r->folder.checkpoint()))
     throw SceneError(dir.string() + " holds no checkpoint.bin to resume from");
-  const Json previous = read_run_json(r->folder);
-  const std::string text = read_text_file(r->folder.scene());
-  const fs::path base = previous["scene_base"].get<std::string>();
-  r->scene = load_run_scene(dir);
+  const FolderScene saved = read_folder_scene(r->folder);
+  r->scene = load_scene(saved.text, r->folder.scene().string(), saved.base);
   if (threads >= 0) r->scene.world.settings.threads = threads;
   r->state = plan_scene(r->scene, r->folder.scene().string());
   r->lock_.emplace(r->folder.dir);
   remove_stale_temporaries(r->folder);
-  r->open_writers(text, previous.value("scene_file", ""), base, true);
+  r->open_writers(saved.text, saved.scene_file, saved.base, true);
   return r;
 }
 
 Scene load_run_scene(const fs::path& dir) {
   const RunPaths folder{dir};
-  const Json info = read_run_json(folder);
-  return load_scene(read_text_file(folder.scene()), folder.scene().string(), info["scene_base"].get<std::string>());
+  const FolderScene saved = read_folder_scene(folder);
+  return load_scene(saved.text, folder.scene().string(), saved.base);
+}
+
+Scene load_run_checkpoint(const fs::path& dir) {
+  const RunPaths folder{dir};
+  const FolderScene saved = read_folder_scene(folder);
+  Scene scene = load_scene(saved.text, folder.scene().string(), saved.base);
+  if (!fs::exists(folder.checkpoint()))
+    throw SceneError(dir.string() + " holds no checkpoint.bin (the run kept none: output.checkpoint_every = 0, "
+                     "or it ended before its first)");
+  load_checkpoint(folder.checkpoint(), scene.world, fnv1a64(saved.text));
+  return scene;
 }
 
 std::string run_info_json(const dem::World& world, Real dt) {

@@ -2,6 +2,7 @@
 // unknown keys, wrong types and out-of-range values are refused with the key's
 // line, before anything runs.
 #include "gjkdem/io/scene.hpp"
+#include "gjkdem/io/run_output.hpp"
 
 #include <cmath>
 #include <limits>
@@ -904,11 +905,9 @@ Scene load_scene(std::string_view toml_text, const std::string& source, const st
 }
 
 std::string read_text_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError("cannot read " + file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = read_file(file);
+  if (!text) throw SceneError("cannot read " + file.string());
+  return std::move(*text);
 }
 
 Scene load_scene_file(const std::filesystem::path& file) {

@@ -224,15 +224,25 @@ std::filesystem::path view_index_file(const std::filesystem::path& view_dir) { r
 std::string view_index_header() { return "frame,time,step,bodies,contacts\n"; }
 
 std::string view_index_row(const ViewIndexRow& row) {
-  char line[160];
-  std::snprintf(line, sizeof line, "%llu,%.17g,%llu,%llu,%llu\n", static_cast<unsigned long long>(row.frame), row.time,
-                static_cast<unsigned long long>(row.step), static_cast<unsigned long long>(row.bodies),
-                static_cast<unsigned long long>(row.contacts));
-  return line;
+  std::string line = std::to_string(row.frame);
+  line += ',';
+  append_number(line, row.time);
+  for (const std::uint64_t n : {row.step, row.bodies, row.contacts}) line.append(",").append(std::to_string(n));
+  return line + "\n";
 }
 
+namespace {
+
+std::string bytes_of(const std::filesystem::path& file) {
+  std::optional<std::string> bytes = read_file(file);
+  if (!bytes) throw ViewFormatError("cannot read " + file.string());
+  return std::move(*bytes);
+}
+
+}  // namespace
+
 std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file) {
-  std::string text = read_bytes(file);
+  std::string text = bytes_of(file);
   // A row is complete with its newline: a last line without one is still
   // being written (a run going on) and is left for the next read.
   text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
@@ -254,12 +264,20 @@ std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file) {
   return rows;
 }
 
-std::string read_bytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ViewFormatError("cannot read " + file.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+ViewShapes read_view_shapes(const std::filesystem::path& file) {
+  try {
+    return decode_view_shapes(bytes_of(file));
+  } catch (const ViewFormatError& e) {
+    throw ViewFormatError(file.string() + ": " + e.what());
+  }
+}
+
+ViewFrame read_view_frame(const std::filesystem::path& file) {
+  try {
+    return decode_view_frame(bytes_of(file));
+  } catch (const ViewFormatError& e) {
+    throw ViewFormatError(file.string() + ": " + e.what());
+  }
 }
 
 }  // namespace gjkdem::io

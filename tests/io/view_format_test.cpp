@@ -198,7 +198,7 @@ TEST(ViewFormat, AResumedWriterCutsItsIndexBackToTheCheckpoint) {
   ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows.back().frame, 3u);
   EXPECT_EQ(rows.back().bodies, w.bodies.size());
-  EXPECT_EQ(decode_view_frame(read_bytes(view_frame_file(dir, 3))).body_count(), w.bodies.size());
+  EXPECT_EQ(read_view_frame(view_frame_file(dir, 3)).body_count(), w.bodies.size());
   // An index that is not one is refused, not half read.
   std::ofstream(view_index_file(dir), std::ios::app) << "4,0.1,x\n";
   EXPECT_THROW(read_view_index(view_index_file(dir)), ViewFormatError);

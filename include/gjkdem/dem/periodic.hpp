@@ -10,6 +10,7 @@
 // (skin included) on a periodic axis. Pair keys stay the bodies' ids, so a
 // contact keeps its springs while a body crosses.
 #include <cstdint>
+#include <vector>
 
 #include "gjkdem/math/vec3.hpp"
 
@@ -33,6 +34,10 @@ inline Vec3 image_shift(const PeriodicCell& cell, std::uint8_t code) noexcept {
   const Vec3 period = cell.hi - cell.lo;
   return {(code % 3 - 1) * period.x, (code / 3 % 3 - 1) * period.y, (code / 9 - 1) * period.z};
 }
+
+/// The shifts of the images a body may touch through: no shift first, then
+/// one period either way on each periodic axis (only no shift without a cell).
+std::vector<Vec3> image_shifts(const PeriodicCell& cell);
 
 /// Puts the moving bodies back into the cell, moving their box anchors and
 /// boxes with them. Returns how many crossed.

@@ -4,6 +4,7 @@
 // the simulated times) and rows of trace.csv and energy.csv.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -41,6 +42,14 @@ void write_frame_series(const std::filesystem::path& file, std::span<const std::
 /// a rename: a crash or a full disk leaves the previous file whole. Throws
 /// std::runtime_error when it cannot be written.
 void write_file_atomically(const std::filesystem::path& file, const std::string& text);
+
+/// The whole of `file`, or nothing when it cannot be read (callers say why
+/// in their own terms).
+std::optional<std::string> read_file(const std::filesystem::path& file);
+
+/// `value` appended as the shortest text that reads back to the same double
+/// (the CSV files' numbers).
+void append_number(std::string& text, Real value);
 
 /// A body written to trace.csv every output, under its name.
 struct TracedBody {

@@ -35,6 +35,11 @@ std::string run_info_json(const dem::World& world, Real dt);
 /// the scene was read from, which run.json records). Throws SceneError.
 Scene load_run_scene(const std::filesystem::path& dir);
 
+/// The same, its world restored from the folder's checkpoint: the run's
+/// last saved state. Throws SceneError (no checkpoint, the scene),
+/// CheckpointError (a checkpoint that does not fit).
+Scene load_run_checkpoint(const std::filesystem::path& dir);
+
 class SceneRun {
  public:
   /// A new run of the scene in `scene_file` (empty: the built-in default

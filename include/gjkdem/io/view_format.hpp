@@ -77,7 +77,9 @@ std::string view_index_row(const ViewIndexRow& row);
 /// The rows of an index file (ViewFormatError when it is malformed).
 std::vector<ViewIndexRow> read_view_index(const std::filesystem::path& file);
 
-/// Whole file as bytes (ViewFormatError when it cannot be read).
-std::string read_bytes(const std::filesystem::path& file);
+/// A file read and decoded (ViewFormatError naming it when it cannot be read
+/// or is not one).
+ViewShapes read_view_shapes(const std::filesystem::path& file);
+ViewFrame read_view_frame(const std::filesystem::path& file);
 
 }  // namespace gjkdem::io
