@@ -46,9 +46,7 @@ fs::path find_page(const std::string& given) {
 
 int view_run(const ViewOptions& opt) {
   const fs::path run = fs::absolute(opt.run);
-  if (!fs::is_regular_file(io::view_index_file(run / "view")))
-    throw std::runtime_error(run.string() + " holds no view frames (view/index.csv): it is not a run folder, or its "
-                             "scene set output.view = false");
+  io::require_view_frames(run);
   const fs::path web = find_page(opt.web);
 
   httplib::Server server;

@@ -102,6 +102,7 @@ std::string normal_forces_rows(std::uint64_t frame, double time, const dem::Meas
 AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
                             const std::function<void(std::size_t, std::size_t)>& progress) {
   if (options.every == 0) throw std::invalid_argument("--every must be at least 1");
+  require_view_frames(dir);
   const fs::path view = dir / "view";
   const std::vector<ViewIndexRow> index = read_view_index(view_index_file(view));
   Scene scene = load_run_scene(dir);

@@ -221,6 +221,13 @@ std::filesystem::path view_frame_file(const std::filesystem::path& view_dir, std
 
 std::filesystem::path view_index_file(const std::filesystem::path& view_dir) { return view_dir / "index.csv"; }
 
+void require_view_frames(const std::filesystem::path& run_dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(view_index_file(run_dir / "view"), ec))
+    throw ViewFormatError(run_dir.string() + " holds no view frames (view/index.csv): it is not a run folder, or its "
+                          "scene set output.view = false");
+}
+
 std::string view_index_header() { return "frame,time,step,bodies,contacts\n"; }
 
 std::string view_index_row(const ViewIndexRow& row) {

@@ -66,6 +66,10 @@ std::filesystem::path view_shapes_file(const std::filesystem::path& view_dir);
 std::filesystem::path view_frame_file(const std::filesystem::path& view_dir, std::uint64_t frame);
 std::filesystem::path view_index_file(const std::filesystem::path& view_dir);
 
+/// Throws ViewFormatError saying so when the run folder `run_dir` holds no
+/// view frames (no view/index.csv).
+void require_view_frames(const std::filesystem::path& run_dir);
+
 /// A row of view/index.csv.
 struct ViewIndexRow {
   std::uint64_t frame = 0;
