@@ -11,9 +11,12 @@ export const formatNumber = (v) => {
 };
 
 export class Plot {
-  // series: [{name, color}] drawn against a shared y axis.
-  constructor(canvas, title, series) {
+  // series: [{name, color}] drawn against a shared y axis; the x axis is
+  // labelled `${xName} = first${xUnit}` ... `last${xUnit}` (time by default).
+  constructor(canvas, title, series, { xName = 't', xUnit = ' s' } = {}) {
     this.canvas = canvas;
+    this.xName = xName;
+    this.xUnit = xUnit;
     this.title = title;
     this.series = series;
     this.base = document.createElement('canvas');
@@ -84,9 +87,9 @@ export class Plot {
     ctx.fillText(formatNumber(hi), PAD.left - 4, PAD.top + 4);
     ctx.fillText(formatNumber(lo), PAD.left - 4, h - PAD.bottom - 4);
     ctx.textAlign = 'left';
-    ctx.fillText(`t = ${formatNumber(this.xRange[0])} s`, PAD.left, h - PAD.bottom / 2 + 1);
+    ctx.fillText(`${this.xName} = ${formatNumber(this.xRange[0])}${this.xUnit}`, PAD.left, h - PAD.bottom / 2 + 1);
     ctx.textAlign = 'right';
-    ctx.fillText(`${formatNumber(this.xRange[1])} s`, w - PAD.right, h - PAD.bottom / 2 + 1);
+    ctx.fillText(`${formatNumber(this.xRange[1])}${this.xUnit}`, w - PAD.right, h - PAD.bottom / 2 + 1);
     ctx.textAlign = 'left';
     ctx.lineWidth = 1.5;
     this.series.forEach((s, k) => {

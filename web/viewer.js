@@ -175,6 +175,7 @@ function apply(frame, k) {
   const now = performance.now();
   if (!state.playing || now - cursorDrawn >= CURSOR_MS) {
     for (const plot of plots) plot.setCursor(frame.time);
+    if (forceBins) showForceBins(k);
     cursorDrawn = now;
   }
   stats.lastUpdateMs = performance.now() - t0;
@@ -294,6 +295,30 @@ const analysisPlots = [
   ['pressure', new Plot($('plot-pressure'), 'pressure (Pa)', [{ name: '', color: '#f48fb1' }])],
 ];
 const plots = [plotEnergy, plotContacts, ...analysisPlots.map(([, p]) => p)];
+// The current frame's distribution of normal contact forces
+// (analysis/normal_forces.csv): density against f / mean f, bins of the
+// frame number in a Map; the open last bin (f / mean f beyond 5) is left out.
+const plotForces = new Plot($('plot-normal-forces'), 'normal forces: density', [{ name: '', color: '#90caf9' }],
+  { xName: 'f/<f>', xUnit: '' });
+let forceBins = null;
+
+function readForceBins(text) {
+  const { columns: c, rows } = parseCsv(text);
+  const bins = new Map();
+  for (let r = 0; r < rows; r++) {
+    if (!Number.isFinite(c.high[r])) continue;
+    let b = bins.get(c.frame[r]);
+    if (!b) bins.set(c.frame[r], (b = { x: [], density: [] }));
+    b.x.push((c.low[r] + c.high[r]) / 2);
+    b.density.push(c.density[r]);
+  }
+  return bins;
+}
+
+function showForceBins(k) {
+  const b = forceBins?.get(source.index.columns.frame[k]);
+  plotForces.setData(b ? b.x : [], [b ? b.density : []]);
+}
 
 async function loadTables() {
   const energy = await source.text('energy.csv');
@@ -303,6 +328,9 @@ async function loadTables() {
     plotContacts.setData(c.time, [c.contacts]);
   }
   // analysis/measures.csv exists once `gjkdem analyze` ran: a 404 is normal.
+  const forces = await source.text('analysis/normal_forces.csv');
+  plotForces.canvas.hidden = forces === null;
+  forceBins = forces === null ? null : readForceBins(forces);
   const measures = await source.text('analysis/measures.csv');
   for (const [name, plot] of analysisPlots) {
     plot.canvas.hidden = measures === null;

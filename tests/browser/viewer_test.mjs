@@ -226,12 +226,19 @@ async function runChecks(page, errors) {
   }
   await slideTo(page, 0);
   const plotsFirst = await canvasData(page, 'plot-energy');
+  const forcesFirst = await canvasData(page, 'plot-normal-forces');
   await shoot(page, 'plots_first_frame', '#plots');
-  await slideTo(page, last);
+  await slideTo(page, busiest);
   const plotsLast = await canvasData(page, 'plot-energy');
-  await shoot(page, 'plots_last_frame', '#plots');
+  const forcesLast = await canvasData(page, 'plot-normal-forces');
+  await shoot(page, 'plots_busiest_frame', '#plots');
   const cursor = await differingPixels(page, plotsFirst, plotsLast);
   check(cursor > 20, `the plots' cursor follows the slider (${cursor} pixels differ)`);
+  // The run was analysed (the fixture runs gjkdem analyze): the distribution
+  // of normal forces is that of the frame shown, none at the first (no
+  // contact), a curve at the busiest.
+  const forces = await differingPixels(page, forcesFirst, forcesLast);
+  check(forces > 50, `the normal force distribution follows the frame (${forces} pixels differ)`);
 
   await page.screenshot({ path: path.join(args.artifacts, 'page.png') });
   check(errors.length === 0, `no console or page error during the checks${errors.length ? ':\n  ' + errors.join('\n  ') : ''}`);
@@ -288,7 +295,7 @@ async function runLive(errors) {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     page.on('pageerror', (e) => errors.push(`live page error: ${e.message}`));
     page.on('console', (m) => {
-      const optional = m.location().url.endsWith('/run/analysis/measures.csv') && m.text().includes('404');
+      const optional = /\/run\/analysis\/(measures|normal_forces)\.csv$/.test(m.location().url) && m.text().includes('404');
       if (m.type() === 'error' && !optional) errors.push(`live console: ${m.text()} (${m.location().url})`);
     });
     await page.goto(await live.url);
@@ -349,7 +356,7 @@ try {
   page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
   page.on('console', (m) => {
     // The analysis table is optional: its 404 is the one expected error.
-    const optional = m.location().url.endsWith('/run/analysis/measures.csv') && m.text().includes('404');
+    const optional = /\/run\/analysis\/(measures|normal_forces)\.csv$/.test(m.location().url) && m.text().includes('404');
     if (m.type() === 'error' && !optional) errors.push(`console: ${m.text()} (${m.location().url})`);
   });
   const t0 = Date.now();
