@@ -194,7 +194,44 @@ void bind_world(py::module_& m) {
             }
             s.periodic = cell;
           },
-          "Periodic axes and their ranges, e.g. {\"x\": (0, 0.1), \"y\": (0, 0.1)} (docs/scenes.md); {}: none");
+          "Periodic axes and their ranges, e.g. {\"x\": (0, 0.1), \"y\": (0, 0.1)} (docs/scenes.md); {}: none")
+      .def_property(
+          "cell_control",
+          [](const dem::WorldSettings& s) {
+            py::dict d, rates, stresses;
+            const dem::CellControl& c = s.cell_control;
+            for (int k = 0; k < 6; ++k) {
+              if (c.mode[k] == dem::CellMode::StrainRate) rates[dem::kCellComponents[k]] = c.value[k];
+              if (c.mode[k] == dem::CellMode::Stress) stresses[dem::kCellComponents[k]] = c.value[k];
+            }
+            if (rates.size()) d["strain_rate"] = rates;
+            if (stresses.size()) d["stress"] = stresses, d["max_strain_rate"] = c.max_strain_rate;
+            return d;
+          },
+          [](dem::WorldSettings& s, const py::dict& d) {
+            dem::CellControl c;
+            for (const auto& [key, value] : d) {
+              const std::string name = key.cast<std::string>();
+              if (name == "max_strain_rate") {
+                c.max_strain_rate = value.cast<double>();
+                continue;
+              }
+              if (name != "strain_rate" && name != "stress")
+                fail("cell_control", "keys are \"strain_rate\", \"stress\" and \"max_strain_rate\", not \"" + name + "\"");
+              for (const auto& [component, v] : value.cast<py::dict>()) {
+                const std::string cname = component.cast<std::string>();
+                int k = 0;
+                while (k < 6 && cname != dem::kCellComponents[k]) ++k;
+                if (k == 6) fail("cell_control", "components are x, y, z, xy, xz and yz, not \"" + cname + "\"");
+                if (c.mode[k] != dem::CellMode::Fixed) fail("cell_control", cname + " takes a strain rate or a stress, not both");
+                c.mode[k] = name == "stress" ? dem::CellMode::Stress : dem::CellMode::StrainRate;
+                c.value[k] = v.cast<double>();
+              }
+            }
+            s.cell_control = c;
+          },
+          "How the periodic cell deforms: {\"strain_rate\": {\"xz\": 1.0}} or {\"stress\": {\"x\": p, \"y\": p, "
+          "\"z\": p}, \"max_strain_rate\": 1.0} (docs/scenes.md); {}: it does not");
 
   py::class_<dem::RunState>(m, "RunState", "Where a run stands (seen by observers).")
       .def_readonly("dt", &dem::RunState::dt)
@@ -382,6 +419,26 @@ void bind_world(py::module_& m) {
   def_view<double>(world, "torques", offsetof(Body, torque), 3, false,
            "Torques about the centres of mass (N, 3), read-only view.");
   world.def_readonly("time", &World::time)
+      .def_property_readonly(
+          "cell",
+          [](const World& w) {
+            py::dict d;
+            if (!w.cell.active()) return d;
+            const auto tensor = [](const dem::CellTensor& t) {
+              py::dict out;
+              for (int k = 0; k < 6; ++k) out[dem::kCellComponents[k]] = t[k];
+              return out;
+            };
+            d["lo"] = py::make_tuple(w.cell.lo.x, w.cell.lo.y, w.cell.lo.z);
+            d["hi"] = py::make_tuple(w.cell.hi.x, w.cell.hi.y, w.cell.hi.z);
+            d["tilt"] = py::make_tuple(w.cell.tilt.x, w.cell.tilt.y, w.cell.tilt.z);
+            d["volume"] = dem::cell_volume(w.cell);
+            d["strain_rate"] = tensor(w.cell_rate);
+            d["stress"] = tensor(w.cell_stress);
+            return d;
+          },
+          "The periodic cell now ({} without one): lo, hi, tilt (xy, xz, yz), volume, and the velocity gradient and "
+          "the contacts' stress (compression positive) by component")
       .def_property_readonly("settings", [](const World& w) { return w.settings; })
       .def_property_readonly("body_count", [](const World& w) { return w.bodies.size(); })
       .def(

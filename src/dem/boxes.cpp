@@ -30,7 +30,7 @@ Aabb body_box(const ShapeTemplate& t, const Body& b, Real pad) noexcept {
 }  // namespace
 
 std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
-                         BoxCache& cache, int threads) {
+                         BoxCache& cache, int threads, Real drift) {
   const std::size_t n = bodies.size(), old = cache.boxes.size();
   const bool all = old == 0 || old > n;
   if (all) {
@@ -56,7 +56,7 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     const Real dw = b.orientation.w - s * q0.w, dx = b.orientation.x - s * q0.x, dy = b.orientation.y - s * q0.y,
                dz = b.orientation.z - s * q0.z;
     const Real chord = std::sqrt(dw * dw + dx * dx + dy * dy + dz * dz);
-    return (length(b.position - cache.anchor_position[i]) + 2 * chord * reach) / (skin * reach);
+    return (length(b.position - cache.anchor_position[i]) + 2 * chord * reach + drift) / (skin * reach);
   };
   // When one box must be made again, so are those more than half way out of
   // theirs: the sweep that follows then serves them too, instead of running

@@ -107,7 +107,7 @@ std::size_t run_inflows(World& w) {
                                   : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
       if (!due) break;
       if (!looked) {
-        shifts = image_shifts(w.settings.periodic);
+        shifts = image_shifts(w.cell);
         near = bodies_near(w, f, shifts);
         looked = true;
       }

@@ -34,17 +34,6 @@ bool clipped_exactly(const Shape& s) noexcept {
                            std::holds_alternative<Triangle>(s.core));
 }
 
-/// x_c - x_p to the nearest image on the world's periodic axes.
-Vec3 nearest_image(const World& w, Vec3 d) noexcept {
-  const PeriodicCell& cell = w.settings.periodic;
-  for (int k = 0; k < 3; ++k) {
-    if (!cell.axes[k]) continue;
-    const Real period = cell.hi[k] - cell.lo[k];
-    d[k] -= period * std::round(d[k] / period);
-  }
-  return d;
-}
-
 void add_outer(Mat3& m, const Vec3& a, const Vec3& b) noexcept {
   for (int i = 0; i < 3; ++i) m.row[i] += b * a[i];
 }
@@ -112,7 +101,7 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
   std::vector<char> counted(w.bodies.size(), 0);
   // In a periodic world the region also holds the images of the bodies near
   // the cell's faces (a body straddling one fills both sides).
-  const std::vector<Vec3> shifts = image_shifts(w.settings.periodic);
+  const std::vector<Vec3> shifts = image_shifts(w.cell);
   for (std::size_t k = 0; k < w.bodies.size(); ++k) {
     const Body& b = w.bodies[k];
     if (b.fixed) continue;
@@ -132,8 +121,8 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
     if (!first && !second) continue;
     ++m.contacts;
     m.normal_forces.push_back(std::fabs(dot(c.force, c.normal)));
-    if (second) add_outer(sum, nearest_image(w, c.point - w.bodies[c.second].position), c.force), ++ends;
-    if (first) add_outer(sum, nearest_image(w, c.point - w.bodies[c.first].position), -c.force), ++ends;
+    if (second) add_outer(sum, nearest_image(w.cell, c.point - w.bodies[c.second].position), c.force), ++ends;
+    if (first) add_outer(sum, nearest_image(w.cell, c.point - w.bodies[c.first].position), -c.force), ++ends;
   }
   m.coordination = m.grains ? static_cast<Real>(ends) / static_cast<Real>(m.grains) : 0;
   for (const Real f : m.normal_forces) m.mean_normal_force += f;

@@ -1,6 +1,7 @@
 #include "gjkdem/dem/periodic.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <tuple>
 
@@ -29,24 +30,58 @@ std::uint8_t negated(std::uint8_t code) { return static_cast<std::uint8_t>(26 - 
 
 }  // namespace
 
+namespace {
+
+// The lattice vector that brings x into the cell: -floor of each of its
+// coordinates along the edges (independent of one another), on periodic axes.
+Vec3 into_cell(const PeriodicCell& cell, const Vec3& x) {
+  const Vec3 d = x - cell.lo, size = cell.hi - cell.lo;
+  Real f[3] = {0, 0, 0};
+  if (cell.axes[2]) f[2] = d.z / size.z;
+  if (cell.axes[1]) f[1] = (d.y - cell.tilt.z * f[2]) / size.y;
+  if (cell.axes[0]) f[0] = (d.x - cell.tilt.x * f[1] - cell.tilt.y * f[2]) / size.x;
+  int n[3] = {0, 0, 0};
+  for (int a = 0; a < 3; ++a) {
+    if (f[a] >= 0 && f[a] < 1) continue;
+    n[a] = -static_cast<int>(std::floor(f[a]));
+    if (f[a] + n[a] >= 1) --n[a];  // round-off at the face
+  }
+  return lattice_vector(cell, n[0], n[1], n[2]);
+}
+
+}  // namespace
+
+Vec3 nearest_image(const PeriodicCell& cell, Vec3 d) noexcept {
+  for (int a = 2; a >= 0; --a)
+    if (cell.axes[a]) d -= cell_edge(cell, a) * std::round(d[a] / (cell.hi[a] - cell.lo[a]));
+  return d;
+}
+
+Real cell_width(const PeriodicCell& cell, int axis) noexcept {
+  if (cell.tilt == Vec3{}) return cell.hi[axis] - cell.lo[axis];
+  // The volume over the area of the face spanned by the two other edges (a
+  // unit edge standing in on an axis that is not periodic).
+  PeriodicCell unit = cell;
+  for (int a = 0; a < 3; ++a)
+    if (!cell.axes[a]) unit.lo[a] = 0, unit.hi[a] = 1;
+  const Vec3 size = unit.hi - unit.lo;
+  const Vec3 face = cross(cell_edge(unit, (axis + 1) % 3), cell_edge(unit, (axis + 2) % 3));
+  return size.x * size.y * size.z / length(face);
+}
+
 std::size_t wrap_bodies(World& w) {
-  const PeriodicCell& cell = w.settings.periodic;
-  const Vec3 period = cell.hi - cell.lo;
+  const PeriodicCell& cell = w.cell;
   BoxCache& cache = w.work.boxes;
   const bool boxed = cache.boxes.size() == w.bodies.size();
   std::size_t crossed = 0;
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     Body& b = w.bodies[i];
     if (b.fixed) continue;
-    Vec3 move{};
-    for (int a = 0; a < 3; ++a) {
-      if (!cell.axes[a]) continue;
-      if (b.position[a] < cell.lo[a]) move[a] = period[a];
-      else if (b.position[a] >= cell.hi[a]) move[a] = -period[a];
-    }
+    const Vec3 move = into_cell(cell, b.position);
     if (move == Vec3{}) continue;
     ++crossed;
     b.position += move;
+    b.velocity += affine_velocity(w.cell_rate, move);
     if (boxed) {
       cache.anchor_position[i] += move;
       cache.boxes[i].lo += move;
@@ -56,9 +91,97 @@ std::size_t wrap_bodies(World& w) {
   return crossed;
 }
 
+void control_cell(World& w) {
+  const CellControl& control = w.settings.cell_control;
+  Real scale = 0;  // of the servo's errors: the largest target
+  for (int k = 0; k < 6; ++k)
+    if (control.mode[k] == CellMode::Stress) scale = std::fmax(scale, std::fabs(control.value[k]));
+  CellTensor rate{};
+  for (int k = 0; k < 6; ++k) {
+    if (control.mode[k] == CellMode::StrainRate) {
+      rate[k] = control.value[k];
+    } else if (control.mode[k] == CellMode::Stress) {
+      const Real error = (w.cell_stress[k] - control.value[k]) / scale;
+      rate[k] = control.max_strain_rate * std::clamp(error, Real(-1), Real(1));
+    }
+  }
+  CellTensor change;
+  bool changed = false;
+  for (int k = 0; k < 6; ++k) change[k] = rate[k] - w.cell_rate[k], changed |= change[k] != 0;
+  w.cell_rate = rate;
+  if (!changed) return;
+  const Vec3 centre = cell_centre(w.cell);
+  Real added = 0;  // kinetic energy the new field gives the bodies
+  for (Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const Vec3 v = b.velocity + affine_velocity(change, b.position - centre);
+    added += 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+    b.velocity = v;
+  }
+  w.wall_work += added;
+}
+
+bool deform_cell(World& w, Real dt) {
+  PeriodicCell& cell = w.cell;
+  const CellTensor& l = w.cell_rate;
+  const Vec3 centre = cell_centre(cell);
+  // H += dt L H, H upper triangular with diagonal Lx, Ly, Lz and tilts
+  // xy, xz, yz; about the centre, which stays.
+  const Vec3 size = cell.hi - cell.lo;
+  const Vec3 tilt = cell.tilt;
+  const Vec3 new_length{size.x * (1 + dt * l[0]), size.y * (1 + dt * l[1]), size.z * (1 + dt * l[2])};
+  Vec3 new_tilt{tilt.x + dt * (l[0] * tilt.x + l[kXY] * size.y),
+                tilt.y + dt * (l[0] * tilt.y + l[kXY] * tilt.z + l[kXZ] * size.z),
+                tilt.z + dt * (l[1] * tilt.z + l[kYZ] * size.z)};
+  // A tilt past half its edge: the same lattice with the edge taken back.
+  bool flipped = false;
+  const auto take_back = [&](Real& t, Real edge) {
+    if (std::fabs(t) <= 0.5 * edge) return;
+    t -= std::copysign(edge, t);
+    flipped = true;
+  };
+  take_back(new_tilt.y, new_length.x);                                   // c -= a
+  if (std::fabs(new_tilt.z) > 0.5 * new_length.y) {                      // c -= b
+    const Real s = std::copysign(Real(1), new_tilt.z);
+    new_tilt.z -= s * new_length.y, new_tilt.y -= s * new_tilt.x, flipped = true;
+    take_back(new_tilt.y, new_length.x);
+  }
+  take_back(new_tilt.x, new_length.x);                                   // b -= a
+  cell.tilt = new_tilt;
+  for (int a = 0; a < 3; ++a) {
+    if (!cell.axes[a]) continue;
+    cell.lo[a] = centre[a] - 0.5 * new_length[a];
+    cell.hi[a] = cell.lo[a] + new_length[a];
+  }
+  // The centre of the tilted cell is lo + (a + b + c) / 2: keep it.
+  const Vec3 moved = cell_centre(cell) - centre;
+  cell.lo -= moved, cell.hi -= moved;
+  return flipped;
+}
+
+Real cell_drift(const World& w) noexcept {
+  const PeriodicCell& searched = w.work.search_cell;
+  if (!searched.active()) return 0;
+  // An image is at most one edge vector away on each axis: its drift is at
+  // most the sum of the edges' changes.
+  Real drift = 0;
+  for (int a = 0; a < 3; ++a)
+    if (w.cell.axes[a]) drift += length(cell_edge(w.cell, a) - cell_edge(searched, a));
+  return drift;
+}
+
+Real shortest_period(const World& w) noexcept {
+  Real reach = 0;  // of moving bodies, and of those inflows will insert
+  for (const Body& b : w.bodies)
+    if (!b.fixed) reach = std::fmax(reach, w.templates[b.shape].reach);
+  for (const Inflow& f : w.inflows)
+    for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
+  return 4 * reach * (1 + w.settings.box_skin);
+}
+
 void find_periodic_candidates(World& w, int threads) {
   StepWorkspace& work = w.work;
-  const PeriodicCell& cell = w.settings.periodic;
+  const PeriodicCell& cell = work.search_cell;
   const std::vector<Aabb>& boxes = work.boxes.boxes;
   Vec3 widest{};
   for (const std::uint32_t i : work.moving) widest = max(widest, boxes[i].hi - boxes[i].lo);
@@ -68,7 +191,30 @@ void find_periodic_candidates(World& w, int threads) {
   std::vector<std::uint32_t>& sweep_body = work.image_body;
   std::vector<std::uint8_t>& sweep_image = work.image_code;
   sweep_boxes.clear(), sweep_body.clear(), sweep_image.clear();
+  // A sheared cell: every image whose box reaches the cell's bounding box
+  // widened by the widest box (a box there may meet it).
+  const bool sheared = cell.tilt != Vec3{};
+  Aabb reach{cell.lo, cell.lo};
+  if (sheared) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p = cell.lo + lattice_vector(cell, corner & 1, corner >> 1 & 1, corner >> 2 & 1);
+      reach.lo = min(reach.lo, p), reach.hi = max(reach.hi, p);
+    }
+    reach.lo -= widest, reach.hi += widest;
+  }
   const auto images = [&](const Aabb& box, auto&& visit) {
+    if (sheared) {
+      for (std::uint8_t code = 0; code < 27; ++code) {
+        const int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
+        if ((shift[0] && !cell.axes[0]) || (shift[1] && !cell.axes[1]) || (shift[2] && !cell.axes[2])) continue;
+        const Vec3 s = image_shift(cell, code);
+        const Aabb moved{box.lo + s, box.hi + s};
+        if (code == kNoImage || (moved.lo.x <= reach.hi.x && moved.hi.x >= reach.lo.x && moved.lo.y <= reach.hi.y &&
+                                 moved.hi.y >= reach.lo.y && moved.lo.z <= reach.hi.z && moved.hi.z >= reach.lo.z))
+          visit(moved, code);
+      }
+      return;
+    }
     int options[3][3], count[3];
     for (int a = 0; a < 3; ++a) {
       count[a] = 0;

@@ -104,6 +104,13 @@ std::string describe_failure(const World& w, const StepReport& r) {
     case StepStatus::UnsupportedPair:
       return "the contact model has no computation for the pair " + name_of(w, r.id_a) + " and " +
              name_of(w, r.id_b) + " at t = " + number_text(w.time) + " s";
+    case StepStatus::CellTooShort: {
+      const int a = static_cast<int>(r.id_a);
+      return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +
+             number_text(cell_width(w.cell, a)) + " m at t = " + number_text(w.time) +
+             " s, no longer above four times the largest body's reach (" + number_text(shortest_period(w)) +
+             " m): start from a larger cell, or compress it less";
+    }
   }
   return "step failed";
 }

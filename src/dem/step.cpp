@@ -44,7 +44,9 @@ void find_candidates(World& w, int threads) {
   }
   work.moving_boxes.resize(work.moving.size());
   for (std::size_t k = 0; k < work.moving.size(); ++k) work.moving_boxes[k] = boxes[work.moving[k]];
-  if (w.settings.periodic.active()) {
+  if (w.cell.active()) {
+    if (work.search_cell_restored) work.search_cell_restored = false;  // the search the checkpoint's run made
+    else work.search_cell = w.cell;
     find_periodic_candidates(w, threads);
     work.candidates_current = true;
     return;
@@ -67,7 +69,7 @@ void find_candidates(World& w, int threads) {
 
 // Where b's image lies from b in a periodic world (zero otherwise).
 Vec3 shift_of(const World& w, const StepContact& c) {
-  return c.image == kNoImage ? Vec3{} : image_shift(w.settings.periodic, c.image);
+  return c.image == kNoImage ? Vec3{} : image_shift(w.cell, c.image);
 }
 
 // A sphere about each part of a body, world frame (one for a convex body).
@@ -177,14 +179,16 @@ ContactSide plane_side(const World& w, const PlaneWall& p) {
   return driven_side(f, f.center, f.velocity);
 }
 
-// `part`: of a compound, whose own radius of curvature and volume the laws use.
+// `part`: of a compound, whose own radius of curvature and volume the laws
+// use; `shift`: of b's image, which moves with b and the deforming cell.
 ContactSide side_of(const World& w, const Body& b, std::uint32_t part, const Vec3& shift = {}) {
-  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position + shift, b.velocity) : fixed_side();
+  const Vec3 velocity = b.velocity + affine_velocity(w.cell_rate, shift);
+  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position + shift, velocity) : fixed_side();
   ContactSide s;
   const ShapeTemplate& t = w.templates[b.shape];
   s.moving = true;
   s.position = b.position + shift;
-  s.velocity = b.velocity;
+  s.velocity = velocity;
   s.spin = angular_velocity_of(w, b);
   s.mass = mass_of(w, b);
   s.curvature_radius = t.parts.empty() ? t.curvature_radius : t.parts[part].curvature_radius;
@@ -213,7 +217,8 @@ StepReport compute_forces(World& w, Real dt) {
       else if (work.static_ready) work.moving.push_back(static_cast<std::uint32_t>(i));
     }
   }
-  const std::size_t updated = update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads);
+  const std::size_t updated =
+      update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, cell_drift(w));
   if (updated > 0 || !work.static_ready || !work.candidates_current) find_candidates(w, threads);
   list_contacts(w);
   align_pair_states(work.keys, w.pairs);
@@ -260,6 +265,9 @@ StepReport compute_forces(World& w, Real dt) {
   StepStats& stats = w.stats;
   stats = {};
   stats.box_updates = static_cast<int>(updated);
+  // The periodic cell's stress: sum of f x branch (b's centre, or image,
+  // from a's centre or the wall's contact point).
+  CellTensor virial{};
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
     if (!c.active) {
@@ -267,13 +275,21 @@ StepReport compute_forces(World& w, Real dt) {
       continue;
     }
     Body& b = w.bodies[c.b];
+    const Vec3 shift = shift_of(w, c);
     b.force += c.force;
-    b.torque += c.torque - cross(b.position + shift_of(w, c), c.force);
+    b.torque += c.torque - cross(b.position + shift, c.force);
     if (!c.a_is_plane) {
       Body& a = w.bodies[c.a];
       a.force -= c.force;
       a.torque -= c.torque - cross(a.position, c.force);
     }
+    const Vec3 branch = b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position);
+    virial[0] += c.force.x * branch.x, virial[1] += c.force.y * branch.y, virial[2] += c.force.z * branch.z;
+    virial[kXY] += 0.5 * (c.force.x * branch.y + c.force.y * branch.x);
+    virial[kXZ] += 0.5 * (c.force.x * branch.z + c.force.z * branch.x);
+    virial[kYZ] += 0.5 * (c.force.y * branch.z + c.force.z * branch.y);
+    // A deforming cell works on the bodies through the images' motion.
+    if (c.image != kNoImage) stats.wall_power -= dot(c.force, affine_velocity(w.cell_rate, shift));
     w.pairs[k].history = c.history;
     // Power of a driven side on the other: its velocity field against the
     // force and torque it exerts (c.force and c.torque act on b).
@@ -290,6 +306,8 @@ StepReport compute_forces(World& w, Real dt) {
     ++stats.contacts;
     if (c.a_is_plane || w.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
   }
+  if (w.cell.active())
+    for (int k = 0; k < 6; ++k) w.cell_stress[k] = virial[k] / cell_volume(w.cell);
   w.forces_current = true;
   return {};
 }
@@ -309,8 +327,19 @@ StepReport step(World& w, Real dt) {
   }
   const int threads = thread_count(w.settings.threads);
   kick(w.bodies, w.templates, w.materials, dt / 2, threads);
+  const bool deforming = w.settings.cell_control.deforms();
+  if (deforming) control_cell(w);
   drift(w.bodies, w.templates, w.materials, dt, threads);
-  if (w.settings.periodic.active() && wrap_bodies(w) > 0) w.work.candidates_current = false;  // images changed
+  if (deforming) {
+    if (deform_cell(w, dt)) w.work.candidates_current = false;  // a tilt taken back: images renamed
+    const Real shortest = shortest_period(w);
+    for (int a = 0; a < 3; ++a)
+      if (w.cell.axes[a] && !(cell_width(w.cell, a) > shortest)) {
+        w.forces_current = false;
+        return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0};
+      }
+  }
+  if (w.cell.active() && wrap_bodies(w) > 0) w.work.candidates_current = false;  // images changed
   const Real power_before = w.stats.wall_power;
   w.time += dt;
   const std::size_t before = w.bodies.size();

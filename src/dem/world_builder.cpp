@@ -42,6 +42,7 @@ WorldBuilder::WorldBuilder(World world) : settings_(world.settings), world_(std:
   }
   prepared_templates_ = world_.templates.size();
   world_.forces_current = false;
+  continued_ = true;  // its cell keeps the deformation it has
 }
 
 std::uint32_t WorldBuilder::add_material(const Material& m) {
@@ -523,26 +524,51 @@ void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std:
 }
 
 // A periodic cell must hold every body with room to spare: a pair may meet
-// through one image only. Moving bodies start inside it.
+// through one image only. Moving bodies start inside it. A deforming cell
+// deforms on periodic axes; a servo needs the cell's volume, so all three.
 void WorldBuilder::check_periodic_cell() {
   const PeriodicCell& cell = settings_.periodic;
+  const CellControl& control = settings_.cell_control;
+  const char* names[3] = {"x", "y", "z"};
+  for (int k = 0; k < 6; ++k) {
+    if (control.mode[k] == CellMode::Fixed) continue;
+    // A component deforms the cell along its first axis with the position on its second.
+    const int along = k < 3 ? k : k == kYZ ? 1 : 0, across = k < 3 ? k : k == kXY ? 1 : 2;
+    if (!cell.axes[along] || !cell.axes[across])
+      throw BuildError(std::string("the periodic cell's control names ") + kCellComponents[k] +
+                       ", but the cell is not periodic on " + names[cell.axes[along] ? across : along]);
+    if (!std::isfinite(control.value[k]))
+      throw BuildError(std::string("the periodic cell's control on ") + kCellComponents[k] + " must be finite");
+    if (control.mode[k] == CellMode::Stress && k < 3 && !(control.value[k] > 0))
+      throw BuildError(std::string("the periodic cell's target stress on ") + kCellComponents[k] +
+                       " must be > 0 (Pa, compression positive)");
+  }
+  if (cell.tilt != Vec3{}) throw BuildError("a periodic cell starts unsheared (tilts zero)");
+  if (control.servo()) {
+    if (!(cell.axes[0] && cell.axes[1] && cell.axes[2]))
+      throw BuildError("a periodic cell driven to a stress must be periodic on x, y and z (the stress is the "
+                       "contacts' over the cell's volume)");
+    if (!(control.max_strain_rate > 0) || !std::isfinite(control.max_strain_rate))
+      throw BuildError("a periodic cell driven to a stress needs max_strain_rate > 0 (1/s)");
+    bool normal = false;
+    for (int a = 0; a < 3; ++a) normal = normal || control.mode[a] == CellMode::Stress;
+    if (!normal)
+      throw BuildError("a periodic cell driven to a shear stress needs a normal stress target too (its size "
+                       "scales the servo)");
+  }
+  if (!continued_) world_.cell = cell, world_.cell_rate = {}, world_.cell_stress = {};
   if (!cell.active()) return;
-  Real reach = 0;  // of moving bodies, and of those inflows will insert
-  for (const Body& b : world_.bodies)
-    if (!b.fixed) reach = std::fmax(reach, world_.templates[b.shape].reach);
-  for (const Inflow& f : world_.inflows)
-    for (const std::uint32_t t : f.templates) reach = std::fmax(reach, world_.templates[t].reach);
   for (int a = 0; a < 3; ++a) {
     if (!cell.axes[a]) continue;
-    const char* name = a == 0 ? "x" : a == 1 ? "y" : "z";
     if (!(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a]))
-      throw BuildError(std::string("the periodic cell's ") + name + " range must be finite with max > min");
-    const Real need = 4 * reach * (1 + settings_.box_skin);
-    if (!(cell.hi[a] - cell.lo[a] > need))
-      throw BuildError(std::string("the periodic cell is ") + number_text(cell.hi[a] - cell.lo[a]) + " m long on " +
-                       name + ": it must exceed four times the largest body's reach (" + number_text(need) + " m)");
+      throw BuildError(std::string("the periodic cell's ") + names[a] + " range must be finite with max > min");
+    const Real need = shortest_period(world_), length = cell_width(world_.cell, a);
+    if (!(length > need))
+      throw BuildError(std::string("the periodic cell is ") + number_text(length) + " m wide across " +
+                       names[a] + ": it must exceed four times the largest body's reach (" + number_text(need) + " m)");
   }
   world_.settings.periodic = cell;
+  world_.settings.cell_control = control;
   wrap_bodies(world_);
 }
 
@@ -568,6 +594,7 @@ World WorldBuilder::build() {
   explicit_.clear();
   groups_ = 0;
   prepared_templates_ = 0;
+  continued_ = false;
   return out;
 }
 

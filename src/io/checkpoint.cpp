@@ -15,13 +15,14 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 4. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 5. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
-    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; BODY count, per body id(u64) shape(u32) "
+    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
+    "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); BODY count, per body id(u64) shape(u32) "
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
-    "spring(3) twist roll(3); LOGS trace_bytes(u64) energy_bytes(u64) wall_seconds count, per frame name(u64 "
+    "spring(3) twist roll(3); LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
     "length, bytes) time.";
 
 class Out {
@@ -149,6 +150,12 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   o.u64(static_cast<std::uint64_t>(w.stats.contacts)), o.u64(static_cast<std::uint64_t>(w.stats.wall_contacts));
   o.real(w.stats.wall_power), o.real(w.wall_work);
   o.end(s);
+  s = o.begin("CELL");
+  o.vec(w.cell.lo), o.vec(w.cell.hi), o.vec(w.cell.tilt);
+  for (const Real v : w.cell_rate) o.real(v);
+  for (const Real v : w.cell_stress) o.real(v);
+  o.vec(w.work.search_cell.lo), o.vec(w.work.search_cell.hi), o.vec(w.work.search_cell.tilt);
+  o.end(s);
   s = o.begin("BODY");
   o.u64(w.bodies.size());
   for (const dem::Body& b : w.bodies) {
@@ -179,7 +186,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   }
   o.end(s);
   s = o.begin("LOGS");
-  o.u64(c.logs.trace_bytes), o.u64(c.logs.energy_bytes), o.real(c.logs.wall_seconds);
+  o.u64(c.logs.trace_bytes), o.u64(c.logs.energy_bytes), o.u64(c.logs.cell_bytes), o.real(c.logs.wall_seconds);
   o.u64(c.logs.frames.size());
   for (const auto& [name, time] : c.logs.frames) o.text(name), o.real(time);
   o.end(s);
@@ -234,6 +241,19 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   const Real wall_work = in.real();
   in.close(end, "STAT");
   if (!std::isfinite(stats.wall_power) || !std::isfinite(wall_work)) in.fail("the work of driven walls is not finite");
+  end = in.section("CELL");
+  dem::PeriodicCell cell = w.settings.periodic, searched = w.settings.periodic;
+  cell.lo = in.vec(), cell.hi = in.vec(), cell.tilt = in.vec();
+  dem::CellTensor rate, stress;
+  for (Real& v : rate) v = in.real();
+  for (Real& v : stress) v = in.real();
+  searched.lo = in.vec(), searched.hi = in.vec(), searched.tilt = in.vec();
+  in.close(end, "CELL");
+  bool valid = std::isfinite(cell.tilt.x) && std::isfinite(cell.tilt.y) && std::isfinite(cell.tilt.z);
+  for (int k = 0; k < 6; ++k) valid = valid && std::isfinite(rate[k]) && std::isfinite(stress[k]);
+  for (int a = 0; a < 3; ++a)
+    if (cell.axes[a]) valid = valid && cell.hi[a] > cell.lo[a] && std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]);
+  if (!valid) in.fail("the periodic cell is not valid");
 
   // Into a copy: the world is changed only once everything has been read.
   // Bodies beyond the scene's were inserted by its inflows: moving, of the
@@ -299,7 +319,8 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
     if (!(pairs[k - 1].key < pairs[k].key)) in.fail("pairs out of order");
   in.close(end, "PAIR");
   end = in.section("LOGS");
-  c.logs.trace_bytes = in.u64(), c.logs.energy_bytes = in.u64(), c.logs.wall_seconds = in.real();
+  c.logs.trace_bytes = in.u64(), c.logs.energy_bytes = in.u64(), c.logs.cell_bytes = in.u64();
+  c.logs.wall_seconds = in.real();
   c.logs.frames.resize(in.count(16));
   for (auto& [frame, t] : c.logs.frames) frame = in.text(), t = in.real();
   in.close(end, "LOGS");
@@ -312,10 +333,15 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.forces_current = forces_current;
   w.stats = stats;
   w.wall_work = wall_work;
+  w.cell = cell;
+  w.cell_rate = rate;
+  w.cell_stress = stress;
   w.work = {};
   dem::place_driven(w);  // planes and motion frames (driven bodies come back as saved)
   if (anchors > 0) {
     w.work.boxes = std::move(boxes);
+    w.work.search_cell = searched;
+    w.work.search_cell_restored = searched.active();
     dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.work.boxes);
   }
   return c;

@@ -20,7 +20,7 @@ void prepare_run_folder(const RunPaths& paths, bool overwrite) {
   if (fs::exists(paths.dir, ec) && !fs::is_directory(paths.dir, ec))
     throw RunFolderError(paths.dir.string() + " exists and is not a folder");
   std::vector<fs::path> ours;
-  for (const fs::path& p : {paths.run_json(), paths.scene(), paths.trace(), paths.energy(), paths.checkpoint(),
+  for (const fs::path& p : {paths.run_json(), paths.scene(), paths.trace(), paths.energy(), paths.cell(), paths.checkpoint(),
                             fs::path(paths.checkpoint().string() + ".tmp"), fs::path(paths.run_json().string() + ".tmp")})
     if (fs::exists(p, ec)) ours.push_back(p);
   if (fs::is_directory(paths.frames(), ec))
@@ -153,10 +153,14 @@ void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
   append(energy_row(w.time, e, w.stats.contacts));
 }
 
+void CellWriter::on_output(const dem::World& w, const dem::RunState&) {
+  if (w.cell.active()) append(cell_row(w));
+}
+
 Checkpointer::Checkpointer(fs::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,
-                           const CsvLog& trace, const CsvLog& energy, double wall_before)
+                           const CsvLog& trace, const CsvLog& energy, const CsvLog& cell, double wall_before)
     : file_(std::move(file)), every_(every), fingerprint_(fingerprint), frames_(frames), trace_(trace),
-      energy_(energy), wall_before_(wall_before), started_(std::chrono::steady_clock::now()) {}
+      energy_(energy), cell_(cell), wall_before_(wall_before), started_(std::chrono::steady_clock::now()) {}
 
 double Checkpointer::wall_seconds() const {
   return wall_before_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
@@ -165,7 +169,7 @@ double Checkpointer::wall_seconds() const {
 void Checkpointer::save(const dem::World& w, const dem::RunState& state) {
   Checkpoint c;
   c.run = state;
-  c.logs = {trace_.bytes(), energy_.bytes(), wall_seconds(), frames_.frames};
+  c.logs = {trace_.bytes(), energy_.bytes(), cell_.bytes(), wall_seconds(), frames_.frames};
   save_checkpoint(file_, w, c, fingerprint_);
 }
 
@@ -231,16 +235,18 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
     : frames_(folder.frames(), world, options.frames),
       view_(folder.view(), world, options.view, restored ? restored->run.outputs : 0),
       trace_(options.traced),
-      checkpoints_(folder.checkpoint(), options.checkpoint_every, options.fingerprint, frames_, trace_, energy_,
+      checkpoints_(folder.checkpoint(), options.checkpoint_every, options.fingerprint, frames_, trace_, energy_, cell_,
                    restored ? restored->logs.wall_seconds : 0),
       info_(folder.run_json(), options.info_json, checkpoints_) {
   if (restored) {
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);
     energy_.resume(folder.energy(), restored->logs.energy_bytes);
+    if (world.cell.active()) cell_.resume(folder.cell(), restored->logs.cell_bytes);
   } else {
     trace_.start(folder.trace(), trace_header());
     energy_.start(folder.energy(), energy_header());
+    if (world.cell.active()) cell_.start(folder.cell(), cell_header());
   }
   // After a kill, run.json tells how far the last checkpoint got.
   checkpoints_.saved = [this](const dem::World& w, const dem::RunState& s) { info_.started(w, s); };

@@ -188,6 +188,29 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
 
 std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy\n"; }
 
+std::string cell_header() {
+  return "time,lx,ly,lz,tilt_xy,tilt_xz,tilt_yz,volume,rate_xx,rate_yy,rate_zz,rate_xy,rate_xz,rate_yz,stress_xx,"
+         "stress_yy,stress_zz,stress_xy,stress_xz,stress_yz\n";
+}
+
+std::string cell_row(const dem::World& w) {
+  const dem::PeriodicCell& c = w.cell;
+  const Vec3 size = c.hi - c.lo;
+  std::string s;
+  append_number(s, w.time);
+  for (const Real v : {size.x, size.y, size.z, c.tilt.x, c.tilt.y, c.tilt.z, dem::cell_volume(c)}) {
+    s += ',';
+    append_number(s, v);
+  }
+  for (const dem::CellTensor* t : {&w.cell_rate, &w.cell_stress})
+    for (const Real v : *t) {
+      s += ',';
+      append_number(s, v);
+    }
+  s += "\n";
+  return s;
+}
+
 std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   std::string s;
   for (Real v : {time, e.kinetic, e.potential, e.elastic, e.dissipated}) {

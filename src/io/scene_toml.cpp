@@ -289,8 +289,49 @@ class SceneBuilder {
         settings_.periodic.hi[a] = range[1];
         periodic[names[a]] = {range[0], range[1]};
       }
-      p.finish();
       if (!settings_.periodic.active()) r.fail("periodic", "needs at least one axis, e.g. { x = [0.0, 0.1] }");
+      // How the cell deforms: per component a strain rate or a target stress.
+      dem::CellControl& control = settings_.cell_control;
+      const auto components = [&](const char* key, dem::CellMode mode, const char* example) {
+        const toml::table* t = p.table(key);
+        if (!t) return;
+        TableReader q(*t, p.where() + "." + key);
+        Json given = Json::object();
+        for (int k = 0; k < 6; ++k) {
+          const char* name = dem::kCellComponents[k];
+          const std::optional<Real> v = q.number(name);
+          if (!v) continue;
+          for (const char axis : std::string_view(name))
+            if (!settings_.periodic.axes[axis - 'x']) q.fail(name, std::string("the cell is not periodic on ") + axis);
+          if (control.mode[k] != dem::CellMode::Fixed)
+            q.fail(name, "a component takes either a strain rate or a stress, not both");
+          if (mode == dem::CellMode::Stress && k < 3 && !(*v > 0)) q.fail(name, "must be > 0 (Pa, compression positive)");
+          control.mode[k] = mode;
+          control.value[k] = *v;
+          given[name] = *v;
+        }
+        q.finish();
+        if (given.empty()) p.fail(key, std::string("needs at least one component, e.g. ") + example);
+        periodic[key] = given;
+      };
+      components("strain_rate", dem::CellMode::StrainRate, "{ z = -0.1 } or { xz = 1.0 }");
+      components("stress", dem::CellMode::Stress, "{ x = 1.0e4, y = 1.0e4, z = 1.0e4 }");
+      if (const std::optional<Real> rate = p.number("max_strain_rate")) {
+        if (!control.servo()) p.fail("max_strain_rate", "bounds the servo of a cell driven to a stress: give stress too");
+        if (!(*rate > 0)) p.fail("max_strain_rate", "must be > 0 (1/s)");
+        control.max_strain_rate = *rate;
+        periodic["max_strain_rate"] = *rate;
+      } else if (control.servo()) {
+        p.fail("stress", "needs max_strain_rate too (1/s): the servo's largest strain rate");
+      }
+      if (control.servo()) {
+        if (!(settings_.periodic.axes[0] && settings_.periodic.axes[1] && settings_.periodic.axes[2]))
+          p.fail("stress", "needs a cell periodic on x, y and z (the stress is the contacts' over the cell's volume)");
+        if (control.mode[0] != dem::CellMode::Stress && control.mode[1] != dem::CellMode::Stress &&
+            control.mode[2] != dem::CellMode::Stress)
+          p.fail("stress", "needs a normal stress (x, y or z) besides shear ones: its size scales the servo");
+      }
+      p.finish();
     }
     r.finish();
     resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},

@@ -218,7 +218,7 @@ TEST(ReaderFuzz, CheckpointsAreRestoredOrRefusedWithACheckpointError) {
   dem::World w = built;
   dem::RunState run = dem::plan_run(0.02, 1e-4, 0.01);
   dem::run(w, run, {});
-  const std::string good = encode_checkpoint(w, {run, {1, 2, 3, {{"frame_000000.vtk", 0.0}}}}, 9);
+  const std::string good = encode_checkpoint(w, {run, {1, 2, 0, 3, {{"frame_000000.vtk", 0.0}}}}, 9);
   int refused = 0, unchecked = 0;
   for (int trial = 0; trial < 1500; ++trial) {
     std::string bad = good;

@@ -597,6 +597,22 @@ region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
             "simulation.periodic.x: must be [min, max] with max > min"},
         Bad{"periodic_too_short", "[simulation]\nduration = 1.0\nperiodic = { x = [0.0, 0.05] }\n" + kNoSim + kCube,
             "it must exceed four times the largest body's reach"},
+        Bad{"cell_rate_not_periodic", "[simulation]\nduration = 1.0\nperiodic = { x = [-0.1, 0.1], strain_rate = { xz = 1.0 } }\n" + kNoSim + kCube,
+            "simulation.periodic.strain_rate.xz: the cell is not periodic on z"},
+        Bad{"cell_both", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstrain_rate = { x = -0.1 }\nstress = { x = 1.0e4 }\nmax_strain_rate = 1.0\n" + kNoSim + kCube,
+            "simulation.periodic.stress.x: a component takes either a strain rate or a stress, not both"},
+        Bad{"cell_no_max_rate", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstress = { x = 1.0e4 }\n" + kNoSim + kCube,
+            "simulation.periodic.stress: needs max_strain_rate too"},
+        Bad{"cell_tension", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstress = { x = -1.0e4 }\nmax_strain_rate = 1.0\n" + kNoSim + kCube,
+            "simulation.periodic.stress.x: must be > 0"},
+        Bad{"cell_shear_only", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstress = { xz = 0.0 }\nmax_strain_rate = 1.0\n" + kNoSim + kCube,
+            "simulation.periodic.stress: needs a normal stress"},
+        Bad{"cell_stress_not_3d", "[simulation]\nduration = 1.0\nperiodic = { x = [-0.1, 0.1], stress = { x = 1.0e4 }, max_strain_rate = 1.0 }\n" + kNoSim + kCube,
+            "simulation.periodic.stress: needs a cell periodic on x, y and z"},
+        Bad{"cell_unknown_component", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstrain_rate = { zx = 1.0 }\n" + kNoSim + kCube,
+            "simulation.periodic.strain_rate: unknown key 'zx'"},
+        Bad{"cell_max_rate_alone", "[simulation]\nduration = 1.0\n[simulation.periodic]\nx = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nmax_strain_rate = 1.0\n" + kNoSim + kCube,
+            "simulation.periodic.max_strain_rate: bounds the servo"},
         Bad{"motion_nan", kHead + kCube + kPlane + "motion = { angular_velocity = [nan, 0.0, 0.0] }\n",
             "wall[0].motion.angular_velocity: must be finite"},
         // Issue 11: limits stated and checked before anything is drawn.
@@ -645,4 +661,21 @@ material = "rock"
     [](const ::testing::TestParamInfo<Bad>& param_info) { return param_info.param.name; });
 
 }  // namespace
+TEST(Scene, ADeformingPeriodicCellIsRead) {
+  const Scene s = load_scene("[simulation]\nduration = 1.0\ngravity = [0.0, 0.0, 0.0]\n[simulation.periodic]\n"
+                             "x = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstrain_rate = { xz = 2.0 }\n"
+                             "stress = { x = 1.0e4, y = 2.0e4, z = 3.0e4, xy = 0.0 }\nmax_strain_rate = 0.5\n" +
+                                 kNoSim + kCube,
+                             "cell", ".");
+  const dem::CellControl& c = s.world.settings.cell_control;
+  EXPECT_EQ(c.mode[dem::kXZ], dem::CellMode::StrainRate);
+  EXPECT_EQ(c.value[dem::kXZ], 2.0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(c.mode[k], dem::CellMode::Stress);
+  EXPECT_EQ(c.value[2], 3e4);
+  EXPECT_EQ(c.mode[dem::kXY], dem::CellMode::Stress);
+  EXPECT_EQ(c.mode[dem::kYZ], dem::CellMode::Fixed);
+  EXPECT_EQ(c.max_strain_rate, 0.5);
+  EXPECT_EQ(s.world.cell.hi.x, 0.1);
+}
+
 }  // namespace gjkdem::io

@@ -31,9 +31,11 @@ struct BoxCache {
 /// Brings the boxes of `bodies` up to date: every box when the cache is
 /// empty or holds more bodies (then fixed bodies too), else those of bodies
 /// added since and of moving bodies that may have left theirs. `skin` is relative to each template's reach.
+/// `drift` (m) is added to every moving body's motion: how far periodic
+/// images may have moved since the candidates were found (a deforming cell).
 /// Returns how many boxes were recomputed.
 std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
-                         BoxCache& cache, int threads);
+                         BoxCache& cache, int threads, Real drift = 0);
 
 /// Remakes every box from the anchors held in `cache` (restoring a
 /// checkpoint): each box comes out with the same bits as when it was made.

@@ -40,6 +40,11 @@ struct StepWorkspace {
   std::vector<BodyPair> candidates;  ///< body index pairs (i < j) whose boxes overlap, sorted
   std::vector<std::uint8_t> candidate_images;  ///< periodic worlds: the image of each pair's second body
   bool candidates_current = false;   ///< no box changed since the candidates were found
+  /// Periodic worlds: the cell the candidates were found in (images lie one
+  /// of its periods away); a checkpoint restores it, with the box anchors,
+  /// so that a continued run finds the same candidates.
+  PeriodicCell search_cell;
+  bool search_cell_restored = false;
   std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread

@@ -50,6 +50,7 @@ struct StepStats {
 enum class StepStatus {
   Ok,
   UnsupportedPair,  ///< the contact model has no computation for this pair of shapes
+  CellTooShort,     ///< a deforming periodic cell became shorter than shortest_period (periodic.hpp)
 };
 
 /// The outcome of a step; on failure the pair at fault (ids).
@@ -75,6 +76,14 @@ struct World {
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
   std::vector<InflowState> inflow_states;  ///< one per inflow
+  /// The periodic cell now: the settings' cell, deformed by its control
+  /// (periodic.hpp); its velocity gradient in the last step (1/s) and the
+  /// contacts' stress at the last force evaluation (Pa, compression
+  /// positive: the symmetric part of sum f x branch over the contacts,
+  /// divided by the cell's volume).
+  PeriodicCell cell;
+  CellTensor cell_rate{};
+  CellTensor cell_stress{};
   StepStats stats;
   // Scratch of a step, kept between steps to reuse its memory.
   StepWorkspace work;

@@ -182,6 +182,7 @@ class WorldBuilder {
   std::vector<std::pair<std::uint32_t, Transform>> shared_;  ///< add_shape: template and shape pose
   bool check_overlaps_ = true;
   std::uint32_t groups_ = 0;
+  bool continued_ = false;              ///< made from a world: its periodic cell is state to keep
 };
 
 }  // namespace gjkdem::dem

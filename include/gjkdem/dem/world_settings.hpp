@@ -38,7 +38,8 @@ struct WorldSettings {
   /// and recomputed only when the body may have left its box (boxes.hpp).
   Real box_skin = 0.05;
   int threads = 1;               ///< OpenMP threads for a step (0: all cores)
-  PeriodicCell periodic;         ///< periodic boundaries (periodic.hpp); none by default
+  PeriodicCell periodic;         ///< periodic boundaries (periodic.hpp), the cell at the start; none by default
+  CellControl cell_control;      ///< how the periodic cell deforms (periodic.hpp); it does not by default
 };
 
 }  // namespace gjkdem::dem

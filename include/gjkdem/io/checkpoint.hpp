@@ -29,12 +29,13 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 /// What a run folder keeps beside the world and the run state.
 struct RunLogState {
   std::uint64_t trace_bytes = 0;   ///< size of trace.csv at the checkpoint
   std::uint64_t energy_bytes = 0;  ///< size of energy.csv then
+  std::uint64_t cell_bytes = 0;    ///< size of cell.csv then (periodic worlds)
   double wall_seconds = 0;         ///< run time before this point
   std::vector<std::pair<std::string, Real>> frames;  ///< frame files and times so far
 };

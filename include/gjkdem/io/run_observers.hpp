@@ -26,6 +26,7 @@ struct RunPaths {
   std::filesystem::path checkpoint() const { return dir / "checkpoint.bin"; }
   std::filesystem::path trace() const { return dir / "trace.csv"; }
   std::filesystem::path energy() const { return dir / "energy.csv"; }
+  std::filesystem::path cell() const { return dir / "cell.csv"; }
   std::filesystem::path run_json() const { return dir / "run.json"; }
   std::filesystem::path scene() const { return dir / "scene.toml"; }
 };
@@ -93,12 +94,19 @@ class EnergyWriter : public CsvLog {
   void on_output(const dem::World& world, const dem::RunState& state) override;
 };
 
+/// cell.csv: a periodic world's cell and stress at every output (nothing
+/// in other worlds).
+class CellWriter : public CsvLog {
+ public:
+  void on_output(const dem::World& world, const dem::RunState& state) override;
+};
+
 /// checkpoint.bin every `every` outputs (0: never) and when the run is
 /// stopped, so that it can continue.
 class Checkpointer : public dem::RunObserver {
  public:
   Checkpointer(std::filesystem::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,
-               const CsvLog& trace, const CsvLog& energy, double wall_before);
+               const CsvLog& trace, const CsvLog& energy, const CsvLog& cell, double wall_before);
   void on_output(const dem::World& world, const dem::RunState& state) override;
   void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
   /// Called after each checkpoint (run.json then records how far the run got).
@@ -112,7 +120,7 @@ class Checkpointer : public dem::RunObserver {
   int every_;
   std::uint64_t fingerprint_;
   const FrameWriter& frames_;
-  const CsvLog &trace_, &energy_;
+  const CsvLog &trace_, &energy_, &cell_;
   double wall_before_;
   std::chrono::steady_clock::time_point started_;
 };
@@ -151,7 +159,7 @@ struct RunWriterOptions {
 };
 
 /// Every writer of a run folder, made together: frames, trace.csv,
-/// view/, energy.csv, checkpoints and run.json. A new run writes the logs' headers;
+/// view/, energy.csv, cell.csv (periodic worlds), checkpoints and run.json. A new run writes the logs' headers;
 /// a resumed one takes the frames, logs and wall clock up from the
 /// checkpoint the world was restored from.
 class RunFolderWriters {
@@ -163,7 +171,7 @@ class RunFolderWriters {
   RunFolderWriters& operator=(const RunFolderWriters&) = delete;
 
   /// In the order a run calls them.
-  std::vector<dem::RunObserver*> observers() { return {&frames_, &view_, &trace_, &energy_, &checkpoints_, &info_}; }
+  std::vector<dem::RunObserver*> observers() { return {&frames_, &view_, &trace_, &energy_, &cell_, &checkpoints_, &info_}; }
   RunInfoWriter& info() { return info_; }
   double wall_seconds() const { return checkpoints_.wall_seconds(); }
 
@@ -175,6 +183,7 @@ class RunFolderWriters {
   ViewWriter view_;
   TraceWriter trace_;
   EnergyWriter energy_;
+  CellWriter cell_;
   Checkpointer checkpoints_;
   RunInfoWriter info_;
 };

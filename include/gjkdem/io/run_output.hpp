@@ -64,4 +64,10 @@ std::string energy_header();
 /// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy.
 std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts);
 
+/// cell.csv (periodic worlds): time, the cell's lengths and tilts (m), its
+/// volume (m^3), velocity gradient (1/s) and the contacts' stress (Pa,
+/// compression positive), components xx yy zz xy xz yz.
+std::string cell_header();
+std::string cell_row(const dem::World& world);
+
 }  // namespace gjkdem::io
