@@ -11,7 +11,7 @@ function checkMagic(buffer, magic, what, header) {
   const text = String.fromCharCode(...bytes);
   if (text !== magic) throw new Error(`${what}: not a ${magic} file`);
   const version = new DataView(buffer).getUint32(8, true);
-  if (version !== 1) throw new Error(`${what}: version ${version} unknown (this viewer reads 1)`);
+  if (version !== 2) throw new Error(`${what}: version ${version} unknown (this viewer reads 2)`);
 }
 
 // shapes.bin: each template's triangle mesh (body frame) and the plane walls' ids.
@@ -43,7 +43,7 @@ export function parseFrame(buffer) {
   const dv = new DataView(buffer);
   const n = dv.getUint32(12, true), m = dv.getUint32(16, true), p = dv.getUint32(20, true);
   const align4 = (x) => Math.ceil(x / 4) * 4; // arithmetic, not bit operations: sizes may pass 2^31
-  const expected = align4(40 + 61 * n) + 44 * m + 24 * p;
+  const expected = align4(40 + 61 * n) + 44 * m + 24 * p + 40;
   if (buffer.byteLength !== expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header says ${expected}`);
   let o = 40;
   const take = (Type, count) => {
@@ -72,6 +72,8 @@ export function parseFrame(buffer) {
   f.contactForce = take(Float32Array, 3 * m); // on the second body
   f.planePoint = take(Float32Array, 3 * p);
   f.planeNormal = take(Float32Array, 3 * p);
+  f.cellAxes = take(Uint32Array, 1)[0]; // bit 0 x, 1 y, 2 z; 0: not periodic
+  f.cell = take(Float32Array, 9); // lo, hi, tilts xy, xz, yz
   for (let c = 0; c < m; c++) {
     const first = f.contactFirst[c];
     if (f.contactSecond[c] >= n || (first >= PLANE_BIT ? first - PLANE_BIT >= p : first >= n))

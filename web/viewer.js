@@ -122,7 +122,8 @@ function measureScene(frame) {
   const box = grains.bounds(frame);
   for (let k = 0; k < frame.p; k++) box.expandByPoint(new THREE.Vector3().fromArray(frame.planePoint, 3 * k));
   if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
-  showPeriodicCell(box);
+  showPeriodicCell(frame, box);
+  if (cell?.visible) box.union(cell.geometry.boundingBox);
   fit.box = box;
   box.getCenter(fit.center);
   const diagonal = box.getSize(new THREE.Vector3()).length();
@@ -133,22 +134,43 @@ function measureScene(frame) {
   fit.chainWidth = 0.3 * (radii.length ? radii[radii.length >> 1] : diagonal / 100);
 }
 
-// A periodic world's cell (run.json's scene, simulation.periodic: [lo, hi]
-// per periodic axis) as a wire box; along the other axes it spans `box`,
-// which it then widens. Bodies leave it on one side and come back on the other.
+// A periodic world's cell, as the frame has it (a deforming cell stretches
+// and shears: docs/scenes.md), as a wire parallelepiped; along axes that are
+// not periodic it spans `box`. Bodies leave it on one side and come back on
+// the other.
 let cell = null;
-function showPeriodicCell(box) {
-  const periodic = run?.scene?.simulation?.periodic;
-  if (!periodic || cell) return;
-  const lo = box.min.clone(), hi = box.max.clone();
-  ['x', 'y', 'z'].forEach((axis, a) => {
-    if (!periodic[axis]) return;
-    lo.setComponent(a, periodic[axis][0]);
-    hi.setComponent(a, periodic[axis][1]);
-  });
-  cell = new THREE.Box3Helper(new THREE.Box3(lo, hi), 0xffd54f);
-  scene.add(cell);
-  box.union(cell.box);
+function showPeriodicCell(frame, box) {
+  if (!frame.cellAxes) {
+    if (cell) cell.visible = false;
+    return;
+  }
+  const c = frame.cell, lo = [c[0], c[1], c[2]], size = [c[3] - c[0], c[4] - c[1], c[5] - c[2]];
+  for (let a = 0; a < 3; a++) {
+    if (frame.cellAxes >> a & 1) continue;
+    lo[a] = box.min.getComponent(a);
+    size[a] = box.max.getComponent(a) - lo[a];
+  }
+  const edges = [[size[0], 0, 0], [c[6], size[1], 0], [c[7], c[8], size[2]]];
+  const corner = (n) => [0, 1, 2].map((d) => lo[d] + n[0] * edges[0][d] + n[1] * edges[1][d] + n[2] * edges[2][d]);
+  const points = [];
+  for (let d = 0; d < 3; d++)
+    for (let u = 0; u < 2; u++)
+      for (let v = 0; v < 2; v++) {
+        const n = [0, 0, 0];
+        n[(d + 1) % 3] = u;
+        n[(d + 2) % 3] = v;
+        points.push(...corner(n));
+        n[d] = 1;
+        points.push(...corner(n));
+      }
+  if (!cell) {
+    cell = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xffd54f }));
+    scene.add(cell);
+  }
+  cell.geometry.setAttribute('position', new THREE.Float32BufferAttribute(points, 3));
+  cell.geometry.computeBoundingBox();
+  cell.geometry.computeBoundingSphere();
+  cell.visible = true;
 }
 
 // --- drawing a frame --------------------------------------------------------
@@ -164,6 +186,7 @@ function apply(frame, k) {
   spheres.visible = asSpheres;
   grains.setFreeVisible(!asSpheres);
   grains.updatePlanes(frame, fit.center, fit.planeSize);
+  showPeriodicCell(frame, fit.box);
   if (state.chains) chains.update(frame, state.threshold, grains.radius, fit.chainWidth);
   chains.setVisible(state.chains);
   showLegend(coloring);
@@ -494,7 +517,7 @@ window.gjkdemViewer = {
     return state.chains ? chains.shown : 0;
   },
   get periodicCell() {
-    return cell ? { min: cell.box.min.toArray(), max: cell.box.max.toArray() } : null;
+    return cell?.visible ? { min: cell.geometry.boundingBox.min.toArray(), max: cell.geometry.boundingBox.max.toArray() } : null;
   },
   grainBox,
   stats,

@@ -12,7 +12,7 @@ import pathlib
 
 import numpy as np
 
-VERSION = 1
+VERSION = 2
 PLANE_SIDE = 0x80000000  # a contact's first side at or above this is plane wall (side - PLANE_SIDE)
 FIXED, DRIVEN = 1, 2     # body flags
 
@@ -76,6 +76,9 @@ class Frame:
         self.contact_forces = c.take("<f4", 3 * m, 3)   # on the second body
         self.plane_points = c.take("<f4", 3 * p, 3)
         self.plane_normals = c.take("<f4", 3 * p, 3)
+        self.cell_axes = int(c.take("<u4", 1)[0])  # bit 0 x, 1 y, 2 z; 0: not periodic
+        cell = c.take("<f4", 9, 3)
+        self.cell_lo, self.cell_hi, self.cell_tilt = cell[0], cell[1], cell[2]  # tilt: xy, xz, yz
         c.end()
         first_body = self.contact_first < PLANE_SIDE
         if (np.any(self.contact_second >= n) or np.any(self.contact_first[first_body] >= n)

@@ -39,6 +39,15 @@ std::vector<dem::MeasuredContact> load_frame(dem::World& w, const ViewFrame& f) 
     throw ViewFormatError("frame at t = " + std::to_string(f.time) + " has " + std::to_string(f.plane_points.size() / 3) +
                           " plane walls; the run's scene has " + std::to_string(w.planes.size()));
   w.time = f.time;
+  // A periodic cell as the frame has it (a deforming one moved since the start).
+  for (int a = 0; a < 3; ++a)
+    if (w.cell.axes[a] != ((f.cell_axes >> a & 1) != 0))
+      throw ViewFormatError("frame at t = " + std::to_string(f.time) + " has other periodic axes than the run's scene");
+  if (f.cell_axes) {
+    w.cell.lo = {f.cell[0], f.cell[1], f.cell[2]};
+    w.cell.hi = {f.cell[3], f.cell[4], f.cell[5]};
+    w.cell.tilt = {f.cell[6], f.cell[7], f.cell[8]};
+  }
   std::vector<dem::MeasuredContact> contacts(f.contact_count());
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const bool plane = (f.contact_a[c] & kViewPlaneSide) != 0;

@@ -130,6 +130,9 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
     put_vec(f.contact_forces, c.force);
   }
   for (const dem::PlaneWall& p : w.planes) put_vec(f.plane_points, p.point), put_vec(f.plane_normals, p.normal);
+  for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.axes[a] ? 1u << a : 0u;
+  const Vec3 cell[3] = {w.cell.lo, w.cell.hi, w.cell.tilt};
+  for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? static_cast<float>(cell[k / 3][k % 3]) : 0.0f;
   return f;
 }
 
@@ -152,7 +155,7 @@ std::string encode(const ViewShapes& s) {
 std::string encode(const ViewFrame& f) {
   const std::size_t n = f.body_count(), m = f.contact_count();
   std::string out(kFrameMagic, 8);
-  out.reserve(40 + 61 * n + 4 + 44 * m + 24 * (f.plane_points.size() / 3));
+  out.reserve(40 + 61 * n + 4 + 44 * m + 24 * (f.plane_points.size() / 3) + 40);
   put(out, kViewVersion);
   put(out, static_cast<std::uint32_t>(n));
   put(out, static_cast<std::uint32_t>(m));
@@ -165,6 +168,8 @@ std::string encode(const ViewFrame& f) {
   put_array(out, f.contact_a), put_array(out, f.contact_b);
   put_array(out, f.contact_points), put_array(out, f.contact_normals), put_array(out, f.contact_forces);
   put_array(out, f.plane_points), put_array(out, f.plane_normals);
+  put(out, f.cell_axes);
+  for (const float v : f.cell) put(out, v);
   return out;
 }
 
@@ -202,7 +207,10 @@ ViewFrame decode_view_frame(const std::string& bytes) {
   r.get_array(f.contact_a, m), r.get_array(f.contact_b, m);
   r.get_array(f.contact_points, 3 * m), r.get_array(f.contact_normals, 3 * m), r.get_array(f.contact_forces, 3 * m);
   r.get_array(f.plane_points, 3 * planes), r.get_array(f.plane_normals, 3 * planes);
+  f.cell_axes = r.get<std::uint32_t>();
+  for (float& v : f.cell) v = r.get<float>();
   r.expect_end();
+  if (f.cell_axes > 7) r.fail("has periodic axes it cannot have");
   for (std::uint64_t k = 0; k < m; ++k) {
     const std::uint32_t a = f.contact_a[k];
     if (f.contact_b[k] >= n || (a & kViewPlaneSide ? a - kViewPlaneSide >= planes : a >= n))

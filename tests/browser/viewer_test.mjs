@@ -338,7 +338,7 @@ async function runPeriodic(errors) {
     await page.evaluate(() => window.gjkdemViewer.ready);
     const drawn = await page.evaluate(() => window.gjkdemViewer.periodicCell);
     const matches = drawn && ['x', 'y', 'z'].every((axis, a) =>
-      !periodic[axis] || (Math.abs(drawn.min[a] - periodic[axis][0]) < 1e-12 && Math.abs(drawn.max[a] - periodic[axis][1]) < 1e-12));
+      !periodic[axis] || (Math.abs(drawn.min[a] - periodic[axis][0]) < 1e-6 && Math.abs(drawn.max[a] - periodic[axis][1]) < 1e-6));
     check(Boolean(matches), `the periodic cell is drawn where the scene puts it (${JSON.stringify(drawn)} for ${JSON.stringify(periodic)})`);
     await shoot(page, 'periodic_cell');
     await page.close();

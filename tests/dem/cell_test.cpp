@@ -21,6 +21,7 @@
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/checkpoint.hpp"
+#include "gjkdem/io/view_format.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::dem {
@@ -116,6 +117,11 @@ TEST(DeformingCell, AStretchedCellMovesItsFacesAndGivesTheGrainsItsField) {
   EXPECT_NEAR(w.cell.hi.x - w.cell.lo.x, 0.06 * std::pow(1 + 0.5 * dt, 2000), 1e-12);
   EXPECT_NEAR(cell_centre(w.cell).x, 0.03, 1e-12);
   EXPECT_EQ(w.cell.hi.y - w.cell.lo.y, 0.06);
+  // Frames carry the cell as it is now (the viewer and gjkdem analyze read it).
+  const io::ViewFrame frame = io::decode_view_frame(io::encode(io::view_frame(w, 2000)));
+  EXPECT_EQ(frame.cell_axes, 7u);
+  EXPECT_EQ(frame.cell[3], static_cast<float>(w.cell.hi.x));
+  EXPECT_EQ(frame.cell[0], static_cast<float>(w.cell.lo.x));
   // A grain crossing a face takes the field's difference with it: its
   // velocity stays the field's at its new place plus its own.
   for (const Body& b : w.bodies) {

@@ -71,7 +71,7 @@ TEST(ViewFormat, AFrameHoldsTheWorldAndReadsBackTheSame) {
   }
   const std::string bytes = encode(f);
   const std::size_t planes = w.planes.size();
-  EXPECT_EQ(bytes.size(), 40 + 61 * f.body_count() + (4 - f.body_count() % 4) % 4 + 44 * f.contact_count() + 24 * planes)
+  EXPECT_EQ(bytes.size(), 40 + 61 * f.body_count() + (4 - f.body_count() % 4) % 4 + 44 * f.contact_count() + 24 * planes + 40)
       << "the size docs/view-format.md gives";
   const ViewFrame back = decode_view_frame(bytes);
   EXPECT_EQ(back.time, f.time);
@@ -163,8 +163,11 @@ TEST(ViewFormat, DamagedFilesAreRefused) {
   refused(decode_view_shapes, frame, "wrong magic");
   refused(decode_view_shapes, shapes.substr(0, shapes.size() / 2), "");
   std::string newer = frame;
-  newer[8] = 2;
-  refused(decode_view_frame, newer, "version 2");
+  newer[8] = 3;
+  refused(decode_view_frame, newer, "version 3");
+  std::string cell = frame;
+  cell[cell.size() - 40] = 8;  // the periodic axes' bits
+  refused(decode_view_frame, cell, "periodic axes");
   // A contact naming a body the frame does not have.
   const ViewFrame f = decode_view_frame(frame);
   ViewFrame bad = f;

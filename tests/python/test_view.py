@@ -75,7 +75,7 @@ def test_damaged_view_files_are_refused(run_dir, tmp_path):
     frame = out / "view" / "frame_000003.bin"
     data = frame.read_bytes()
     for damaged, why in [(data[:-3], "cut short"), (data + b"\0", "past its end"), (b"GJKSHAPE" + data[8:], "wrong magic"),
-                         (data[:8] + b"\x02" + data[9:], "version 2")]:
+                         (data[:8] + b"\x03" + data[9:], "version 3")]:
         with pytest.raises(gjkdem.ViewFormatError, match=why):
             gjkdem.view.Frame(damaged)
     (out / "view" / "shapes.bin").write_bytes((out / "view" / "shapes.bin").read_bytes()[:20])

@@ -322,3 +322,27 @@ def test_a_periodic_cell_from_python():
     w = b.build()
     w.run(0.03, dt=1e-4)
     assert w.positions[0][0] == pytest.approx(0.02, abs=1e-9)  # left at x = 0.1, came back at 0
+
+
+def test_a_deforming_cell_from_python():
+    # A cell stretched along x at 0.5 1/s: its length follows the rate, and
+    # world.cell reports it with the rate.
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    s.gravity = [0, 0, 0]
+    s.periodic = {"x": (0.0, 0.1)}
+    s.cell_control = {"strain_rate": {"x": 0.5}}
+    assert s.cell_control == {"strain_rate": {"x": 0.5}}
+    with pytest.raises(ValueError, match="components are"):
+        s.cell_control = {"strain_rate": {"zx": 1.0}}
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    b.add_body(gjkdem.Shape("sphere", radius=0.005), "glass", position=[0.05, 0, 0])
+    w = b.build()
+    for _ in range(100):
+        w.step(1e-3)
+    cell = w.cell
+    assert cell["hi"][0] - cell["lo"][0] == pytest.approx(0.1 * (1 + 0.5e-3) ** 100, rel=1e-12)
+    assert cell["strain_rate"]["x"] == 0.5
+    assert cell["strain_rate"]["xz"] == 0.0
+    assert w.velocities[0][0] == pytest.approx(0.0, abs=1e-12)  # at the centre the field is still

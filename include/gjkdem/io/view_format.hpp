@@ -4,6 +4,7 @@
 // and Python. The templates' surfaces are written once (view/shapes.bin);
 // a frame holds the bodies' poses and velocities and the touching contacts
 // in single precision, about 61 bytes per body and 44 per contact.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -14,7 +15,7 @@
 
 namespace gjkdem::io {
 
-inline constexpr std::uint32_t kViewVersion = 1;
+inline constexpr std::uint32_t kViewVersion = 2;
 /// A contact's first side with this bit set is plane wall (side - kViewPlaneSide).
 inline constexpr std::uint32_t kViewPlaneSide = 0x80000000u;
 inline constexpr std::uint8_t kViewFixed = 1, kViewDriven = 2;
@@ -44,6 +45,10 @@ struct ViewFrame {
   std::vector<std::uint32_t> contact_a, contact_b;           ///< first side (or kViewPlaneSide + plane), second body
   std::vector<float> contact_points, contact_normals, contact_forces;  ///< 3 per contact; forces on the second body
   std::vector<float> plane_points, plane_normals;           ///< 3 per plane wall
+  /// The periodic cell now (version 2): axes bit 0 x, 1 y, 2 z (0: none),
+  /// lo, hi and tilts xy, xz, yz.
+  std::uint32_t cell_axes = 0;
+  std::array<float, 9> cell{};
   std::size_t body_count() const { return templates.size(); }
   std::size_t contact_count() const { return contact_b.size(); }
 };
