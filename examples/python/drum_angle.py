@@ -1,6 +1,6 @@
 """The dynamic angle of repose of a rotating drum run, from its view frames.
 
-Usage: python3 drum_angle.py OUT [--from T] [--radius R] [--axis y]
+Usage: python3 drum_angle.py OUT --radius R [--from T] [--axis y] [--band A B]
 
 For each frame from time T on, the free surface is found across the middle
 half of the drum's diameter: the section perpendicular to the axis is cut
@@ -9,7 +9,8 @@ highest grains (fixed bodies, the drum's pieces, are left out), and a
 straight line through the 8 heights gives the angle. The angle's mean and
 spread over the frames are printed, with the centroid method's (the line
 from the axis to the bed's centre of mass leans from the vertical by the
-angle of a flat surface) as a check.
+angle of a flat surface) as a check. `--band A B` keeps the grains whose
+coordinate along the axis lies in [A, B] (a slice near an end cap, say).
 """
 import argparse
 import math
@@ -46,6 +47,7 @@ def main(argv=None):
     parser.add_argument("--from", dest="start", type=float, default=1.0, help="first time measured (s)")
     parser.add_argument("--radius", type=float, required=True, help="the drum's radius (m)")
     parser.add_argument("--axis", choices="xyz", default="y", help="the drum's axis, through the origin")
+    parser.add_argument("--band", type=float, nargs=2, metavar=("A", "B"), help="only grains with A <= axis <= B")
     args = parser.parse_args(argv)
     axis = "xyz".index(args.axis)
     across = [a for a in range(3) if a != axis]  # horizontal, vertical (z) of the section
@@ -56,6 +58,9 @@ def main(argv=None):
             continue
         f = view.frame(k)
         grains = (f.flags & 1) == 0
+        if args.band:
+            along = f.positions[:, axis]
+            grains &= (along >= args.band[0]) & (along <= args.band[1])
         p = f.positions[grains].astype(float)
         x, z = p[:, across[0]], p[:, across[1]]
         surface.append(surface_angle(x, z, args.radius))

@@ -268,6 +268,7 @@ StepReport compute_forces(World& w, Real dt) {
   // The periodic cell's stress: sum of f x branch (b's centre, or image,
   // from a's centre or the wall's contact point).
   CellTensor virial{};
+  const bool periodic = w.cell.active();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
     if (!c.active) {
@@ -283,13 +284,15 @@ StepReport compute_forces(World& w, Real dt) {
       a.force -= c.force;
       a.torque -= c.torque - cross(a.position, c.force);
     }
-    const Vec3 branch = b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position);
-    virial[0] += c.force.x * branch.x, virial[1] += c.force.y * branch.y, virial[2] += c.force.z * branch.z;
-    virial[kXY] += 0.5 * (c.force.x * branch.y + c.force.y * branch.x);
-    virial[kXZ] += 0.5 * (c.force.x * branch.z + c.force.z * branch.x);
-    virial[kYZ] += 0.5 * (c.force.y * branch.z + c.force.z * branch.y);
-    // A deforming cell works on the bodies through the images' motion.
-    if (c.image != kNoImage) stats.wall_power -= dot(c.force, affine_velocity(w.cell_rate, shift));
+    if (periodic) {
+      const Vec3 branch = b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position);
+      virial[0] += c.force.x * branch.x, virial[1] += c.force.y * branch.y, virial[2] += c.force.z * branch.z;
+      virial[kXY] += 0.5 * (c.force.x * branch.y + c.force.y * branch.x);
+      virial[kXZ] += 0.5 * (c.force.x * branch.z + c.force.z * branch.x);
+      virial[kYZ] += 0.5 * (c.force.y * branch.z + c.force.z * branch.y);
+      // A deforming cell works on the bodies through the images' motion.
+      if (c.image != kNoImage) stats.wall_power -= dot(c.force, affine_velocity(w.cell_rate, shift));
+    }
     w.pairs[k].history = c.history;
     // Power of a driven side on the other: its velocity field against the
     // force and torque it exerts (c.force and c.torque act on b).
@@ -306,7 +309,7 @@ StepReport compute_forces(World& w, Real dt) {
     ++stats.contacts;
     if (c.a_is_plane || w.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
   }
-  if (w.cell.active())
+  if (periodic)
     for (int k = 0; k < 6; ++k) w.cell_stress[k] = virial[k] / cell_volume(w.cell);
   w.forces_current = true;
   return {};

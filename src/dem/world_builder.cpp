@@ -567,6 +567,26 @@ void WorldBuilder::check_periodic_cell() {
       throw BuildError(std::string("the periodic cell is ") + number_text(length) + " m wide across " +
                        names[a] + ": it must exceed four times the largest body's reach (" + number_text(need) + " m)");
   }
+  // A fixed body (a wall piece) about as long as the period could meet a
+  // body directly and through its image at once; a pair keeps one image, so
+  // the contact would jump between the two. Refuse it: such a wall must be
+  // cut along the periodic axis (a mesh with more segments there).
+  const Real two_reaches = shortest_period(world_) / 2;
+  for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+    const Body& b = world_.bodies[i];
+    if (!b.fixed) continue;
+    const Aabb box = aabb(given_shapes_[b.shape], shape_pose(world_.templates[b.shape], b));
+    for (int a = 0; a < 3; ++a) {
+      const Real period = world_.cell.hi[a] - world_.cell.lo[a], extent = box.hi[a] - box.lo[a];
+      if (cell.axes[a] && extent > period - two_reaches)
+        throw BuildError(labels_[i] + " spans " + number_text(extent) + " m along the periodic axis " + names[a] +
+                             ", more than the period less two of the largest body's reach (" +
+                             number_text(period - two_reaches) +
+                             " m): a body could touch it directly and through its image at once. Cut it along " +
+                             names[a] + " (a mesh with more segments there)",
+                         {static_cast<std::uint32_t>(i)});
+    }
+  }
   world_.settings.periodic = cell;
   world_.settings.cell_control = control;
   wrap_bodies(world_);

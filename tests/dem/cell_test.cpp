@@ -297,6 +297,23 @@ TEST(DeformingCell, TheBuilderRefusesControlsItCannotHonour) {
   s.cell_control = {};
   s.cell_control.mode[kXY] = CellMode::Stress, s.cell_control.max_strain_rate = 1;
   refuses(s, "needs a normal stress target too");
+  // A wall piece as long as the period: a body would touch it directly and
+  // through its image at once (a drum slice periodic along its axis).
+  WorldSettings slice;
+  slice.periodic.axes[0] = true;
+  slice.periodic.hi = {0.1, 0, 0};
+  WorldBuilder b(slice);
+  const std::uint32_t m = b.add_material({"glass", 2500, 1e7});
+  b.add_body({.shape = {make_sphere(0.005), {}}, .material = m, .position = {0.05, 0, 0.02}});
+  b.add_body({.shape = {Shape{Box{Vec3{0.05, 0.01, 0.01}}}, {}}, .material = m, .position = {0.05, 0, 0}, .fixed = true,
+              .label = "floor"});
+  try {
+    b.build();
+    ADD_FAILURE() << "a wall as long as the period was accepted";
+  } catch (const BuildError& e) {
+    EXPECT_NE(std::string(e.what()).find("floor spans 0.1 m along the periodic axis x"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Cut it along x"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
