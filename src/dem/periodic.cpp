@@ -147,13 +147,10 @@ bool deform_cell(World& w, Real dt) {
     take_back(new_tilt.y, new_length.x);
   }
   take_back(new_tilt.x, new_length.x);                                   // b -= a
+  // The new edges about the same centre, lo + (a + b + c) / 2.
   cell.tilt = new_tilt;
-  for (int a = 0; a < 3; ++a) {
-    if (!cell.axes[a]) continue;
-    cell.lo[a] = centre[a] - 0.5 * new_length[a];
-    cell.hi[a] = cell.lo[a] + new_length[a];
-  }
-  // The centre of the tilted cell is lo + (a + b + c) / 2: keep it.
+  for (int a = 0; a < 3; ++a)
+    if (cell.axes[a]) cell.hi[a] = cell.lo[a] + new_length[a];
   const Vec3 moved = cell_centre(cell) - centre;
   cell.lo -= moved, cell.hi -= moved;
   return flipped;
