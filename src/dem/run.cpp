@@ -28,7 +28,8 @@ const Body* non_finite_body(const World& w) {
 
 Real stable_time_step(const World& w) {
   // critical_time_step is pi sqrt(m / k) / 20 (contact duration / 20) for
-  // the linear and volume laws, and a fifth of the Rayleigh step for Hertz.
+  // the linear and volume laws, and a fifth of the Rayleigh step over the
+  // Mindlin factor for Hertz.
   const Real safe = critical_time_step(w);
   return w.settings.model == ContactModel::Hertz ? 5 * safe : safe * 20 * 2 / kPi;
 }

@@ -64,9 +64,16 @@ Real critical_time_step(const World& w) {
                                                        other.poisson_ratio));
     Real dt;
     if (s.model == ContactModel::Hertz) {
-      // Rayleigh wave time step pi R sqrt(rho / G) / (0.1631 nu + 0.8766), a fifth of it.
-      const Real shear = mat.youngs_modulus / (2 * (1 + mat.poisson_ratio));
-      dt = 0.2 * kPi * r * std::sqrt(mat.density / shear) / (0.1631 * mat.poisson_ratio + 0.8766);
+      // Rayleigh wave time step pi R sqrt(rho / G) / (0.1631 nu + 0.8766), a
+      // fifth of it, over the Mindlin factor: a sphere's tangential contact
+      // (stiffness k_t = 2 (1 - nu) / (2 - nu) k_n, effective mass 2/7 of
+      // the normal one, as the sphere turns) rings sqrt(3.5 k_t / k_n), 1.5
+      // to 1.9 times, faster than its normal contact. Without it frictional
+      // spheres compressed to p / E = 1e-3 never came to rest.
+      const Real nu = mat.poisson_ratio;
+      const Real shear = mat.youngs_modulus / (2 * (1 + nu));
+      const Real mindlin = std::sqrt(3.5 * 2 * (1 - nu) / (2 - nu));
+      dt = 0.2 * kPi * r * std::sqrt(mat.density / shear) / (0.1631 * nu + 0.8766) / mindlin;
     } else {
       const Real k = s.model == ContactModel::Linear
                          ? (s.linear_stiffness > 0 ? s.linear_stiffness : stiffest * r)

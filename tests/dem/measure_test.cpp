@@ -155,7 +155,7 @@ TEST(Measure, ABedAtRestCarriesItsWeight) {
   std::mt19937_64 rng(4);
   test::fill_polyhedra(b, {.count = 60, .size = 0.012, .lo = {0, 0, 0}, .hi = {0.08, 0.08, 0.05}, .material = m}, rng);
   World w = b.build();
-  RunState run = plan_run(1.0, critical_time_step(w), 1.0);
+  RunState run = plan_run(1.5, critical_time_step(w), 1.5);
   ASSERT_EQ(dem::run(w, run, {}).status, RunStatus::Completed);
   ASSERT_LT(kinetic_energy(w), 1e-3 * potential_energy(w)) << "the bed should be at rest";
 

@@ -102,10 +102,12 @@ World on_moving_support(ContactModel model, bool plane, const PrescribedMotion& 
 }
 
 TEST(MovingWalls, AGrainOnABeltTakesTheBeltsSpeed) {
-  const Real speed = 0.2;  // reached after speed / (mu g) = 0.04 s
+  // Reached after speed / (mu g) = 0.04 s; under Hertz the cube, on one
+  // contact point, then rocks about the belt's speed (3% at 0.1 s) until 0.2 s.
+  const Real speed = 0.2;
   for (const ContactModel model : {ContactModel::Volume, ContactModel::Linear, ContactModel::Hertz})
     for (const bool plane : {true, false}) {
-      const World w = on_moving_support(model, plane, {.velocity = {speed, 0, 0}}, {}, 0.15);
+      const World w = on_moving_support(model, plane, {.velocity = {speed, 0, 0}}, {}, 0.3);
       const Body& cube = w.bodies.back();
       const std::string what = std::string(plane ? "plane" : "slab") + ", model " + std::to_string(int(model));
       EXPECT_NEAR(cube.velocity.x, speed, 0.01 * speed) << what;

@@ -48,7 +48,7 @@ enum class GuardAction {
 
 /// The physics guards, checked before the first step and at every output:
 /// - the time step against the stability limit of the stiffest contact
-///   (stable_time_step, the Rayleigh step for Hertz);
+///   (stable_time_step);
 /// - a body travelling more than `max_travel` of its reach in one step (a
 ///   fast body tunnels through others: contacts are missed);
 /// - energy appearing from nowhere: kinetic + elastic energy exceeding what
@@ -99,7 +99,8 @@ RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> obse
 
 /// The longest stable time step (s) of the world's stiffest contact: 2 / omega
 /// of the stiffest linear or volume contact (for the volume law, a face of
-/// the body's cross-section pressed in), the Rayleigh time step for Hertz.
+/// the body's cross-section pressed in), the Rayleigh time step over the
+/// Mindlin factor for Hertz (world.hpp).
 /// Infinite without moving bodies. (critical_time_step is a safe fraction
 /// of it.)
 Real stable_time_step(const World& world);

@@ -114,8 +114,9 @@ Real kinetic_energy(const World& world) noexcept;
 Real potential_energy(const World& world) noexcept;
 
 /// A critical time step estimate (s): the shortest contact duration between
-/// two of the world's bodies divided by 20, or the Rayleigh time step times
-/// 0.2 for the Hertz law (docs/dem.md); the bodies inflows will insert count.
+/// two of the world's bodies divided by 20, or for the Hertz law the Rayleigh
+/// time step times 0.2 over the Mindlin factor sqrt(7 (1 - nu) / (2 - nu))
+/// (docs/dem.md); the bodies inflows will insert count.
 /// Infinite without moving bodies.
 Real critical_time_step(const World& world);
 
