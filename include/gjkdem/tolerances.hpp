@@ -75,6 +75,14 @@ inline constexpr Real kProjectedClosestRelSq = 1e-8;
 /// support function on the sphere. Smaller is more round-off, larger more bias.
 inline constexpr Real kPolishStep = 1e-5;
 
+/// Penetration witnesses of cores with flat or straight parts
+/// (polish_impl.hpp): support sets are sampled at directions tilted by this
+/// angle (radians; a curved side moves the sample by about angle x radius),
+/// and points within kWitnessProbeTol * size of the other set's hull count
+/// as in it.
+inline constexpr Real kWitnessProbeAngle = 1e-9;
+inline constexpr Real kWitnessProbeTol = 1e-8;
+
 /// A mesh is convex when its enclosed volume matches its hull's to this
 /// (relative); above it the mesh is replaced by its hull with a warning.
 inline constexpr Real kMeshConvexRelTol = 1e-9;

@@ -19,6 +19,9 @@ struct GjkOutput {
   Simplex simplex;  ///< its barycentric combination is v
   Vec3 v;           ///< closest point of A - B to the origin found (frame A)
   int iterations = 0;
+  /// Separated, but stopped at the round-off floor before the duality gap
+  /// met the tolerances (the next support point could not shorten v).
+  bool stalled = false;
 };
 
 enum class GjkMode { Distance, Boolean };
@@ -73,16 +76,25 @@ GjkOutput gjk(MD& md, Vec3 v, const Vec3* warm, int warm_size, Real size, Real m
     }
     bool repeated = false;
     for (int m = 0; m < s.size; ++m) repeated |= (s.p[m].w == w.w);
-    if (repeated) { out.status = GjkStatus::Separated; break; }
+    if (repeated) { out.status = GjkStatus::Separated; out.stalled = true; break; }
 
-    s.p[s.size++] = w;
-    const Vec3 v_new = reduce_to_closest(s);
-    if (s.size == 4) { v = v_new; out.status = GjkStatus::Intersecting; break; }
-    // No progress means the round-off floor is reached: v_new is then as good as
-    // v up to round-off, and consistent with the simplex kept for the witnesses.
-    const bool progress = dot(v_new, v_new) < dist_sq;
+    Simplex next = s;
+    next.p[next.size++] = w;
+    Vec3 v_new = reduce_to_closest(next);
+    if (next.size == 4) { s = next; v = v_new; out.status = GjkStatus::Intersecting; break; }
+    if (!(dot(v_new, v_new) < dist_sq)) {
+      // The new point was dropped although it lies beyond v (gap > 0): a
+      // simplex too flat for its signs. Its nearest facet decides.
+      next = s;
+      next.p[next.size++] = w;
+      v_new = reduce_to_nearest_facet(next);
+    }
+    // No progress means the round-off floor is reached: keep the best simplex
+    // seen. (A nearly flat simplex can reduce to a far worse point: a point
+    // 1e-12 off a cylinder jumped to 0.66 away and was kept.)
+    if (!(dot(v_new, v_new) < dist_sq)) { out.status = GjkStatus::Separated; out.stalled = true; break; }
+    s = next;
     v = v_new;
-    if (!progress) { out.status = GjkStatus::Separated; break; }
   }
   out.v = v;
   return out;

@@ -13,6 +13,10 @@
 // reference computation of ../shared/tools/curved.py in spirit (chart, Newton,
 // trust region); the code is our own.
 #include "epa_impl.hpp"
+#include <algorithm>
+#include <limits>
+
+#include "gjkdem/math/vec2.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem::detail {
@@ -95,6 +99,130 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
   return f < f_start;
 }
 
+/// Refines a separated GJK answer that stalled on a pair with a curved core:
+/// GJK's normal -v / |v| is then only as good as the gap it left (an
+/// ellipsoid 0.1 from a cone: certified to 2e-11, claimed 1e-12), because a
+/// support point a size away from v shortens it by gap^2 / size^2, below
+/// round-off. The separation max over n of -h_{A-B}(n) is the same function
+/// the penetration polish minimises; every value is a certified lower bound,
+/// so the polish keeps a normal only when it proves a larger gap, up to |v|.
+template <class MD>
+void polish_separation(MD& md, Vec3& normal, Real& gap, Real size) noexcept {
+  using CoreA = typename MD::TypeA;
+  using CoreB = typename MD::TypeB;
+  if constexpr (kCurvedCore<CoreA> || kCurvedCore<CoreB>) {
+    Vec3 u = normal;
+    Real f = 0;
+    SupportPoint sp;
+    int steps = 0;
+    if (!polish_direction(md, u, f, sp, size, steps) || !(-f <= gap)) return;
+    normal = u;
+    gap = -f;
+  }
+}
+
+namespace witness2d {
+
+// Convex hull (counter-clockwise, no repeated or collinear points) of up to
+// five points by Andrew's monotone chain; 1 or 2 points when degenerate.
+inline int hull(Vec2* p, int n, Real tol, Vec2* out) noexcept {
+  std::sort(p, p + n, [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  int k = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const int floor = k;
+    for (int m = 0; m < n; ++m) {
+      const Vec2& q = pass == 0 ? p[m] : p[n - 1 - m];
+      while (k >= floor + 2 && cross(out[k - 1] - out[k - 2], q - out[k - 2]) <= tol * length(out[k - 1] - out[k - 2]))
+        --k;
+      out[k++] = q;
+    }
+    --k;  // the last point starts the other chain
+  }
+  if (k < 1) k = 1;
+  if (k == 2 && length(out[1] - out[0]) <= tol) k = 1;
+  return k;
+}
+
+// The point of the hull h nearest to q (q itself inside).
+inline Vec2 nearest(const Vec2* h, int n, const Vec2& q) noexcept {
+  if (n == 1) return h[0];
+  bool inside = n >= 3;
+  for (int m = 0; m < n && inside; ++m) inside = cross(h[(m + 1) % n] - h[m], q - h[m]) >= 0;
+  if (inside) return q;
+  Vec2 best = h[0];
+  for (int m = 0; m < (n == 2 ? 1 : n); ++m) {
+    const Vec2 a = h[m], e = h[(m + 1) % n] - a;
+    const Vec2 p = a + e * std::clamp(dot(q - a, e) / dot(e, e), Real(0), Real(1));
+    if (length(q - p) < length(q - best)) best = p;
+  }
+  return best;
+}
+
+}  // namespace witness2d
+
+/// Witnesses of a penetration along unit u with depth f when both cores may
+/// have support sets (a cylinder's or cone's side, a cap). A's support point
+/// alone can lie anywhere on its generator line, and a - f u then far outside
+/// B (a small cylinder sunk in a cone's side: 3 units off, and another point
+/// with A and B swapped or scaled). Each side's support set is sampled by its
+/// support points at u and at u tilted by kWitnessProbeAngle four ways (the
+/// ends of a segment, points of a disc's rim); seen along u, the two sets'
+/// hulls overlap where the contact is, and the witness is the mean of the
+/// vertices of that overlap, the same whichever shape comes first.
+template <class MD>
+void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a, Vec3& on_b) noexcept {
+  // A basis that does not depend on the sign of u: A and B swapped agree.
+  const int axis = std::fabs(u.x) >= std::fabs(u.y) ? (std::fabs(u.x) >= std::fabs(u.z) ? 0 : 2)
+                                                    : (std::fabs(u.y) >= std::fabs(u.z) ? 1 : 2);
+  Vec3 e1, e2;
+  orthonormal_basis(u[axis] >= 0 ? u : -u, e1, e2);
+  Vec2 pa[5], pb[5];
+  Real level = 0;  // A's support plane along u
+  const Vec3 tilt[5] = {Vec3{}, e1, -e1, e2, -e2};
+  for (int m = 0; m < 5; ++m) {
+    const SupportPoint sp = md.support(normalized(u + tilt[m] * kWitnessProbeAngle));
+    if (m == 0) level = dot(sp.a, u);
+    const Vec3 b = sp.b + u * f;  // B moved onto A's support plane
+    pa[m] = {dot(sp.a, e1), dot(sp.a, e2)};
+    pb[m] = {dot(b, e1), dot(b, e2)};
+  }
+  const Real tol = kWitnessProbeTol * size;
+  Vec2 ha[10], hb[10];
+  const int na = witness2d::hull(pa, 5, tol, ha), nb = witness2d::hull(pb, 5, tol, hb);
+  Vec2 sum{};
+  int count = 0;
+  for (int m = 0; m < na; ++m)
+    if (length(witness2d::nearest(hb, nb, ha[m]) - ha[m]) <= tol) sum = sum + ha[m], ++count;
+  for (int m = 0; m < nb; ++m)
+    if (length(witness2d::nearest(ha, na, hb[m]) - hb[m]) <= tol) sum = sum + hb[m], ++count;
+  for (int i = 0; na >= 2 && i < na; ++i)  // edges crossing
+    for (int j = 0; nb >= 2 && j < nb; ++j) {
+      const Vec2 a0 = ha[i], a1 = ha[(i + 1) % na], b0 = hb[j], b1 = hb[(j + 1) % nb];
+      const Vec2 da = a1 - a0, db = b1 - b0;
+      const Real den = cross(da, db);
+      if (!(std::fabs(den) > 0)) continue;
+      const Real s = cross(b0 - a0, db) / den, t = cross(b0 - a0, da) / den;
+      if (s > 0 && s < 1 && t > 0 && t < 1) sum = sum + (a0 + da * s), ++count;
+    }
+  Vec2 w;
+  if (count > 0) {
+    w = sum * (Real(1) / count);
+  } else {
+    // Apart by more than the tolerance (the normal is good to the square root
+    // of the depth's error, and a curved side falls away from its support
+    // line): the middle of the closest points of the two hulls.
+    Real best = std::numeric_limits<Real>::infinity();
+    for (int side = 0; side < 2; ++side)
+      for (int m = 0; m < (side == 0 ? na : nb); ++m) {
+        const Vec2 q = side == 0 ? ha[m] : hb[m];
+        const Vec2 p = side == 0 ? witness2d::nearest(hb, nb, q) : witness2d::nearest(ha, na, q);
+        if (length(p - q) < best) best = length(p - q), w = (p + q) * Real(0.5);
+      }
+  }
+  on_a = e1 * w.x + e2 * w.y + u * level;
+  on_b = on_a - u * f;
+}
+
 /// Refines an unconverged EPA answer on pairs with a curved core (ellipsoid,
 /// superellipsoid, cylinder, cone): the normal is polished, the depth becomes
 /// f at the polished normal, and the witness on a unique-support side is its
@@ -125,9 +253,8 @@ void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
     } else if constexpr (kUniqueSupport<CoreB>) {
       e.witness_b = sp.b;
       e.witness_a = sp.b + u * f;
-    } else {  // both may have support sets (a cylinder's side): A's support point
-      e.witness_a = sp.a;
-      e.witness_b = sp.a - u * f;
+    } else {  // both may have support sets (a cylinder's side)
+      penetration_witnesses(md, u, f, size, e.witness_a, e.witness_b);
     }
     e.status = EpaStatus::Converged;
   }

@@ -95,13 +95,14 @@ DistanceResult distance(const Shape& a, const Transform& pose_a, const Shape& b,
     DistanceResult r;
     r.status = g.status;
     r.iterations = g.iterations;
-    const Real core_dist = length(g.v);
+    Real core_dist = length(g.v);
     const Real margin = a.margin + b.margin;
     if (g.status == GjkStatus::Intersecting || core_dist <= margin) {
       r.intersect = true;
       return r;
     }
-    const Vec3 n = -g.v / core_dist;
+    Vec3 n = -g.v / core_dist;
+    if (g.stalled) detail::polish_separation(md, n, core_dist, pair_size(a, b));
     Vec3 wa, wb;
     simplex_witnesses(g.simplex, wa, wb);
     r.distance = core_dist - margin;
@@ -123,8 +124,9 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
     const Real margin = a.margin + b.margin;
     Vec3 n, wa, wb;
     if (g.status != GjkStatus::Intersecting) {
-      const Real core_dist = length(g.v);
+      Real core_dist = length(g.v);
       n = -g.v / core_dist;
+      if (g.stalled) detail::polish_separation(md, n, core_dist, size);
       simplex_witnesses(g.simplex, wa, wb);
       r.intersect = core_dist <= margin;
       r.distance = r.intersect ? 0 : core_dist - margin;

@@ -152,6 +152,37 @@ inline Vec3 reduce_to_closest(Simplex& s) noexcept {
   return n == 4 ? Vec3{} : r.v;
 }
 
+/// reduce_to_closest for a simplex too flat for the signs of its volumes:
+/// the nearest of its facets (triangles of a tetrahedron, edges of a
+/// triangle), each reduced as usual. A support point within 1e-10 of the
+/// simplex's plane made the tetrahedron's signs noise, the new point was
+/// dropped, and GJK stopped 1e-10 short of its tolerance (an ellipsoid against
+/// a cone).
+inline Vec3 reduce_to_nearest_facet(Simplex& s) noexcept {
+  if (s.size < 3) return reduce_to_closest(s);
+  Vec3 w[4];
+  for (int m = 0; m < s.size; ++m) w[m] = s.p[m].w;
+  detail::SubSimplex best, f;
+  bool found = false;
+  for (int skip = 0; skip < s.size; ++skip) {
+    int idx[3], n = 0;
+    for (int m = 0; m < s.size; ++m)
+      if (m != skip) idx[n++] = m;
+    if (s.size == 4) detail::closest_on_triangle(w, idx[0], idx[1], idx[2], f);
+    else detail::closest_on_segment(w, idx[0], idx[1], f);
+    if (!found || f.dist_sq < best.dist_sq) best = f, found = true;
+  }
+  int n = 0;
+  for (int m = 0; m < s.size; ++m) {
+    if (!(best.mask & (1u << m))) continue;
+    s.p[n] = s.p[m];
+    s.lambda[n] = best.lambda[m];
+    ++n;
+  }
+  s.size = n;
+  return best.v;
+}
+
 /// Witness points: the barycentric combination of the simplex's A and B points.
 inline void simplex_witnesses(const Simplex& s, Vec3& on_a, Vec3& on_b) noexcept {
   on_a = {};
