@@ -80,6 +80,35 @@ void planes_of(const Shape& s, const Transform& to, std::vector<Plane>& planes) 
   }
 }
 
+/// The face planes of B (working frame `to`) that pass within `radius` of
+/// `centre`: only they can cut a region inside that ball. False when the ball
+/// lies wholly outside one of them (the region misses B). Polytopes are
+/// tested in B's frame on unnormalised triangle normals; only the planes
+/// kept are normalised.
+bool planes_near(const Shape& s, const Transform& to, const Vec3& centre, Real radius, std::vector<Plane>& planes) {
+  planes.clear();
+  if (const auto* p = std::get_if<Polytope>(&s.core)) {
+    const auto& v = p->data->vertices;
+    const Vec3 c = apply_inverse(to, centre);
+    for (const auto& t : p->data->triangles) {
+      const Vec3 a = v[t[0]];
+      const Vec3 n = cross(v[t[1]] - a, v[t[2]] - a);
+      const Real side = dot(n, c - a), reach_sq = radius * radius * dot(n, n);
+      if (side * side >= reach_sq) {
+        if (side <= 0) continue;  // the ball is inside this plane
+        return false;             // ... wholly outside it
+      }
+      const Vec3 nw = normalized(apply_rotation(to, n));
+      planes.push_back({nw, dot(nw, apply(to, a))});
+    }
+    return true;
+  }
+  planes_of(s, to, planes);
+  for (const Plane& pl : planes)
+    if (dot(pl.n, centre) - pl.d > radius) return false;
+  return true;
+}
+
 Vec3 polygon_area_vector(const Vec3* p, int n) {
   Vec3 a;
   for (int i = 1; i + 1 < n; ++i) a += cross(p[i] - p[0], p[i + 1] - p[0]);
@@ -268,9 +297,50 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       w.points[k].clear(); w.face_begin[k].clear(); w.face_body[k].clear(); w.face_normal[k].clear();
     }
     append_faces(a, Transform::identity(), w.points[0], w.face_begin[0], w.face_body[0], w.face_normal[0], 0);
-    planes_of(b, relative(pose_a, pose_b), w.planes);
-    // Keep only the planes that cut A at all (A's support value passes them): on
-    // large hulls most of B's faces are far from the overlap.
+    const Transform b_in_a = relative(pose_a, pose_b);
+    // Clipping costs the planes that cut times what they cut, and on a
+    // shallow contact each of B's planes keeps most of A. B lies behind its
+    // supporting plane across the line between the centroids, so A's faces
+    // wholly beyond that plane are outside B and are dropped unclipped. (The
+    // caps B's planes then close are the hulls of fewer points, but every
+    // point they lack lies beyond the plane too, outside B; A's kept faces
+    // are cut exactly as before, with no new vertices from the plane.)
+    Real vol;
+    Vec3 centroid_b, centroid_a;
+    volume_of(b, b_in_a, vol, centroid_b);
+    volume_of(a, Transform::identity(), vol, centroid_a);
+    if (const Vec3 d = centroid_b - centroid_a; length(d) > tol) {
+      const Vec3 u = normalized(d);
+      const Real behind = dot(u, apply(b_in_a, support(b, apply_inverse_rotation(b_in_a, -u)))) - tol;
+      auto& pts = w.points[0];
+      auto& fb = w.face_begin[0];
+      const int faces = static_cast<int>(fb.size());
+      int kept = 0;
+      std::size_t out = 0;
+      for (int f = 0; f < faces; ++f) {
+        const int b0 = fb[f], b1 = f + 1 < faces ? fb[f + 1] : static_cast<int>(pts.size());
+        bool reaches = false;
+        for (int i = b0; i < b1 && !reaches; ++i) reaches = dot(u, pts[i]) >= behind;
+        if (!reaches) continue;
+        fb[kept] = static_cast<int>(out);
+        w.face_body[0][kept] = w.face_body[0][f];
+        w.face_normal[0][kept] = w.face_normal[0][f];
+        ++kept;
+        for (int i = b0; i < b1; ++i) pts[out++] = pts[i];
+      }
+      if (kept == 0) return r;
+      pts.resize(out);
+      fb.resize(kept);
+      w.face_body[0].resize(kept);
+      w.face_normal[0].resize(kept);
+    }
+    // Then only B's planes that pass near what is left.
+    Vec3 centre;
+    for (const Vec3& p : w.points[0]) centre += p;
+    centre /= static_cast<Real>(w.points[0].size());
+    Real radius = 0;
+    for (const Vec3& p : w.points[0]) radius = std::fmax(radius, length(p - centre));
+    if (!planes_near(b, b_in_a, centre, radius + tol, w.planes)) return r;
     // Planes that merely touch A (a face of A lies in them) cut nothing but mark
     // the faces on both boundaries (aligned, stacked bodies).
     w.touching.clear();

@@ -491,12 +491,12 @@ void check_translation(const Family& f) {
 //    depends on round-off: one order answered 2.7e-7 for 1e-12 (NearTouching
 //    #19). Refusing the projection on slivers (sine below 1e-4) made more
 //    cases fail than it fixed.
-//  Fixed (these tests failed on 08d728e): [gjk-worse] on no progress GJK
+//  Fixed (these tests failed on 3b1c7e5): [gjk-worse] on no progress GJK
 //    kept the new simplex even when its point was farther (a point 1e-12 off
 //    a cylinder came out 0.66 apart); [polish-witness] a penetration's
 //    witnesses on a cylinder or cone side were A's support point, anywhere on
 //    a generator line, with witness_b up to 3.1 units outside B.
-//  Failing checks of the disabled tests, 08d728e -> now: CurvedSizeRatios
+//  Failing checks of the disabled tests, 3b1c7e5 -> 18a58dd: CurvedSizeRatios
 //    260 -> 62, SunkIntoSide 62 -> 0, NearTouchingCurved 318 -> 157,
 //    KinkedMaxima 113 -> 52.
 
