@@ -115,7 +115,9 @@ void polish_separation(MD& md, Vec3& normal, Real& gap, Real size) noexcept {
     Real f = 0;
     SupportPoint sp;
     int steps = 0;
-    if (!polish_direction(md, u, f, sp, size, steps) || !(-f <= gap)) return;
+    // A separation below zero certifies nothing (near touching, GJK's normal
+    // can be noise, and the polish then stays among overlapping directions).
+    if (!polish_direction(md, u, f, sp, size, steps) || !(-f <= gap) || !(-f >= 0)) return;
     normal = u;
     gap = -f;
   }
