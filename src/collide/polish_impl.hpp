@@ -103,11 +103,14 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
 /// GJK's normal -v / |v| is then only as good as the gap it left (an
 /// ellipsoid 0.1 from a cone: certified to 2e-11, claimed 1e-12), because a
 /// support point a size away from v shortens it by gap^2 / size^2, below
-/// round-off. The separation max over n of -h_{A-B}(n) is the same function
-/// the penetration polish minimises; every value is a certified lower bound,
-/// so the polish keeps a normal only when it proves a larger gap, up to |v|.
+/// round-off. The separation max over n of -h_{A-B}(n) is the function the
+/// penetration polish minimises, and every value is a certified lower bound:
+/// a normal is kept only when it certifies a larger gap, >= 0 and <= |v|,
+/// and that gap becomes the distance. GJK's witnesses (|v| apart along the
+/// old normal) are then placed about their midpoint, the gap apart along the
+/// new one, so that witness_b - witness_a = distance * normal still holds.
 template <class MD>
-void polish_separation(MD& md, Vec3& normal, Real& gap, Real size) noexcept {
+void polish_separation(MD& md, Vec3& normal, Real& gap, Vec3& on_a, Vec3& on_b, Real size) noexcept {
   using CoreA = typename MD::TypeA;
   using CoreB = typename MD::TypeB;
   if constexpr (kCurvedCore<CoreA> || kCurvedCore<CoreB>) {
@@ -120,6 +123,9 @@ void polish_separation(MD& md, Vec3& normal, Real& gap, Real size) noexcept {
     if (!polish_direction(md, u, f, sp, size, steps) || !(-f <= gap) || !(-f >= 0)) return;
     normal = u;
     gap = -f;
+    const Vec3 middle = (on_a + on_b) * 0.5;
+    on_a = middle - u * (gap / 2);
+    on_b = middle + u * (gap / 2);
   }
 }
 
@@ -167,8 +173,8 @@ inline Vec2 nearest(const Vec2* h, int n, const Vec2& q) noexcept {
 /// alone can lie anywhere on its generator line, and a - f u then far outside
 /// B (a small cylinder sunk in a cone's side: 3 units off, and another point
 /// with A and B swapped or scaled). Each side's support set is sampled by its
-/// support points at u and at u tilted by kWitnessProbeAngle four ways (the
-/// ends of a segment, points of a disc's rim); seen along u, the two sets'
+/// support points at u and at u tilted by kWitnessProbeAngle eight ways (the
+/// ends of a segment, the corners of a face, points of a disc's rim); seen along u, the two sets'
 /// hulls overlap where the contact is, and the witness is the mean of the
 /// vertices of that overlap, the same whichever shape comes first.
 template <class MD>
@@ -178,10 +184,14 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
                                                     : (std::fabs(u.y) >= std::fabs(u.z) ? 1 : 2);
   Vec3 e1, e2;
   orthonormal_basis(u[axis] >= 0 ? u : -u, e1, e2);
-  Vec2 pa[5], pb[5];
+  // Tilts along the basis and its diagonals: a face whose edges run along
+  // e1 and e2 (a box's, for u along an axis) answers the axis tilts with
+  // ties and shows all its corners only to the diagonal ones.
+  constexpr int kProbes = 9;
+  Vec2 pa[kProbes], pb[kProbes];
   Real level = 0;  // A's support plane along u
-  const Vec3 tilt[5] = {Vec3{}, e1, -e1, e2, -e2};
-  for (int m = 0; m < 5; ++m) {
+  const Vec3 tilt[kProbes] = {Vec3{}, e1, -e1, e2, -e2, e1 + e2, e1 - e2, -e1 + e2, -e1 - e2};
+  for (int m = 0; m < kProbes; ++m) {
     const SupportPoint sp = md.support(normalized(u + tilt[m] * kWitnessProbeAngle));
     if (m == 0) level = dot(sp.a, u);
     const Vec3 b = sp.b + u * f;  // B moved onto A's support plane
@@ -189,16 +199,18 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
     pb[m] = {dot(b, e1), dot(b, e2)};
   }
   const Real tol = kWitnessProbeTol * size;
-  Vec2 ha[10], hb[10];
-  const int na = witness2d::hull(pa, 5, tol, ha), nb = witness2d::hull(pb, 5, tol, hb);
+  Vec2 ha[2 * kProbes], hb[2 * kProbes];
+  const int na = witness2d::hull(pa, kProbes, tol, ha), nb = witness2d::hull(pb, kProbes, tol, hb);
   Vec2 sum{};
   int count = 0;
   for (int m = 0; m < na; ++m)
     if (length(witness2d::nearest(hb, nb, ha[m]) - ha[m]) <= tol) sum = sum + ha[m], ++count;
   for (int m = 0; m < nb; ++m)
     if (length(witness2d::nearest(ha, na, hb[m]) - hb[m]) <= tol) sum = sum + hb[m], ++count;
-  for (int i = 0; na >= 2 && i < na; ++i)  // edges crossing
-    for (int j = 0; nb >= 2 && j < nb; ++j) {
+  // Edges crossing (a two-point hull is one edge, not two).
+  const int edges_a = na < 2 ? 0 : na == 2 ? 1 : na, edges_b = nb < 2 ? 0 : nb == 2 ? 1 : nb;
+  for (int i = 0; i < edges_a; ++i)
+    for (int j = 0; j < edges_b; ++j) {
       const Vec2 a0 = ha[i], a1 = ha[(i + 1) % na], b0 = hb[j], b1 = hb[(j + 1) % nb];
       const Vec2 da = a1 - a0, db = b1 - b0;
       const Real den = cross(da, db);
@@ -228,7 +240,7 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
 /// Refines an unconverged EPA answer on pairs with a curved core (ellipsoid,
 /// superellipsoid, cylinder, cone): the normal is polished, the depth becomes
 /// f at the polished normal, and the witness on a unique-support side is its
-/// support point (else A's).
+/// support point (else penetration_witnesses).
 template <class MD>
 void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
   using CoreA = typename MD::TypeA;

@@ -97,14 +97,17 @@ DistanceResult distance(const Shape& a, const Transform& pose_a, const Shape& b,
     r.iterations = g.iterations;
     Real core_dist = length(g.v);
     const Real margin = a.margin + b.margin;
+    Vec3 n, wa, wb;
+    if (g.status != GjkStatus::Intersecting && core_dist > 0) {
+      n = -g.v / core_dist;
+      simplex_witnesses(g.simplex, wa, wb);
+      // Before the margin test, as penetration(): the polish can lower the gap.
+      if (g.stalled) detail::polish_separation(md, n, core_dist, wa, wb, pair_size(a, b));
+    }
     if (g.status == GjkStatus::Intersecting || core_dist <= margin) {
       r.intersect = true;
       return r;
     }
-    Vec3 n = -g.v / core_dist;
-    if (g.stalled) detail::polish_separation(md, n, core_dist, pair_size(a, b));
-    Vec3 wa, wb;
-    simplex_witnesses(g.simplex, wa, wb);
     r.distance = core_dist - margin;
     place_witnesses(r, pose_a, n, wa, wb, a.margin, b.margin);
     return r;
@@ -126,8 +129,8 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
     if (g.status != GjkStatus::Intersecting) {
       Real core_dist = length(g.v);
       n = -g.v / core_dist;
-      if (g.stalled) detail::polish_separation(md, n, core_dist, size);
       simplex_witnesses(g.simplex, wa, wb);
+      if (g.stalled) detail::polish_separation(md, n, core_dist, wa, wb, size);
       r.intersect = core_dist <= margin;
       r.distance = r.intersect ? 0 : core_dist - margin;
       r.depth = r.intersect ? margin - core_dist : 0;

@@ -68,7 +68,7 @@ Real critical_time_step(const World& w) {
       // fifth of it, over the Mindlin factor: a sphere's tangential contact
       // (stiffness k_t = 2 (1 - nu) / (2 - nu) k_n, effective mass 2/7 of
       // the normal one, as the sphere turns) rings sqrt(3.5 k_t / k_n), 1.5
-      // to 1.9 times, faster than its normal contact. Without it frictional
+      // (nu = 0.5) to 2.2 (nu = -1) times, faster than its normal contact. Without it frictional
       // spheres compressed to p / E = 1e-3 never came to rest.
       const Real nu = mat.poisson_ratio;
       const Real shear = mat.youngs_modulus / (2 * (1 + nu));

@@ -549,6 +549,44 @@ TEST(PropertySwap, DISABLED_KinkedMaxima) { check_swap(property::kinked_maxima()
 TEST(PropertyScale, DISABLED_KinkedMaxima) { check_scale(property::kinked_maxima()); }
 TEST(PropertyTranslation, KinkedMaxima) { check_translation(property::kinked_maxima()); }
 
+// Curved cores with margins (rounded cylinders, cones, ellipsoids): the
+// three queries agree on touching, and no distance comes out below zero
+// (distance() once tested the margin before polishing a stalled answer,
+// which can lower the core gap below the margins).
+TEST(PropertyMargins, CurvedCoresWithMarginsAgreeAcrossQueries) {
+  int pairs = 0;
+  for (Family f : {property::curved_size_ratios(), property::near_touching_curved()}) {
+    for (std::size_t i = 0; i < f.pairs.size(); ++i) {
+      Pair p = f.pairs[i];
+      // A margin of 1% of each core's size, and B moved out by both margins:
+      // the rounded pair is as near touching as the cores were.
+      p.a.margin = 0.01 * bounding_radius(p.a);
+      p.b.margin = 0.01 * bounding_radius(p.b);
+      const Real size = 2 * std::fmax(bounding_radius(p.a), bounding_radius(p.b));
+      const Vec3 away = p.tb - p.ta;
+      if (length(away) > 0) p.tb += normalized(away) * (p.a.margin + p.b.margin);
+      for (const bool swapped : {false, true}) {
+        const Shape& a = swapped ? p.b : p.a;
+        const Shape& b = swapped ? p.a : p.b;
+        const Transform ta = swapped ? p.pose_b() : p.pose_a(), tb = swapped ? p.pose_a() : p.pose_b();
+        const DistanceResult d = distance(a, ta, b, tb);
+        const PenetrationResult r = penetration(a, ta, b, tb);
+        const std::string what = f.name + " #" + std::to_string(i) + (swapped ? " BA" : " AB");
+        EXPECT_GE(d.distance, 0) << what;
+        EXPECT_GE(r.distance, 0) << what;
+        EXPECT_GE(r.depth, 0) << what;
+        // Flags may differ only within the touch tolerance of contact.
+        if (d.intersect != r.intersect)
+          EXPECT_LE(std::fmax(d.distance, r.depth), 1e-9 * size) << what << ": intersect flags differ";
+        else if (!d.intersect)
+          EXPECT_NEAR(d.distance, r.distance, 1e-9 * size) << what;
+        ++pairs;
+      }
+    }
+  }
+  EXPECT_GT(pairs, 100);
+}
+
 TEST(PropertySwap, Containment) { check_swap(property::containment()); }
 TEST(PropertyScale, Containment) { check_scale(property::containment()); }
 TEST(PropertyTranslation, Containment) { check_translation(property::containment()); }
