@@ -78,23 +78,22 @@ GjkOutput gjk(MD& md, Vec3 v, const Vec3* warm, int warm_size, Real size, Real m
     for (int m = 0; m < s.size; ++m) repeated |= (s.p[m].w == w.w);
     if (repeated) { out.status = GjkStatus::Separated; out.stalled = true; break; }
 
-    Simplex next = s;
-    next.p[next.size++] = w;
-    Vec3 v_new = reduce_to_closest(next);
-    if (next.size == 4) { s = next; v = v_new; out.status = GjkStatus::Intersecting; break; }
-    if (!(dot(v_new, v_new) < dist_sq)) {
-      // The new point was dropped although it lies beyond v (gap > 0): a
-      // simplex too flat for its signs. Its nearest facet decides.
-      next = s;
-      next.p[next.size++] = w;
-      v_new = reduce_to_nearest_facet(next);
+    s.p[s.size++] = w;
+    detail::SubSimplex r = closest_sub_simplex(s);
+    // The new point was dropped although it lies beyond v (gap > 0): a
+    // simplex too flat for its signs. Its nearest facet decides.
+    if (r.mask != 15 && !(r.dist_sq < dist_sq)) r = nearest_facet(s);
+    // No progress means the round-off floor is reached: drop the new point
+    // and keep the best simplex seen (a nearly flat simplex can reduce to a
+    // far worse point: a point 1e-12 off a cylinder came out 0.66 apart).
+    if (r.mask != 15 && !(r.dist_sq < dist_sq)) {
+      --s.size;
+      out.status = GjkStatus::Separated;
+      out.stalled = true;
+      break;
     }
-    // No progress means the round-off floor is reached: keep the best simplex
-    // seen. (A nearly flat simplex can reduce to a far worse point: a point
-    // 1e-12 off a cylinder jumped to 0.66 away and was kept.)
-    if (!(dot(v_new, v_new) < dist_sq)) { out.status = GjkStatus::Separated; out.stalled = true; break; }
-    s = next;
-    v = v_new;
+    v = keep_sub_simplex(s, r);
+    if (s.size == 4) { out.status = GjkStatus::Intersecting; break; }
   }
   out.v = v;
   return out;

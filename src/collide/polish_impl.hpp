@@ -17,6 +17,7 @@
 #include <limits>
 
 #include "gjkdem/math/vec2.hpp"
+#include "gjkdem/shape/convex_hull.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem::detail {
@@ -131,26 +132,6 @@ void polish_separation(MD& md, Vec3& normal, Real& gap, Vec3& on_a, Vec3& on_b, 
 
 namespace witness2d {
 
-// Convex hull (counter-clockwise, no repeated or collinear points) of up to
-// five points by Andrew's monotone chain; 1 or 2 points when degenerate.
-inline int hull(Vec2* p, int n, Real tol, Vec2* out) noexcept {
-  std::sort(p, p + n, [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  int k = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const int floor = k;
-    for (int m = 0; m < n; ++m) {
-      const Vec2& q = pass == 0 ? p[m] : p[n - 1 - m];
-      while (k >= floor + 2 && cross(out[k - 1] - out[k - 2], q - out[k - 2]) <= tol * length(out[k - 1] - out[k - 2]))
-        --k;
-      out[k++] = q;
-    }
-    --k;  // the last point starts the other chain
-  }
-  if (k < 1) k = 1;
-  if (k == 2 && length(out[1] - out[0]) <= tol) k = 1;
-  return k;
-}
-
 // The point of the hull h nearest to q (q itself inside).
 inline Vec2 nearest(const Vec2* h, int n, const Vec2& q) noexcept {
   if (n == 1) return h[0];
@@ -199,8 +180,11 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
     pb[m] = {dot(b, e1), dot(b, e2)};
   }
   const Real tol = kWitnessProbeTol * size;
-  Vec2 ha[2 * kProbes], hb[2 * kProbes];
-  const int na = witness2d::hull(pa, kProbes, tol, ha), nb = witness2d::hull(pb, kProbes, tol, hb);
+  Vec2 ha[kProbes], hb[kProbes];
+  const std::vector<int> hull_a = convex_hull_2d(pa, tol), hull_b = convex_hull_2d(pb, tol);
+  const int na = static_cast<int>(hull_a.size()), nb = static_cast<int>(hull_b.size());
+  for (int m = 0; m < na; ++m) ha[m] = pa[hull_a[m]];
+  for (int m = 0; m < nb; ++m) hb[m] = pb[hull_b[m]];
   Vec2 sum{};
   int count = 0;
   for (int m = 0; m < na; ++m)

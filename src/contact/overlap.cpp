@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/tolerances.hpp"
@@ -60,26 +61,6 @@ void append_faces(const Shape& s, const Transform& to, std::vector<Vec3>& pts, s
 /// repeated planes; clipping by a repeat finds nothing outside and costs one scan.
 using Plane = OverlapWorkspace::Plane;
 
-void planes_of(const Shape& s, const Transform& to, std::vector<Plane>& planes) {
-  planes.clear();
-  if (const auto* p = std::get_if<Polytope>(&s.core)) {
-    const auto& v = p->data->vertices;
-    for (const auto& t : p->data->triangles) {
-      const Vec3 a = apply(to, v[t[0]]);
-      const Vec3 n = normalized(cross(apply(to, v[t[1]]) - a, apply(to, v[t[2]]) - a));
-      planes.push_back({n, dot(n, a)});
-    }
-  } else if (const auto* b = std::get_if<Box>(&s.core)) {
-    for (int axis = 0; axis < 3; ++axis)
-      for (Real sign : {Real(1), Real(-1)}) {
-        Vec3 local;
-        local[axis] = sign;
-        const Vec3 n = apply_rotation(to, local);
-        planes.push_back({n, dot(n, to.translation) + b->half_extents[axis]});
-      }
-  }
-}
-
 /// The face planes of B (working frame `to`) that pass within `radius` of
 /// `centre`: only they can cut a region inside that ball. False when the ball
 /// lies wholly outside one of them (the region misses B). Polytopes are
@@ -103,10 +84,22 @@ bool planes_near(const Shape& s, const Transform& to, const Vec3& centre, Real r
     }
     return true;
   }
-  planes_of(s, to, planes);
-  for (const Plane& pl : planes)
-    if (dot(pl.n, centre) - pl.d > radius) return false;
+  if (const auto* b = std::get_if<Box>(&s.core)) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (Real sign : {Real(1), Real(-1)}) {
+        Vec3 local;
+        local[axis] = sign;
+        const Vec3 n = apply_rotation(to, local);
+        planes.push_back({n, dot(n, to.translation) + b->half_extents[axis]});
+        if (dot(n, centre) - planes.back().d > radius) return false;
+      }
+  }
   return true;
+}
+
+/// Every face plane of a clippable core in the working frame.
+void planes_of(const Shape& s, const Transform& to, std::vector<Plane>& planes) {
+  planes_near(s, to, {}, std::numeric_limits<Real>::infinity(), planes);
 }
 
 Vec3 polygon_area_vector(const Vec3* p, int n) {

@@ -128,19 +128,46 @@ inline void closest_on_tetrahedron(const Vec3* w, SubSimplex& r) noexcept {
 
 }  // namespace detail
 
-/// Reduces `s` to the smallest sub-simplex whose hull holds its point closest to
-/// the origin, sets the barycentric weights, and returns that point (zero when
-/// a full tetrahedron encloses the origin).
-inline Vec3 reduce_to_closest(Simplex& s) noexcept {
+/// The smallest sub-simplex of `s` whose hull holds its point closest to the
+/// origin, with its weights; `s` itself is left as it is, so a caller can
+/// still drop the point it just added.
+inline detail::SubSimplex closest_sub_simplex(const Simplex& s) noexcept {
   Vec3 w[4];
   for (int m = 0; m < s.size; ++m) w[m] = s.p[m].w;
   detail::SubSimplex r;
   switch (s.size) {
-    case 1: s.lambda[0] = 1; return w[0];
+    case 1: r.mask = 1; r.lambda[0] = 1; r.v = w[0]; r.dist_sq = dot(w[0], w[0]); break;
     case 2: detail::closest_on_segment(w, 0, 1, r); break;
     case 3: detail::closest_on_triangle(w, 0, 1, 2, r); break;
     default: detail::closest_on_tetrahedron(w, r); break;
   }
+  return r;
+}
+
+/// The same for a simplex too flat for the signs of its volumes: the nearest
+/// of its facets (triangles of a tetrahedron, edges of a triangle), each
+/// searched as usual. A support point within 1e-10 of the simplex's plane made
+/// the tetrahedron's signs noise, the new point was dropped, and GJK stopped
+/// 1e-10 short of its tolerance (an ellipsoid against a cone).
+inline detail::SubSimplex nearest_facet(const Simplex& s) noexcept {
+  if (s.size < 3) return closest_sub_simplex(s);
+  Vec3 w[4];
+  for (int m = 0; m < s.size; ++m) w[m] = s.p[m].w;
+  detail::SubSimplex best, f;
+  for (int skip = 0; skip < s.size; ++skip) {
+    int idx[3], n = 0;
+    for (int m = 0; m < s.size; ++m)
+      if (m != skip) idx[n++] = m;
+    if (s.size == 4) detail::closest_on_triangle(w, idx[0], idx[1], idx[2], f);
+    else detail::closest_on_segment(w, idx[0], idx[1], f);
+    if (skip == 0 || f.dist_sq < best.dist_sq) best = f;
+  }
+  return best;
+}
+
+/// Keeps the vertices of `r` in `s` with their weights; returns the closest
+/// point (zero when a full tetrahedron encloses the origin).
+inline Vec3 keep_sub_simplex(Simplex& s, const detail::SubSimplex& r) noexcept {
   int n = 0;
   for (int m = 0; m < s.size; ++m) {
     if (!(r.mask & (1u << m))) continue;
@@ -152,36 +179,10 @@ inline Vec3 reduce_to_closest(Simplex& s) noexcept {
   return n == 4 ? Vec3{} : r.v;
 }
 
-/// reduce_to_closest for a simplex too flat for the signs of its volumes:
-/// the nearest of its facets (triangles of a tetrahedron, edges of a
-/// triangle), each reduced as usual. A support point within 1e-10 of the
-/// simplex's plane made the tetrahedron's signs noise, the new point was
-/// dropped, and GJK stopped 1e-10 short of its tolerance (an ellipsoid against
-/// a cone).
-inline Vec3 reduce_to_nearest_facet(Simplex& s) noexcept {
-  if (s.size < 3) return reduce_to_closest(s);
-  Vec3 w[4];
-  for (int m = 0; m < s.size; ++m) w[m] = s.p[m].w;
-  detail::SubSimplex best, f;
-  bool found = false;
-  for (int skip = 0; skip < s.size; ++skip) {
-    int idx[3], n = 0;
-    for (int m = 0; m < s.size; ++m)
-      if (m != skip) idx[n++] = m;
-    if (s.size == 4) detail::closest_on_triangle(w, idx[0], idx[1], idx[2], f);
-    else detail::closest_on_segment(w, idx[0], idx[1], f);
-    if (!found || f.dist_sq < best.dist_sq) best = f, found = true;
-  }
-  int n = 0;
-  for (int m = 0; m < s.size; ++m) {
-    if (!(best.mask & (1u << m))) continue;
-    s.p[n] = s.p[m];
-    s.lambda[n] = best.lambda[m];
-    ++n;
-  }
-  s.size = n;
-  return best.v;
-}
+/// Reduces `s` to the smallest sub-simplex whose hull holds its point closest to
+/// the origin, sets the barycentric weights, and returns that point (zero when
+/// a full tetrahedron encloses the origin).
+inline Vec3 reduce_to_closest(Simplex& s) noexcept { return keep_sub_simplex(s, closest_sub_simplex(s)); }
 
 /// Witness points: the barycentric combination of the simplex's A and B points.
 inline void simplex_witnesses(const Simplex& s, Vec3& on_a, Vec3& on_b) noexcept {
