@@ -12,7 +12,8 @@ cd "$(dirname "$0")"
 mode="${1:-run}"
 base_pkgs=(cmake make g++ pkg-config libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libtomlplusplus-dev
            libcpp-httplib-dev
-           python3 python3-dev pybind11-dev python3-numpy python3-scipy)
+           python3 python3-dev pybind11-dev python3-numpy python3-scipy
+           libopenmpi-dev openmpi-bin)  # mpirun -np N gjkdem run (docs/scaling.md)
 # VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
 # example plots with matplotlib.
 # Chromium runs the viewer's browser tests (tests/browser), headless.

@@ -1,6 +1,7 @@
 // gjkdem run: options, signals and the progress bar. The run itself (run
 // folder, steps, outputs, energy balance, checkpoints, run.json) is the
 // library's io::SceneRun.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -12,6 +13,7 @@
 
 #include "commands.hpp"
 #include "gjkdem/io/scene_run.hpp"
+#include "mpi_transport.hpp"
 
 namespace gjkdem::app {
 namespace {
@@ -79,19 +81,72 @@ void install_signal_handlers() {
   std::signal(SIGTERM, on_stop_signal);
 }
 
+// A rank other than 0: its domain of the run rank 0 writes; silent, rank 0
+// reports for all (its exit status follows the run's).
+int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
+                 const std::function<bool(const std::string&)>& started) {
+  std::unique_ptr<io::SceneRun> run;
+  try {
+    if (!opt.resume.empty()) {
+      if (io::SceneRun::completed(opt.resume)) return started("completed"), 0;
+      run = io::SceneRun::resume(opt.resume, opt.threads, true);
+    } else {
+      run = io::SceneRun::start(opt.scene, {.out = opt.out, .threads = opt.threads, .follower = true});
+    }
+  } catch (const std::exception& e) {
+    started(e.what());
+    return 2;
+  }
+  if (!started("")) return 2;
+  install_signal_handlers();  // rank 0 decides when to stop
+  try {
+    const dem::RunOutcome outcome = run->run({}, {}, &transport);
+    return outcome.status == dem::RunStatus::Completed ? 0 : outcome.status == dem::RunStatus::Stopped ? 130 : 1;
+  } catch (const std::exception&) {
+    return 2;  // as on rank 0, which says why
+  }
+}
+
 }  // namespace
 
+// Under mpirun every rank reads the scene (and the checkpoint) and runs its
+// domain; rank 0 alone writes the folder and speaks. A rank that cannot
+// start tells the others, so that none waits for it.
 int run_simulation(const RunOptions& opt) {
+  const std::unique_ptr<dem::DomainTransport> transport = launched_transport();
+  const bool follower = transport && transport->rank() > 0;
+  const bool domains = transport && transport->size() > 1;
+  auto started = [&](const std::string& error) {
+    if (!domains) return true;
+    const std::vector<std::string> all = dem::all_gather(*transport, error);
+    return std::all_of(all.begin(), all.end(), [](const std::string& e) { return e.empty(); });
+  };
+  if (follower) {
+    RunOptions quiet = opt;
+    quiet.quiet = true;
+    return run_follower(quiet, *transport, started);
+  }
   try {
     std::unique_ptr<io::SceneRun> run;
-    if (!opt.resume.empty()) {
-      if (io::SceneRun::completed(opt.resume)) {
-        std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
-        return 0;
+    std::string error;
+    try {
+      if (!opt.resume.empty()) {
+        if (io::SceneRun::completed(opt.resume)) {
+          started("completed");
+          std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
+          return 0;
+        }
+        run = io::SceneRun::resume(opt.resume, opt.threads);
+      } else {
+        run = io::SceneRun::start(opt.scene, {.out = opt.out, .overwrite = opt.overwrite, .threads = opt.threads});
       }
-      run = io::SceneRun::resume(opt.resume, opt.threads);
-    } else {
-      run = io::SceneRun::start(opt.scene, {.out = opt.out, .overwrite = opt.overwrite, .threads = opt.threads});
+    } catch (const std::exception& e) {
+      started(e.what());
+      throw;
+    }
+    if (!started("")) {
+      std::cerr << "gjkdem: error: another rank could not start the run\n";
+      return 2;
     }
     const dem::World& world = run->scene.world;
     for (const std::string& w : run->scene.warnings) std::cerr << "gjkdem: warning: " << w << "\n";
@@ -100,14 +155,15 @@ int run_simulation(const RunOptions& opt) {
     if (!opt.quiet)
       std::cerr << "gjkdem: " << world.bodies.size() << " bodies, " << world.templates.size()
                 << " shape templates, dt = " << run->scene.dt << " s, " << world.settings.threads
-                << " threads, output in " << run->folder.dir.string() << "\n";
+                << " threads" << (domains ? " on each of " + std::to_string(transport->size()) + " ranks" : "")
+                << ", output in " << run->folder.dir.string() << "\n";
     install_signal_handlers();
     const auto stop = [&]() -> std::string {
       if (g_stop_signal) return g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM";
       if (opt.stop_after >= 0 && run->state.step >= static_cast<std::uint64_t>(opt.stop_after)) return "--stop-after";
       return "";
     };
-    const dem::RunOutcome outcome = run->run(observers, stop);
+    const dem::RunOutcome outcome = run->run(observers, stop, transport.get());
     switch (outcome.status) {
       case dem::RunStatus::Completed:
         if (!opt.quiet)

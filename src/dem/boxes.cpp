@@ -11,8 +11,6 @@ namespace {
 
 using detail::kMinParallelBodies;
 
-// Boxes at least this far out (in skins) are made again with one that left.
-constexpr Real kBatchFraction = 0.5;
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 // A body's box: of its shape, or of each part of a compound.
@@ -29,21 +27,24 @@ Aabb body_box(const ShapeTemplate& t, const Body& b, Real pad) noexcept {
 
 }  // namespace
 
-std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
-                         BoxCache& cache, int threads, Real drift) {
+bool measure_box_motion(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                        BoxCache& cache, int threads, Real drift, std::span<const std::uint8_t> ignored) {
   const std::size_t n = bodies.size(), old = cache.boxes.size();
-  const bool all = old == 0 || old > n;
-  if (all) {
+  if (old == 0 || old > n) {  // every box is made anew
     cache.boxes.assign(n, Aabb{});
     cache.anchor_position.assign(n, Vec3{});
     cache.anchor_orientation.assign(n, Quat{});
-    cache.moved.assign(n, 0);
-  } else if (old < n) {  // bodies added: boxed below as bodies that left theirs
+    cache.moved.assign(n, kInfinity);
+    for (std::size_t i = 0; i < n; ++i)
+      if (ignored.empty() || !ignored[i]) return true;
+    return false;
+  }
+  if (old < n) {  // bodies added: boxed as bodies that left theirs
     cache.boxes.resize(n);
     cache.anchor_position.resize(n);
     cache.anchor_orientation.resize(n);
-    cache.moved.resize(n);
   }
+  cache.moved.resize(n);
   // How far each moving body's points may have moved since its box was made,
   // in units of its skin (> 1: it may have left the box).
   const std::int64_t count = static_cast<std::int64_t>(n);
@@ -58,32 +59,37 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
     const Real chord = std::sqrt(dw * dw + dx * dx + dy * dy + dz * dz);
     return (length(b.position - cache.anchor_position[i]) + 2 * chord * reach + drift) / (skin * reach);
   };
-  // When one box must be made again, so are those more than half way out of
-  // theirs: the sweep that follows then serves them too, instead of running
-  // again a step later.
-  Real threshold = 1;
-  if (!all) {
-    int any = 0;
+  int any = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : any) if (count >= kMinParallelBodies)
-    for (std::int64_t i = 0; i < count; ++i) {
-      cache.moved[i] = static_cast<std::size_t>(i) >= old ? kInfinity : is_static(bodies[i]) ? 0 : moved(i);
-      if (!(cache.moved[i] <= 1)) any = 1;
-    }
-    if (!any) return 0;
-    threshold = kBatchFraction;
+  for (std::int64_t i = 0; i < count; ++i) {
+    cache.moved[i] = static_cast<std::size_t>(i) >= old ? kInfinity : is_static(bodies[i]) ? 0 : moved(i);
+    if (!(cache.moved[i] <= 1) && (ignored.empty() || !ignored[i])) any = 1;
   }
+  return any != 0;
+}
+
+std::size_t remake_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                         BoxCache& cache, int threads, Real threshold) {
+  const std::int64_t count = static_cast<std::int64_t>(bodies.size());
   std::int64_t updated = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : updated) if (count >= kMinParallelBodies)
   for (std::int64_t i = 0; i < count; ++i) {
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
-    if (!all && ((is_static(b) && static_cast<std::size_t>(i) < old) || cache.moved[i] <= threshold)) continue;
+    if (!(cache.moved[i] > threshold)) continue;
     cache.boxes[i] = body_box(t, b, is_static(b) ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;
+    cache.moved[i] = 0;
     ++updated;
   }
   return static_cast<std::size_t>(updated);
+}
+
+std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
+                         BoxCache& cache, int threads, Real drift) {
+  if (!measure_box_motion(bodies, templates, skin, cache, threads, drift)) return 0;
+  return remake_boxes(bodies, templates, skin, cache, threads, kBoxBatchFraction);
 }
 
 void rebuild_boxes_at_anchors(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,

@@ -5,6 +5,7 @@
 
 #include "gjkdem/tolerances.hpp"
 #include "number_text.hpp"
+#include "run_guard.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -68,6 +69,16 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
   return "";
 }
 
+std::string check_finite(const World& w) {
+  if (const Body* b = non_finite_body(w))
+    return "body " + std::to_string(b->id) + " has a non-finite state at t = " + number_text(w.time) +
+           " s (time step too large for the stiffness?)";
+  if (!std::isfinite(kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy))
+    return "the energy is not finite at t = " + number_text(w.time) +
+           " s: speeds or positions beyond what double precision squares (a non-finite state ahead)";
+  return "";
+}
+
 RunState plan_run(Real duration, Real dt, Real output_every) {
   if (!(std::isfinite(duration) && duration > 0)) throw std::invalid_argument("the duration must be > 0 and finite");
   if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("the time step must be > 0 and finite");
@@ -116,10 +127,21 @@ std::string describe_failure(const World& w, const StepReport& r) {
   return "step failed";
 }
 
+std::string detail::GuardCheck::operator()(const World& w, const RunState& state, const RunGuards& guards,
+                                            std::span<RunObserver* const> observers) {
+  std::string trouble = check_guards(w, state, guards);
+  if (trouble.empty() || guards.action == GuardAction::Stop) return trouble;
+  const std::string kind = trouble.substr(0, trouble.find(' ', 4));
+  if (kind != last_warning_)
+    for (RunObserver* o : observers) o->on_warning(w, state, trouble);
+  last_warning_ = kind;
+  return "";
+}
+
 RunOutcome run(World& w, RunState& state, std::span<RunObserver* const> observers,
                const std::function<bool()>& stop_requested, const RunGuards& guards) {
   RunOutcome outcome;
-  std::string last_warning;
+  detail::GuardCheck check;
   auto finish = [&](RunStatus status, std::string error = {}) {
     outcome = {status, std::move(error)};
     for (RunObserver* o : observers) o->on_stop(w, state, outcome);
@@ -127,28 +149,14 @@ RunOutcome run(World& w, RunState& state, std::span<RunObserver* const> observer
   };
   // False when a guard stops the run; a warning is told once until it changes kind.
   auto guard = [&]() -> bool {
-    const std::string trouble = check_guards(w, state, guards);
+    std::string trouble = check(w, state, guards, observers);
     if (trouble.empty()) return true;
-    if (guards.action == GuardAction::Stop) {
-      finish(RunStatus::Failed, trouble);
-      return false;
-    }
-    const std::string kind = trouble.substr(0, trouble.find(' ', 4));
-    if (kind != last_warning)
-      for (RunObserver* o : observers) o->on_warning(w, state, trouble);
-    last_warning = kind;
-    return true;
+    finish(RunStatus::Failed, std::move(trouble));
+    return false;
   };
   auto output = [&]() -> bool {
-    if (const Body* b = non_finite_body(w)) {
-      finish(RunStatus::Failed, "body " + std::to_string(b->id) + " has a non-finite state at t = " +
-                                    number_text(w.time) + " s (time step too large for the stiffness?)");
-      return false;
-    }
-    if (!std::isfinite(kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy)) {
-      finish(RunStatus::Failed, "the energy is not finite at t = " + number_text(w.time) +
-                                    " s: speeds or positions beyond what double precision squares (a non-finite "
-                                    "state ahead)");
+    if (std::string trouble = check_finite(w); !trouble.empty()) {
+      finish(RunStatus::Failed, std::move(trouble));
       return false;
     }
     ++state.outputs;

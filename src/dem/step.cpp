@@ -103,6 +103,7 @@ void list_contacts(World& w) {
   // Worlds without compounds never look at templates here.
   const bool any_compound =
       std::any_of(w.templates.begin(), w.templates.end(), [](const ShapeTemplate& t) { return !t.parts.empty(); });
+  const bool domain = !work.foreign.empty();
   std::size_t k = 0;
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& body = w.bodies[i];
@@ -110,6 +111,7 @@ void list_contacts(World& w) {
     const bool compound = any_compound && !t.parts.empty();
     if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
+      if (domain && work.foreign[i] && work.foreign[pairs[k].second]) continue;  // another domain's pair
       StepContact c;
       c.a = i;
       c.b = pairs[k].second;
@@ -130,7 +132,7 @@ void list_contacts(World& w) {
           work.keys.push_back(pair_key(body.id, other.id, pa, pb));
         }
     }
-    if (body.fixed) continue;
+    if (body.fixed || (domain && work.foreign[i])) continue;
     const Aabb& box = work.boxes.boxes[i];
     for (std::uint32_t p = 0; p < w.planes.size(); ++p) {
       const PlaneWall& wall = w.planes[p];
@@ -323,7 +325,7 @@ StepReport compute_forces_now(World& w) {
   return compute_forces(w, 0);
 }
 
-StepReport step(World& w, Real dt) {
+StepReport begin_step(World& w, Real dt) {
   if (!w.forces_current) {
     const StepReport r = compute_forces_now(w);
     if (r.status != StepStatus::Ok) return r;
@@ -343,21 +345,32 @@ StepReport step(World& w, Real dt) {
       }
   }
   if (w.cell.active() && wrap_bodies(w) > 0) w.work.candidates_current = false;  // images changed
-  const Real power_before = w.stats.wall_power;
+  w.work.power_before = w.stats.wall_power;
   w.time += dt;
-  const std::size_t before = w.bodies.size();
-  const std::size_t inserted = w.inflows.empty() ? 0 : run_inflows(w);
+  w.work.kicked_bodies = w.bodies.size();
+  w.work.inserted = w.inflows.empty() ? 0 : run_inflows(w);
   if (!w.motions.empty()) place_driven(w);
+  w.forces_current = false;
+  return {};
+}
+
+StepReport finish_step(World& w, Real dt) {
   const StepReport r = compute_forces(w, dt);
-  w.stats.inserted = static_cast<int>(inserted);
+  w.stats.inserted = static_cast<int>(w.work.inserted);
   if (r.status != StepStatus::Ok) {
     w.forces_current = false;
     return r;
   }
   // Bodies inserted now start at this time with their velocity: no half kick.
-  kick(std::span(w.bodies).first(before), w.templates, w.materials, dt / 2, threads);
-  w.wall_work += 0.5 * dt * (power_before + w.stats.wall_power);  // trapezoid rule
+  const std::size_t kicked = std::min(w.work.kicked_bodies, w.bodies.size());
+  kick(std::span(w.bodies).first(kicked), w.templates, w.materials, dt / 2, thread_count(w.settings.threads));
+  w.wall_work += 0.5 * dt * (w.work.power_before + w.stats.wall_power);  // trapezoid rule
   return r;
+}
+
+StepReport step(World& w, Real dt) {
+  const StepReport r = begin_step(w, dt);
+  return r.status == StepStatus::Ok ? finish_step(w, dt) : r;
 }
 
 }  // namespace gjkdem::dem

@@ -90,6 +90,10 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   if (options.threads >= 0) r->scene.world.settings.threads = options.threads;
   r->state = plan_scene(r->scene, source);
   r->folder.dir = options.out.empty() ? fs::path(r->scene.output_dir) : options.out;
+  if (options.follower) {
+    r->scene.world.settings.threads = resolve_threads(r->scene.world.settings.threads);
+    return r;
+  }
   fs::create_directories(r->folder.dir);
   r->lock_.emplace(r->folder.dir);
   prepare_run_folder(r->folder, options.overwrite || r->scene.overwrite);
@@ -98,7 +102,7 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   return r;
 }
 
-std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
+std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads, bool follower) {
   std::unique_ptr<SceneRun> r(new SceneRun);
   r->folder.dir = dir;
   if (!fs::exists(r->folder.checkpoint()))
@@ -107,6 +111,13 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads) {
   r->scene = load_scene(saved.text, r->folder.scene().string(), saved.base);
   if (threads >= 0) r->scene.world.settings.threads = threads;
   r->state = plan_scene(r->scene, r->folder.scene().string());
+  if (follower) {
+    dem::World& world = r->scene.world;
+    world.settings.threads = resolve_threads(world.settings.threads);
+    const Checkpoint c = load_checkpoint(r->folder.checkpoint(), world, fnv1a64(saved.text));
+    r->state = c.run;
+    return r;
+  }
   r->lock_.emplace(r->folder.dir);
   remove_stale_temporaries(r->folder);
   r->open_writers(saved.text, saved.scene_file, saved.base, true);
@@ -168,9 +179,18 @@ void SceneRun::open_writers(const std::string& text, const std::string& scene_fi
   writers_ = std::make_unique<RunFolderWriters>(folder, world, options, c);
 }
 
-double SceneRun::wall_seconds() const { return writers_->wall_seconds(); }
+double SceneRun::wall_seconds() const { return writers_ ? writers_->wall_seconds() : 0.0; }
 
-dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop) {
+dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop,
+                              dem::DomainTransport* transport) {
+  const bool domains = transport && transport->size() > 1;
+  if (domains)
+    if (const std::string why = dem::domains_unsupported(scene.world); !why.empty())
+      throw SceneError("this scene has " + why + ", which a run on more than one rank cannot have yet: run it on one");
+  if (!writers_) {  // a follower
+    if (!domains) throw std::logic_error("SceneRun: a follower runs only on domains");
+    return dem::run_domains(scene.world, state, {}, *transport, {}, scene.guards);
+  }
   std::vector<dem::RunObserver*> observers = writers_->observers();
   observers.insert(observers.end(), extra.begin(), extra.end());
   RunInfoWriter& info = writers_->info();
@@ -180,6 +200,7 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
     info.stopped_by = stop();
     return !info.stopped_by.empty();
   };
+  if (domains) return dem::run_domains(scene.world, state, observers, *transport, stop_and_say, scene.guards);
   return dem::run(scene.world, state, observers, stop_and_say, scene.guards);
 }
 

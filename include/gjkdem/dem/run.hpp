@@ -109,6 +109,10 @@ Real stable_time_step(const World& world);
 /// run's time step and initial energy.
 std::string check_guards(const World& world, const RunState& state, const RunGuards& guards);
 
+/// What fails a run whatever the guards: a body whose state is not finite,
+/// or an energy that is not (the message; "" when all is finite).
+std::string check_finite(const World& world);
+
 /// A message for a failed step, naming the pair.
 std::string describe_failure(const World& world, const StepReport& report);
 

@@ -53,6 +53,14 @@ struct StepWorkspace {
   std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box
   std::vector<std::uint8_t> image_code;   ///< and its image
   std::vector<MotionFrame> motion_frames; ///< per motion, at world.time (place_driven)
+  /// Domain runs (domains.hpp): 1 for each body this domain does not own
+  /// (other domains' bodies seen here, the fixed bodies every domain holds);
+  /// pairs of two such bodies are not listed. Empty: the world owns all.
+  std::vector<std::uint8_t> foreign;
+  // Between begin_step and finish_step (world.hpp).
+  std::size_t kicked_bodies = 0;  ///< bodies that took the first half kick (inflows insert after them)
+  std::size_t inserted = 0;       ///< bodies the inflows inserted
+  Real power_before = 0;          ///< driven walls' power at the step's start
 };
 
 }  // namespace gjkdem::dem

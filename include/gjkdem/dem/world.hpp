@@ -93,6 +93,13 @@ struct World {
 /// (the world is then left mid-step).
 StepReport step(World& world, Real dt);
 
+/// The two halves of step(), between which a domain run moves bodies
+/// between domains (domains.hpp): begin_step kicks by half a step, drifts,
+/// wraps periodic bodies, advances the clock, runs the inflows and places the
+/// driven bodies; finish_step evaluates the forces and kicks the second half.
+StepReport begin_step(World& world, Real dt);
+StepReport finish_step(World& world, Real dt);
+
 /// Evaluates the forces of the current state if they are not current.
 StepReport compute_forces_now(World& world);
 

@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 
+#include "gjkdem/dem/domains.hpp"
 #include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/scene.hpp"
 
@@ -22,6 +23,9 @@ struct SceneRunOptions {
   std::filesystem::path out;  ///< run folder; empty: the scene's output.directory
   bool overwrite = false;     ///< replace an earlier run's files (the scene's output.overwrite also does)
   int threads = -1;           ///< < 0: the scene's simulation.threads; 0: every core
+  /// A rank other than 0 of a run on domains: the scene is read, nothing is
+  /// written (rank 0 writes the run folder).
+  bool follower = false;
 };
 
 /// The library's version ("0.1.0"), written into run.json.
@@ -47,7 +51,8 @@ class SceneRun {
   static std::unique_ptr<SceneRun> start(const std::string& scene_file, const SceneRunOptions& options);
   /// Takes up the run in `dir` from its checkpoint (SceneError when the
   /// folder holds none, CheckpointError when it does not match the scene).
-  static std::unique_ptr<SceneRun> resume(const std::filesystem::path& dir, int threads = -1);
+  /// `follower`: as in SceneRunOptions (the folder is only read).
+  static std::unique_ptr<SceneRun> resume(const std::filesystem::path& dir, int threads = -1, bool follower = false);
   /// True when run.json in `dir` says the run completed.
   static bool completed(const std::filesystem::path& dir);
 
@@ -57,9 +62,12 @@ class SceneRun {
 
   /// Runs to the end, or until `stop` (asked after every step) returns a
   /// reason, which run.json records as `stopped_by`; "" goes on. `extra`
-  /// observers are called after the writers.
+  /// observers are called after the writers. With a `transport` of more
+  /// than one rank, every rank calls run() together and the world runs on
+  /// domains (dem::run_domains): rank 0 writes, observes and decides
+  /// when to stop, the others pass no observers.
   dem::RunOutcome run(std::span<dem::RunObserver* const> extra = {},
-                      const std::function<std::string()>& stop = {});
+                      const std::function<std::string()>& stop = {}, dem::DomainTransport* transport = nullptr);
 
   Scene scene;
   dem::RunState state;

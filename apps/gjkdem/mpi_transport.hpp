@@ -1,0 +1,16 @@
+#pragma once
+// Domains over MPI (dem::DomainTransport): `mpirun -np N gjkdem run` runs
+// one scene on N ranks. Built when CMake finds MPI (GJKDEM_HAVE_MPI).
+#include <memory>
+
+#include "gjkdem/dem/domains.hpp"
+
+namespace gjkdem::app {
+
+/// MPI, initialised when this process was started by an MPI launcher
+/// (mpirun, mpiexec, srun) with more than one rank, and finalised when the
+/// last handle goes; null otherwise (a plain `gjkdem run`, or a build
+/// without MPI).
+std::unique_ptr<dem::DomainTransport> launched_transport();
+
+}  // namespace gjkdem::app

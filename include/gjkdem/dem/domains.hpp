@@ -1,0 +1,88 @@
+#pragma once
+// Domain runs (issue 15): one world split among ranks by space. Each rank's
+// domain is a World holding the bodies it owns (those whose centre lies in
+// its region), the other domains' bodies whose boxes reach its own (ghosts,
+// refreshed every step, their state only: templates, materials and walls
+// are replicated) and every fixed body. A domain lists only pairs with a
+// body it owns and sums each owned body's forces in the order of its pairs'
+// keys, as a whole world does, so a run on any number of domains gives the
+// same bits as the run of the whole world. A body that crosses into another
+// region moves to its owner with the state of its pairs (GJK warm starts,
+// springs): friction history survives the move. Outputs see the whole world,
+// gathered on rank 0.
+//
+// The transport is abstract: MPI in the gjkdem program (gjkdem/mpi/), ranks
+// as threads of one process in the tests.
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gjkdem/dem/decomposition.hpp"
+#include "gjkdem/dem/run.hpp"
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::dem {
+
+/// How domains talk. Every rank calls exchange() together, in the same order.
+class DomainTransport {
+ public:
+  virtual ~DomainTransport() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// Sends outgoing[r] to rank r (size() entries, empty ones included) and
+  /// returns what each rank sent to this one, by rank.
+  virtual std::vector<std::string> exchange(std::vector<std::string> outgoing) = 0;
+};
+
+/// Every rank's `mine`, by rank, on every rank.
+std::vector<std::string> all_gather(DomainTransport& transport, const std::string& mine);
+
+/// Which rank owns which region of space. The regions tile all space (the
+/// outer ones reach to infinity); a body belongs to the region holding its
+/// centre of mass.
+struct DomainLayout {
+  std::vector<DomainBox> regions;  ///< per rank
+  int owner_of(const Vec3& centre) const noexcept;
+};
+
+/// Regions for `ranks` domains by recursive coordinate bisection (bisect())
+/// of the moving bodies' centres, each body weighted by `weights` (per body
+/// of the world, fixed ones ignored; empty: 1 each).
+DomainLayout layout_domains(const World& whole, int ranks, std::span<const Real> weights = {});
+
+/// What a domain run cannot do yet (periodic cells, driven walls and
+/// bodies, inflows): the reason, or "" when the world can run in domains.
+std::string domains_unsupported(const World& whole);
+
+/// The domain of `rank` cut from the whole world: the moving bodies of its
+/// region, every fixed body, the pairs of its bodies. Ghosts come with the
+/// first exchange_bodies().
+World make_domain(const World& whole, const DomainLayout& layout, int rank);
+
+/// Brings the boxes up to date, moves the bodies that left this domain's
+/// region to their owners (with the state of their pairs) and refreshes the
+/// ghosts. All ranks call it together, between begin_step and finish_step
+/// (world.hpp) and before a first force evaluation.
+void exchange_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
+
+/// The whole world on rank 0, written into `whole` (which keeps what never
+/// changes: settings, templates, materials, walls): bodies, box anchors,
+/// the pair store, the touching contacts and the stats, with the same bits
+/// as a run of the whole world. All ranks call it together; the others
+/// leave `whole` as it is.
+void gather_world(const World& domain, DomainTransport& transport, World& whole);
+
+/// dem::run (run.hpp) on domains: every rank calls it together with the same
+/// whole world (as built, or restored from a checkpoint) and run state.
+/// Observers, the stop request and the guards act on rank 0, which sees
+/// the gathered whole world at each output (on_step sees rank 0's domain);
+/// the other ranks pass no observers. A failure on any rank fails the run
+/// on all, with the message of the lowest failing rank. On return, rank
+/// 0's `whole` holds the world as of the last output. Throws
+/// std::invalid_argument for what domains_unsupported() names.
+RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers,
+                       DomainTransport& transport, const std::function<bool()>& stop_requested = {},
+                       const RunGuards& guards = {});
+
+}  // namespace gjkdem::dem

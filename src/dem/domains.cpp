@@ -1,0 +1,374 @@
+// Domains of a world: cutting, exchanging bodies between steps, gathering
+// the whole on rank 0 (domains.hpp). Messages are arrays of plain records
+// copied as bytes: every rank runs the same build.
+#include "gjkdem/dem/domains.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+
+#include "gjkdem/dem/boxes.hpp"
+#include "parallel.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+// A body as it travels: its state and its box with the box's anchors.
+struct BodyRecord {
+  Body body;
+  Aabb box;
+  Vec3 anchor_position;
+  Quat anchor_orientation;
+};
+
+// A touching contact as it travels to rank 0: bodies by id (a plane by its index).
+struct ContactRecord {
+  PairKey key;
+  std::uint64_t a = 0, b = 0;
+  StepContact contact;
+};
+
+static_assert(std::is_trivially_copyable_v<BodyRecord> && std::is_trivially_copyable_v<PairState> &&
+              std::is_trivially_copyable_v<ContactRecord>);
+
+// A message: arrays of records, each preceded by its count.
+class Writer {
+ public:
+  template <class T>
+  void put(const std::vector<T>& items) {
+    const std::uint64_t n = items.size();
+    bytes_.append(reinterpret_cast<const char*>(&n), sizeof n);
+    bytes_.append(reinterpret_cast<const char*>(items.data()), n * sizeof(T));
+  }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  void get(std::vector<T>& items) {  // appends
+    std::uint64_t n = 0;
+    take(&n, sizeof n);
+    const std::size_t old = items.size();
+    items.resize(old + n);
+    take(items.data() + old, n * sizeof(T));
+  }
+
+ private:
+  void take(void* to, std::size_t n) {
+    if (n > bytes_.size() - at_) throw std::runtime_error("a domain message is shorter than its contents");
+    std::memcpy(to, bytes_.data() + at_, n);
+    at_ += n;
+  }
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+BodyRecord record_of(const World& w, std::size_t i) {
+  const BoxCache& c = w.work.boxes;
+  return {w.bodies[i], c.boxes[i], c.anchor_position[i], c.anchor_orientation[i]};
+}
+
+bool owned(const World& w, std::size_t i) { return w.work.foreign.empty() || !w.work.foreign[i]; }
+
+// Replaces the domain's bodies and boxes by `records` (any order).
+void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<const std::uint8_t> foreign_of_record) {
+  std::vector<std::uint32_t> order(records.size());
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t p, std::uint32_t q) { return records[p].body.id < records[q].body.id; });
+  const std::size_t n = records.size();
+  BoxCache& c = w.work.boxes;
+  w.bodies.resize(n);
+  c.boxes.resize(n), c.anchor_position.resize(n), c.anchor_orientation.resize(n), c.moved.resize(n);
+  w.work.foreign.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyRecord& r = records[order[i]];
+    w.bodies[i] = r.body;
+    c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
+    w.work.foreign[i] = foreign_of_record[order[i]];
+  }
+}
+
+// Sorts pair states by key, keeping the first of equal keys (the copies of a
+// pair two domains share are equal).
+template <class T, class Key>
+void sort_unique(std::vector<T>& items, Key key) {
+  std::stable_sort(items.begin(), items.end(), [&](const T& x, const T& y) { return key(x) < key(y); });
+  items.erase(std::unique(items.begin(), items.end(), [&](const T& x, const T& y) { return key(x) == key(y); }),
+              items.end());
+}
+
+bool same_bits(const void* a, const void* b, std::size_t n) { return std::memcmp(a, b, n) == 0; }
+
+}  // namespace
+
+std::vector<std::string> all_gather(DomainTransport& t, const std::string& mine) {
+  return t.exchange(std::vector<std::string>(static_cast<std::size_t>(t.size()), mine));
+}
+
+int DomainLayout::owner_of(const Vec3& centre) const noexcept {
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    if (regions[r].holds(centre)) return static_cast<int>(r);
+  return 0;  // not finite: the run's guards fail it at the next output
+}
+
+DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> weights) {
+  std::vector<Vec3> centres;
+  std::vector<Real> costs;
+  std::vector<std::uint64_t> ids;
+  Vec3 lo{kInf, kInf, kInf}, hi = -lo;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    if (b.fixed) continue;
+    centres.push_back(b.position);
+    costs.push_back(weights.empty() ? 1 : weights[i]);
+    ids.push_back(b.id);
+    lo = min(lo, b.position), hi = max(hi, b.position);
+  }
+  if (centres.empty()) lo = hi = {};
+  // bisect's domain is half-open: nudge its top above the highest centre.
+  for (int a = 0; a < 3; ++a) hi[a] = std::nextafter(hi[a] + std::fabs(hi[a]) * 1e-12, kInf);
+  Decomposition d = bisect(centres, costs, ids, ranks, lo, hi);
+  for (DomainBox& box : d.boxes)  // the outer faces to infinity
+    for (int a = 0; a < 3; ++a) {
+      if (box.lo[a] == lo[a]) box.lo[a] = -kInf;
+      if (box.hi[a] == hi[a]) box.hi[a] = kInf;
+    }
+  return {std::move(d.boxes)};
+}
+
+std::string domains_unsupported(const World& w) {
+  if (w.cell.active()) return "periodic boundaries";
+  if (!w.motions.empty()) return "driven walls and bodies";
+  if (!w.inflows.empty()) return "inflows";
+  return "";
+}
+
+World make_domain(const World& whole, const DomainLayout& layout, int rank) {
+  World d;
+  d.settings = whole.settings;
+  d.templates = whole.templates;
+  d.materials = whole.materials;
+  d.material_pairs = whole.material_pairs;
+  d.planes = whole.planes;
+  d.time = whole.time;
+  d.forces_current = whole.forces_current;
+  d.wall_work = whole.wall_work;
+  d.stats = whole.stats;
+  const BoxCache& boxes = whole.work.boxes;
+  const bool boxed = boxes.anchor_position.size() == whole.bodies.size() && boxes.boxes.size() == whole.bodies.size();
+  std::vector<std::uint64_t> mine;
+  for (std::size_t i = 0; i < whole.bodies.size(); ++i) {
+    const Body& b = whole.bodies[i];
+    const bool own = !b.fixed && layout.owner_of(b.position) == rank;
+    if (!b.fixed && !own) continue;
+    d.bodies.push_back(b);
+    d.work.foreign.push_back(own ? 0 : 1);
+    if (own) mine.push_back(b.id);
+    if (boxed) {
+      d.work.boxes.boxes.push_back(boxes.boxes[i]);
+      d.work.boxes.anchor_position.push_back(boxes.anchor_position[i]);
+      d.work.boxes.anchor_orientation.push_back(boxes.anchor_orientation[i]);
+    }
+  }
+  d.work.boxes.moved.resize(d.work.boxes.boxes.size());
+  for (const PairState& p : whole.pairs)
+    if (std::binary_search(mine.begin(), mine.end(), p.key.lo) || std::binary_search(mine.begin(), mine.end(), p.key.hi))
+      d.pairs.push_back(p);
+  return d;
+}
+
+void exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+  const int me = t.rank(), ranks = t.size();
+  StepWorkspace& work = w.work;
+  const std::vector<std::uint64_t> ids_before = [&] {
+    std::vector<std::uint64_t> ids;
+    for (const Body& b : w.bodies) ids.push_back(b.id);
+    return ids;
+  }();
+  const std::vector<Vec3> anchors_before = work.boxes.anchor_position;
+  const std::vector<Quat> turns_before = work.boxes.anchor_orientation;
+  // Boxes are remade as update_boxes remakes them in a whole world, where
+  // one body leaving its box has all those half way out remade too: the
+  // domains agree whether any of their bodies left.
+  const int threads = detail::thread_count(w.settings.threads);
+  const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, work.foreign);
+  const std::vector<std::string> said = all_gather(t, left ? "1" : "");
+  const bool any_left = std::any_of(said.begin(), said.end(), [](const std::string& s) { return !s.empty(); });
+  remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, any_left ? kBoxBatchFraction : 1);
+
+  // Bodies that left the region go to their owners, with their pairs.
+  std::vector<std::vector<BodyRecord>> leaving(ranks);
+  std::vector<BodyRecord> kept;  // every body staying: fixed, and owned
+  std::vector<std::uint8_t> kept_foreign;
+  std::vector<std::pair<std::uint64_t, int>> moved;  // id, new owner (ids increasing)
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    if (b.fixed) {
+      kept.push_back(record_of(w, i)), kept_foreign.push_back(1);
+      continue;
+    }
+    if (!owned(w, i)) continue;  // a ghost: its owner sends it again
+    const int owner = layout.owner_of(b.position);
+    if (owner == me) {
+      kept.push_back(record_of(w, i)), kept_foreign.push_back(0);
+    } else {
+      leaving[owner].push_back(record_of(w, i));
+      moved.emplace_back(b.id, owner);
+    }
+  }
+  std::vector<std::vector<PairState>> leaving_pairs(ranks);
+  auto new_owner = [&](std::uint64_t id) {
+    const auto it = std::lower_bound(moved.begin(), moved.end(), std::pair<std::uint64_t, int>(id, -1));
+    return it != moved.end() && it->first == id ? it->second : -1;
+  };
+  if (!moved.empty())
+    for (const PairState& p : w.pairs) {
+      const int lo = new_owner(p.key.lo), hi = new_owner(p.key.hi);
+      if (lo >= 0) leaving_pairs[lo].push_back(p);
+      if (hi >= 0 && hi != lo) leaving_pairs[hi].push_back(p);
+    }
+  std::vector<std::string> out(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    Writer m;
+    m.put(leaving[r]), m.put(leaving_pairs[r]);
+    out[r] = m.take();
+  }
+  std::vector<BodyRecord> arrived;
+  for (const std::string& message : t.exchange(std::move(out))) {
+    Reader m(message);
+    m.get(arrived), m.get(w.pairs);
+  }
+  sort_unique(w.pairs, [](const PairState& p) { return p.key; });
+  for (const BodyRecord& r : arrived) kept.push_back(r), kept_foreign.push_back(0);
+
+  // The ghosts: each owned body goes to the domains its box reaches into
+  // (the box holding the boxes of their owned bodies).
+  Aabb reach{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    if (!kept_foreign[k]) reach.lo = min(reach.lo, kept[k].box.lo), reach.hi = max(reach.hi, kept[k].box.hi);
+  std::string reach_bytes(sizeof reach, '\0');
+  std::memcpy(reach_bytes.data(), &reach, sizeof reach);
+  std::vector<Aabb> reaches(ranks);
+  const std::vector<std::string> all_reaches = all_gather(t, reach_bytes);
+  for (int r = 0; r < ranks; ++r) {
+    if (all_reaches[r].size() != sizeof(Aabb)) throw std::runtime_error("a domain's reach came damaged");
+    std::memcpy(&reaches[r], all_reaches[r].data(), sizeof(Aabb));
+  }
+  std::vector<std::vector<BodyRecord>> ghosts(ranks);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    if (kept_foreign[k]) continue;
+    for (int r = 0; r < ranks; ++r)
+      if (r != me && overlaps(kept[k].box, reaches[r])) ghosts[r].push_back(kept[k]);
+  }
+  out.assign(ranks, {});
+  for (int r = 0; r < ranks; ++r) {
+    Writer m;
+    m.put(ghosts[r]);
+    out[r] = m.take();
+  }
+  std::vector<BodyRecord> seen;
+  for (const std::string& message : t.exchange(std::move(out))) Reader(message).get(seen);
+  for (const BodyRecord& r : seen) kept.push_back(r), kept_foreign.push_back(1);
+  set_bodies(w, kept, kept_foreign);
+  work.kicked_bodies = w.bodies.size();  // every body took its first half kick where it was owned
+
+  // The broad phase starts again where the bodies or their boxes changed.
+  bool same = w.bodies.size() == ids_before.size();
+  for (std::size_t i = 0; same && i < w.bodies.size(); ++i) same = w.bodies[i].id == ids_before[i];
+  if (!same) {
+    work.static_ready = false;
+    work.candidates_current = false;
+  } else if (anchors_before.size() != w.bodies.size() ||
+             !same_bits(anchors_before.data(), work.boxes.anchor_position.data(), anchors_before.size() * sizeof(Vec3)) ||
+             !same_bits(turns_before.data(), work.boxes.anchor_orientation.data(), turns_before.size() * sizeof(Quat))) {
+    work.candidates_current = false;
+  }
+}
+
+void gather_world(const World& d, DomainTransport& t, World& whole) {
+  std::vector<BodyRecord> bodies;
+  std::vector<ContactRecord> contacts;
+  for (std::size_t i = 0; i < d.bodies.size(); ++i)
+    if (owned(d, i) || (t.rank() == 0 && d.bodies[i].fixed)) bodies.push_back(record_of(d, i));
+  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
+    const StepContact& c = d.work.contacts[k];
+    if (!c.active) continue;
+    ContactRecord r{d.work.keys[k], c.a_is_plane ? c.a : d.bodies[c.a].id, d.bodies[c.b].id, c};
+    contacts.push_back(r);
+  }
+  std::vector<PairState> pairs;  // with an owned body (a domain lists no other)
+  pairs.reserve(d.pairs.size());
+  pairs.insert(pairs.end(), d.pairs.begin(), d.pairs.end());
+  Writer m;
+  m.put(bodies), m.put(pairs), m.put(contacts);
+  std::vector<std::string> out(t.size());
+  out[0] = m.take();
+  const std::vector<std::string> in = t.exchange(std::move(out));
+  if (t.rank() != 0) return;
+  bodies.clear(), pairs.clear(), contacts.clear();
+  for (const std::string& message : in) {
+    Reader r(message);
+    r.get(bodies), r.get(pairs), r.get(contacts);
+  }
+  std::sort(bodies.begin(), bodies.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });
+  sort_unique(pairs, [](const PairState& p) { return p.key; });
+  sort_unique(contacts, [](const ContactRecord& c) { return c.key; });
+  const std::size_t n = bodies.size();
+  whole.bodies.resize(n);
+  BoxCache& boxes = whole.work.boxes;
+  boxes.boxes.resize(n), boxes.anchor_position.resize(n), boxes.anchor_orientation.resize(n), boxes.moved.resize(n);
+  std::vector<std::uint64_t> ids(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyRecord& r = bodies[i];
+    whole.bodies[i] = r.body;
+    boxes.boxes[i] = r.box, boxes.anchor_position[i] = r.anchor_position, boxes.anchor_orientation[i] = r.anchor_orientation;
+    ids[i] = r.body.id;
+  }
+  auto index_of = [&](std::uint64_t id) {
+    return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
+  };
+  whole.pairs = std::move(pairs);
+  whole.time = d.time;
+  whole.forces_current = d.forces_current;
+  whole.wall_work = d.wall_work;
+  // The stats and the fixed bodies' reactions, summed as step.cpp sums
+  // them: in the order of the contact list, which is the order of keys.
+  StepStats stats;
+  whole.work.contacts.clear(), whole.work.keys.clear();
+  for (Body& b : whole.bodies)
+    if (b.fixed) b.force = b.torque = {};
+  for (ContactRecord& r : contacts) {
+    StepContact& c = r.contact;
+    c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
+    c.b = index_of(r.b);
+    Body& b = whole.bodies[c.b];
+    if (b.fixed) {
+      b.force += c.force;
+      b.torque += c.torque - cross(b.position, c.force);
+    }
+    if (!c.a_is_plane && whole.bodies[c.a].fixed) {
+      Body& a = whole.bodies[c.a];
+      a.force -= c.force;
+      a.torque -= c.torque - cross(a.position, c.force);
+    }
+    stats.elastic_energy += c.elastic;
+    ++stats.contacts;
+    if (c.a_is_plane || whole.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
+    whole.work.contacts.push_back(c);
+    whole.work.keys.push_back(r.key);
+  }
+  whole.stats = stats;
+  whole.work.candidates_current = false;
+}
+
+}  // namespace gjkdem::dem

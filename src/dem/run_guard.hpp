@@ -1,0 +1,21 @@
+#pragma once
+// The guards as both run loops apply them (run.cpp, domain_run.cpp).
+#include <span>
+#include <string>
+
+#include "gjkdem/dem/run.hpp"
+
+namespace gjkdem::dem::detail {
+
+/// Checks the guards: the message that stops the run, or "" to go on (a
+/// warning is told to the observers once until it changes kind).
+class GuardCheck {
+ public:
+  std::string operator()(const World& world, const RunState& state, const RunGuards& guards,
+                         std::span<RunObserver* const> observers);
+
+ private:
+  std::string last_warning_;
+};
+
+}  // namespace gjkdem::dem::detail

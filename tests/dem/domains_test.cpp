@@ -1,0 +1,222 @@
+// Domain runs (issue 15): a pour run on 2, 3 and 4 domains gives, at every
+// output, the same bits as the run of the whole world (bodies with their
+// forces, box anchors, the pair store with warm starts and springs, the
+// touching contacts, the stats), while bodies cross from one domain into
+// another. Ranks are threads of this process here (ThreadRanks); the MPI
+// transport runs the same code under mpirun (tests/mpi_run.sh).
+#include "gjkdem/dem/domains.hpp"
+
+#include <barrier>
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "dem/beds.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+// Ranks as threads: exchange() hands each message over through a shared
+// table, between two barriers.
+class ThreadRanks {
+ public:
+  explicit ThreadRanks(int n) : table_(n, std::vector<std::string>(n)), sync_(n) {
+    for (int r = 0; r < n; ++r) ranks_.emplace_back(*this, r);
+  }
+  struct Rank : DomainTransport {
+    Rank(ThreadRanks& shared, int index) : all(shared), me(index) {}
+    int rank() const override { return me; }
+    int size() const override { return static_cast<int>(all.ranks_.size()); }
+    std::vector<std::string> exchange(std::vector<std::string> out) override {
+      for (int r = 0; r < size(); ++r) all.table_[r][me] = std::move(out[r]);
+      all.sync_.arrive_and_wait();
+      std::vector<std::string> in = std::move(all.table_[me]);
+      all.table_[me].assign(size(), {});
+      all.sync_.arrive_and_wait();
+      return in;
+    }
+    ThreadRanks& all;
+    int me;
+  };
+  Rank& rank(int r) { return ranks_[r]; }
+
+ private:
+  std::vector<std::vector<std::string>> table_;  // [to][from]
+  std::barrier<> sync_;
+  std::vector<Rank> ranks_;
+};
+
+template <class T>
+std::string bytes_of(const std::vector<T>& items) {
+  return std::string(reinterpret_cast<const char*>(items.data()), items.size() * sizeof(T));
+}
+
+// What a run shows at each output, as bytes.
+struct Snapshot {
+  Real time;
+  std::string bodies, anchors, turns, pairs, contacts;
+  StepStats stats;
+};
+
+struct Recorder : RunObserver {
+  std::vector<Snapshot> outputs;
+  void on_output(const World& w, const RunState&) override {
+    std::vector<StepContact> touching;
+    for (const StepContact& c : w.work.contacts)
+      if (c.active) touching.push_back(c);
+    outputs.push_back({w.time, bytes_of(w.bodies), bytes_of(w.work.boxes.anchor_position),
+                       bytes_of(w.work.boxes.anchor_orientation), bytes_of(w.pairs), bytes_of(touching), w.stats});
+  }
+};
+
+void expect_same(const std::vector<Snapshot>& serial, const std::vector<Snapshot>& domains, int ranks) {
+  ASSERT_EQ(serial.size(), domains.size()) << ranks << " ranks";
+  for (std::size_t k = 0; k < serial.size(); ++k) {
+    const Snapshot &s = serial[k], &d = domains[k];
+    SCOPED_TRACE(testing::Message() << ranks << " ranks, output " << k << " at t = " << s.time);
+    EXPECT_EQ(s.time, d.time);
+    EXPECT_TRUE(s.bodies == d.bodies);
+    EXPECT_TRUE(s.anchors == d.anchors);
+    EXPECT_TRUE(s.turns == d.turns);
+    EXPECT_TRUE(s.pairs == d.pairs);
+    EXPECT_TRUE(s.contacts == d.contacts);
+    EXPECT_EQ(s.stats.contacts, d.stats.contacts);
+    EXPECT_EQ(s.stats.wall_contacts, d.stats.wall_contacts);
+    EXPECT_EQ(std::memcmp(&s.stats.elastic_energy, &d.stats.elastic_energy, sizeof(Real)), 0);
+  }
+}
+
+// A run and where it ended (rank 0's gathered world on domains).
+struct Ended {
+  RunOutcome outcome;
+  RunState state;
+  World world;
+};
+
+Ended run_whole(World world, RunState state, Recorder& recorder) {
+  RunObserver* observers[] = {&recorder};
+  const RunOutcome outcome = run(world, state, observers);
+  return {outcome, state, std::move(world)};
+}
+
+// Runs `world` on `ranks` threads, stopping after `stop_at` steps (0: to
+// the end); rank 0's recorder sees the outputs.
+Ended run_on(int ranks, const World& world, const RunState& state, Recorder& recorder, std::uint64_t stop_at = 0) {
+  ThreadRanks all(ranks);
+  std::vector<RunOutcome> outcomes(ranks);
+  std::vector<World> wholes(ranks, world);
+  std::vector<RunState> states(ranks, state);
+  {
+    std::vector<std::jthread> threads;
+    for (int r = 0; r < ranks; ++r)
+      threads.emplace_back([&, r] {
+        RunObserver* observers[] = {&recorder};
+        const auto seen = r == 0 ? std::span<RunObserver* const>(observers) : std::span<RunObserver* const>();
+        outcomes[r] = run_domains(wholes[r], states[r], seen, all.rank(r),
+                                  [&] { return stop_at > 0 && states[r].step == stop_at; });
+      });
+  }
+  for (int r = 1; r < ranks; ++r) EXPECT_EQ(outcomes[r].status, outcomes[0].status);
+  return {outcomes[0], states[0], std::move(wholes[0])};
+}
+
+// Polyhedra with friction poured into a box of fixed slabs on a plane
+// floor, past a fixed obstacle: a tall region, so the cuts are horizontal
+// and the grains fall through them.
+World pour(ContactModel model) {
+  WorldSettings s;
+  s.model = model;
+  s.gravity = {0, 0, -9.81};
+  WorldBuilder b(s);
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.5, 0.6});
+  b.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  b.add_box_walls({-0.03, -0.03, 0}, {0.03, 0.03, 0.3}, true, 0.01, rock, "box");
+  b.add_body({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .material = rock, .position = {0.01, 0, 0.05},
+              .fixed = true, .label = "obstacle"});
+  std::mt19937_64 rng(15);
+  test::fill_polyhedra(b, {.count = 90, .variants = 4, .vertices = 10, .size = 0.012, .lo = {-0.025, -0.025, 0.07},
+                           .hi = {0.025, 0.025, 0.2}, .material = rock},
+                       rng);
+  return b.build();
+}
+
+class Domains : public testing::TestWithParam<ContactModel> {};
+
+TEST_P(Domains, APourGivesTheSerialBitsOnAnyNumberOfRanks) {
+  const World world = pour(GetParam());
+  const RunState plan = plan_run(0.2, critical_time_step(world), 0.02);
+  Recorder serial;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed);
+  ASSERT_GT(serial.outputs.back().stats.contacts, 50);  // the grains lie on each other and the walls
+
+  // Grains cross the cuts: their owners at the start and at the end differ.
+  for (const int ranks : {2, 3, 4}) {
+    const DomainLayout layout = layout_domains(world, ranks);
+    int crossed = 0;
+    for (std::size_t i = 0; i < world.bodies.size(); ++i)
+      crossed += layout.owner_of(world.bodies[i].position) != layout.owner_of(whole.world.bodies[i].position);
+    EXPECT_GT(crossed, 10) << ranks << " ranks";
+    Recorder domains;
+    ASSERT_EQ(run_on(ranks, world, plan, domains).outcome.status, RunStatus::Completed);
+    expect_same(serial.outputs, domains.outputs, ranks);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Laws, Domains, testing::Values(ContactModel::Volume, ContactModel::Hertz),
+                         [](const testing::TestParamInfo<ContactModel>& p) { return p.param == ContactModel::Volume ? "Volume" : "Hertz"; });
+
+// A run stopped on 3 ranks and continued on 2 from the whole world it left
+// (what a checkpoint holds) ends with the serial run's bits.
+TEST(Domains, AStoppedRunContinuesOnAnotherNumberOfRanks) {
+  const World world = pour(ContactModel::Hertz);
+  const RunState plan = plan_run(0.06, critical_time_step(world), 0.01);
+  Recorder serial, domains;
+  ASSERT_EQ(run_whole(world, plan, serial).outcome.status, RunStatus::Completed);
+  const Ended first = run_on(3, world, plan, domains, plan.steps_total / 2);
+  ASSERT_EQ(first.outcome.status, RunStatus::Stopped);
+  ASSERT_EQ(first.state.step, plan.steps_total / 2);
+  ASSERT_EQ(run_on(2, first.world, first.state, domains).outcome.status, RunStatus::Completed);
+  expect_same(serial.outputs, domains.outputs, 3);
+}
+
+// The highest grain, owned by the top domain, becomes a sphere, which the
+// volume law cannot clip: its domain fails, and the run stops on every
+// rank with that domain's message, as the whole world's run does.
+TEST(Domains, AFailingDomainStopsTheRunWithItsMessage) {
+  World world = pour(ContactModel::Volume);
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i)
+    if (world.bodies[i].position.z > world.bodies[top].position.z) top = i;
+  ShapeTemplate sphere = world.templates[world.bodies[top].shape];
+  sphere.shape = make_sphere(sphere.reach);
+  world.templates.push_back(sphere);
+  world.bodies[top].shape = static_cast<std::uint32_t>(world.templates.size() - 1);
+  const RunState plan = plan_run(0.2, critical_time_step(world), 0.02);
+  ASSERT_EQ(layout_domains(world, 2).owner_of(world.bodies[top].position), 1);
+  Recorder serial, domains;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Failed);
+  ASSERT_NE(whole.outcome.error.find("body " + std::to_string(world.bodies[top].id)), std::string::npos)
+      << whole.outcome.error;
+  const Ended split = run_on(2, world, plan, domains);
+  EXPECT_EQ(split.outcome.status, RunStatus::Failed);
+  EXPECT_EQ(split.outcome.error, whole.outcome.error);
+  EXPECT_EQ(split.state.step, whole.state.step);
+}
+
+TEST(Domains, WhatDomainsCannotRunIsRefused) {
+  World world = pour(ContactModel::Hertz);
+  EXPECT_EQ(domains_unsupported(world), "");
+  world.motions.push_back({});
+  EXPECT_EQ(domains_unsupported(world), "driven walls and bodies");
+  RunState state = plan_run(0.01, critical_time_step(world), 0.01);
+  ThreadRanks two(2);
+  EXPECT_THROW(run_domains(world, state, {}, two.rank(0)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
