@@ -19,6 +19,9 @@
 // set), and the world's arrays split into bytes per body and per contact. `--export PREFIX` writes
 // each bed (PREFIX<N>.txt) for bench/yade_bed.py, which runs it in Yade.
 //
+// Under `mpirun -np R` the timed steps run on R domains (dem::run_domains),
+// with each rank's bodies, ghosts and traffic per step (docs/scaling.md).
+//
 //   bench_dem_scaling --free-fall [--threads T] [--steps S] [--export FILE]
 //
 // times 1,000 grains falling freely instead; `--export FILE` writes them (and
@@ -29,11 +32,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/domains.hpp"
 #include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/mpi/mpi_transport.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
 using namespace gjkdem;
@@ -260,12 +266,17 @@ int main(int argc, char** argv) {
     free_fall(threads, steps > 0 ? steps : free_fall_steps, export_prefix);
     return 0;
   }
+  // Under mpirun with more than one rank, the timed steps run on domains
+  // (every rank builds and settles the same bed; rank 0 prints).
+  const std::unique_ptr<DomainTransport> transport = mpi::launched_transport();
+  const bool domains = transport && transport->size() > 1, speaks = !transport || transport->rank() == 0;
+  if (domains && speaks) std::printf("domains: %d ranks\n", transport->size());
   if (counts.empty()) counts = {1000, 10000, 100000};
   const auto t_block = std::chrono::steady_clock::now();
   const std::vector<BlockBody> block = settled_block(cubes, threads, block_cache);
-  std::printf("block: %zu %s settled in %.1f s wall\n", block.size(), cubes ? "cubes" : "polyhedra",
+  if (speaks) std::printf("block: %zu %s settled in %.1f s wall\n", block.size(), cubes ? "cubes" : "polyhedra",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t_block).count());
-  std::printf("%-8s %9s %9s %12s %14s %12s %12s %12s\n", "N", "contacts", "per_part", "ms/step", "us/part-step",
+  if (speaks) std::printf("%-8s %9s %9s %12s %14s %12s %12s %12s\n", "N", "contacts", "per_part", "ms/step", "us/part-step",
               "bytes/part", "arrays/body", "arrays/cont");
   for (const int n : counts) {
     const int tiles = n / kBlockCount;
@@ -281,8 +292,20 @@ int main(int argc, char** argv) {
       export_bed(w, export_prefix + std::to_string(w.bodies.size()) + ".txt", tiles_x * kBlockSide, tiles_y * kBlockSide);
     const int timed = steps > 0 ? steps : std::max(10, static_cast<int>(4e5 / n));
     const auto t0 = std::chrono::steady_clock::now();
-    for (int i = 0; i < timed; ++i) step(w, dt);
+    DomainReport report;
+    if (domains) {  // the same steps on domains, outputs only at the end
+      RunState run;
+      run.dt = dt;
+      run.steps_total = run.steps_per_output = static_cast<std::uint64_t>(timed);
+      run.outputs = 1;  // as if continued: no output at the start
+      run.initial_energy = kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy;
+      const RunOutcome outcome = run_domains(w, run, {}, *transport, {}, {}, {}, &report);
+      if (outcome.status != RunStatus::Completed && speaks) std::printf("domains: %s\n", outcome.error.c_str());
+    } else {
+      for (int i = 0; i < timed; ++i) step(w, dt);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!speaks) continue;
     const long bytes = resident_bytes() - before;
     const std::size_t bodies = w.bodies.size();
     const Footprint arrays = footprint(w);
@@ -291,6 +314,13 @@ int main(int argc, char** argv) {
                 (2.0 * w.stats.contacts - w.stats.wall_contacts) / static_cast<double>(bodies), 1e3 * seconds / timed,
                 1e6 * seconds / timed / static_cast<double>(bodies), static_cast<double>(bytes) / bodies,
                 arrays.per_body, arrays.per_contact);
+    for (std::size_t r = 0; r < report.ranks.size(); ++r) {
+      const DomainReport::Rank& d = report.ranks[r];
+      std::printf("  rank %zu: %.0f bodies, %.0f ghosts, %.2f moved out and %.1f kB sent per step; per step %.2f ms "
+                  "in its stages, %.2f ms exchanging, %.2f ms in all (%.3f us per particle-step, outputs aside)\n",
+                  r, d.owned, d.ghosts, d.moved_out, d.bytes_sent / 1e3, 1e3 * d.step_seconds, 1e3 * d.exchange_seconds,
+                  1e3 * d.loop_seconds, 1e6 * d.loop_seconds / static_cast<double>(bodies));
+    }
     std::fflush(stdout);
   }
   return 0;

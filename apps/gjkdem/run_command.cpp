@@ -13,7 +13,7 @@
 
 #include "commands.hpp"
 #include "gjkdem/io/scene_run.hpp"
-#include "mpi_transport.hpp"
+#include "gjkdem/mpi/mpi_transport.hpp"
 
 namespace gjkdem::app {
 namespace {
@@ -76,6 +76,22 @@ class Progress : public dem::RunObserver {
   Clock::time_point start_, last_;
 };
 
+// Per rank, means per step (docs/scaling.md reads these).
+void print_domain_report(const dem::DomainReport& r) {
+  std::cerr << "gjkdem: " << r.ranks.size() << " ranks, " << r.steps << " steps, regions drawn again "
+            << r.rebalances << " times; per rank and step:\n";
+  for (std::size_t k = 0; k < r.ranks.size(); ++k) {
+    const dem::DomainReport::Rank& d = r.ranks[k];
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "gjkdem:   rank %zu: %.0f bodies, %.0f ghosts (%.0f%%), %.2f moved out, %.1f kB sent, "
+                  "%.3f ms in its stages, %.3f ms exchanging, %.3f ms in all\n",
+                  k, d.owned, d.ghosts, d.owned > 0 ? 100 * d.ghosts / d.owned : 0.0, d.moved_out, d.bytes_sent / 1e3,
+                  1e3 * d.step_seconds, 1e3 * d.exchange_seconds, 1e3 * d.loop_seconds);
+    std::cerr << line;
+  }
+}
+
 void install_signal_handlers() {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
@@ -113,7 +129,7 @@ int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
 // domain; rank 0 alone writes the folder and speaks. A rank that cannot
 // start tells the others, so that none waits for it.
 int run_simulation(const RunOptions& opt) {
-  const std::unique_ptr<dem::DomainTransport> transport = launched_transport();
+  const std::unique_ptr<dem::DomainTransport> transport = mpi::launched_transport();
   const bool follower = transport && transport->rank() > 0;
   const bool domains = transport && transport->size() > 1;
   auto started = [&](const std::string& error) {
@@ -164,6 +180,7 @@ int run_simulation(const RunOptions& opt) {
       return "";
     };
     const dem::RunOutcome outcome = run->run(observers, stop, transport.get());
+    if (domains && !opt.quiet) print_domain_report(run->domain_report);
     switch (outcome.status) {
       case dem::RunStatus::Completed:
         if (!opt.quiet)

@@ -69,14 +69,14 @@ bool measure_box_motion(std::span<const Body> bodies, std::span<const ShapeTempl
 }
 
 std::size_t remake_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
-                         BoxCache& cache, int threads, Real threshold) {
+                         BoxCache& cache, int threads, Real threshold, std::span<const std::uint8_t> skipped) {
   const std::int64_t count = static_cast<std::int64_t>(bodies.size());
   std::int64_t updated = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : updated) if (count >= kMinParallelBodies)
   for (std::int64_t i = 0; i < count; ++i) {
     const Body& b = bodies[i];
     const ShapeTemplate& t = templates[b.shape];
-    if (!(cache.moved[i] > threshold)) continue;
+    if (!(cache.moved[i] > threshold) || (!skipped.empty() && skipped[i])) continue;
     cache.boxes[i] = body_box(t, b, is_static(b) ? 0 : skin * t.reach);
     cache.anchor_position[i] = b.position;
     cache.anchor_orientation[i] = b.orientation;

@@ -2,6 +2,9 @@
 // with the bodies exchanged in the middle of each step, the whole world
 // gathered on rank 0 for every output, and every decision (stop, failure,
 // a guard's verdict) agreed by all ranks before it is acted on.
+#include <algorithm>
+#include <chrono>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 
@@ -10,6 +13,10 @@
 
 namespace gjkdem::dem {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The first non-empty message of any rank (lowest rank first), on every rank.
 std::string agree(DomainTransport& t, const std::string& mine) {
@@ -32,20 +39,72 @@ std::string failure_of(World& domain, F f) {
 }  // namespace
 
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers, DomainTransport& t,
-                       const std::function<bool()>& stop_requested, const RunGuards& guards) {
+                       const std::function<bool()>& stop_requested, const RunGuards& guards,
+                       const DomainOptions& options, DomainReport* report) {
   if (const std::string why = domains_unsupported(whole); !why.empty())
     throw std::invalid_argument("a run on more than one rank cannot have " + why + " yet: run it on one rank");
   const bool root = t.rank() == 0;
-  const DomainLayout layout = layout_domains(whole, t.size());
+  DomainLayout layout = layout_domains(whole, t.size());
   World domain = make_domain(whole, layout, t.rank());
   RunOutcome outcome;
   detail::GuardCheck check;
+  // This rank's counts, summed over the steps.
+  DomainReport::Rank mine;
+  std::uint64_t steps = 0;
+  int rebalances = 0;
+  auto exchange = [&] {
+    const auto t0 = Clock::now();
+    const ExchangeCounts c = exchange_bodies(domain, layout, t);
+    mine.exchange_seconds += seconds_since(t0);
+    mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
+    mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
+  };
   auto finish = [&](RunStatus status, std::string error = {}) {
     gather_world(domain, t, whole);
     outcome = {status, std::move(error)};
     if (root)
       for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
+    const std::string bytes(reinterpret_cast<const char*>(&mine), sizeof mine);
+    const std::vector<std::string> all = all_gather(t, bytes);
+    if (report && root) {
+      report->ranks.assign(all.size(), {});
+      const double n = static_cast<double>(std::max<std::uint64_t>(steps, 1));
+      for (std::size_t r = 0; r < all.size(); ++r) {
+        if (all[r].size() != sizeof mine) continue;
+        std::memcpy(&report->ranks[r], all[r].data(), sizeof mine);
+        DomainReport::Rank& k = report->ranks[r];
+        k.owned /= n, k.ghosts /= n, k.moved_out /= n, k.bytes_sent /= n, k.step_seconds /= n, k.exchange_seconds /= n, k.loop_seconds /= n;
+      }
+      report->steps = steps;
+      report->rebalances = rebalances;
+      report->layout = layout;
+    }
     return outcome;
+  };
+  // At an output: rank 0 draws the regions again when the domains' costs
+  // drifted apart (a hopper empties into one corner); every rank takes them.
+  auto rebalance = [&] {
+    std::string regions;
+    if (root) {
+      const std::vector<Real> cost = body_costs(whole);
+      auto worst = [&](const DomainLayout& l) {  // the costliest domain over the mean
+        std::vector<Real> load(l.regions.size(), 0);
+        Real total = 0;
+        for (std::size_t i = 0; i < whole.bodies.size(); ++i)
+          if (!whole.bodies[i].fixed) load[l.owner_of(whole.bodies[i].position)] += cost[i], total += cost[i];
+        return total > 0 ? *std::max_element(load.begin(), load.end()) * static_cast<Real>(load.size()) / total : 1;
+      };
+      const Real now = worst(layout);
+      if (now > 1 + options.imbalance) {
+        const DomainLayout next = layout_domains(whole, t.size(), cost);
+        if (worst(next) < now)
+          regions.assign(reinterpret_cast<const char*>(next.regions.data()), next.regions.size() * sizeof(DomainBox));
+      }
+    }
+    const std::string said = all_gather(t, regions)[0];
+    if (said.size() != layout.regions.size() * sizeof(DomainBox)) return;
+    std::memcpy(layout.regions.data(), said.data(), said.size());
+    ++rebalances;
   };
   // Rank 0's verdict on the gathered world (`start`: the initial energy is
   // recorded first), agreed by all: "" to go on.
@@ -68,10 +127,12 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
         verdict = e.what();
       }
     }
-    return agree(t, verdict);
+    verdict = agree(t, verdict);
+    if (verdict.empty()) rebalance();
+    return verdict;
   };
 
-  exchange_bodies(domain, layout, t);
+  exchange_bodies(domain, layout, t);  // the first ghosts
   if (state.step == 0 && state.outputs == 0) {
     std::string failed = agree(t, failure_of(domain, [&] { return compute_forces_now(domain); }));
     if (failed.empty()) failed = output(true);
@@ -85,18 +146,24 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   const std::string kStop = "\x01stop";
   std::string observer_failure;
   auto stop_or_fail = [&](bool ask) -> std::optional<RunOutcome> {
-    std::string mine = observer_failure;
-    if (root && mine.empty() && ask && stop_requested && stop_requested()) mine = kStop;
-    std::string said = agree(t, mine);
+    std::string here = observer_failure;
+    if (root && here.empty() && ask && stop_requested && stop_requested()) here = kStop;
+    std::string said = agree(t, here);
     if (said.empty()) return std::nullopt;
     if (said == kStop) return finish(RunStatus::Stopped);
     return finish(RunStatus::Failed, std::move(said));
   };
   while (state.step < state.steps_total) {
+    const auto start = Clock::now();
     if (const auto done = stop_or_fail(true)) return *done;
+    auto t0 = Clock::now();
     std::string failed = failure_of(domain, [&] { return begin_step(domain, state.dt); });
-    exchange_bodies(domain, layout, t);  // every rank takes part, failed or not
+    mine.step_seconds += seconds_since(t0);
+    exchange();  // every rank takes part, failed or not
+    t0 = Clock::now();
     if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, state.dt); });
+    mine.step_seconds += seconds_since(t0);
+    ++steps;
     failed = agree(t, failed);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
     ++state.step;
@@ -105,6 +172,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       } catch (const std::exception& e) {
         observer_failure = e.what();
       }
+    mine.loop_seconds += seconds_since(start);
     if (state.step % state.steps_per_output == 0 || state.step == state.steps_total)
       if (std::string verdict = output(false); !verdict.empty()) return finish(RunStatus::Failed, std::move(verdict));
   }

@@ -98,13 +98,19 @@ void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<const std:
   }
 }
 
-// Sorts pair states by key, keeping the first of equal keys (the copies of a
-// pair two domains share are equal).
+// Sorts records by key, keeping the first of equal keys (the copies of a
+// pair or contact two domains share are equal). Sorts indices: the records
+// are large.
 template <class T, class Key>
 void sort_unique(std::vector<T>& items, Key key) {
-  std::stable_sort(items.begin(), items.end(), [&](const T& x, const T& y) { return key(x) < key(y); });
-  items.erase(std::unique(items.begin(), items.end(), [&](const T& x, const T& y) { return key(x) == key(y); }),
-              items.end());
+  std::vector<std::uint32_t> order(items.size());
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t p, std::uint32_t q) { return key(items[p]) < key(items[q]); });
+  std::vector<T> out;
+  out.reserve(items.size());
+  for (const std::uint32_t k : order)
+    if (out.empty() || !(key(out.back()) == key(items[k]))) out.push_back(items[k]);
+  items = std::move(out);
 }
 
 bool same_bits(const void* a, const void* b, std::size_t n) { return std::memcmp(a, b, n) == 0; }
@@ -187,16 +193,30 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   return d;
 }
 
-void exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+std::vector<Real> body_costs(const World& w) {
+  std::vector<Real> cost(w.bodies.size(), 1);
+  std::vector<std::uint64_t> ids(w.bodies.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = w.bodies[i].id;
+  auto count = [&](std::uint64_t id) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    if (it != ids.end() && *it == id) cost[static_cast<std::size_t>(it - ids.begin())] += 1;
+  };
+  for (const PairState& p : w.pairs) count(p.key.lo), count(p.key.hi);
+  return cost;
+}
+
+ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
   const int me = t.rank(), ranks = t.size();
+  ExchangeCounts counts;
+  auto sent = [&](const std::vector<std::string>& out) {
+    for (int r = 0; r < ranks; ++r)
+      if (r != me) counts.bytes_sent += out[r].size();
+  };
   StepWorkspace& work = w.work;
-  const std::vector<std::uint64_t> ids_before = [&] {
-    std::vector<std::uint64_t> ids;
-    for (const Body& b : w.bodies) ids.push_back(b.id);
-    return ids;
-  }();
-  const std::vector<Vec3> anchors_before = work.boxes.anchor_position;
-  const std::vector<Quat> turns_before = work.boxes.anchor_orientation;
+  const std::size_t n = w.bodies.size();
+  std::vector<std::uint8_t> ghost(n);  // other domains' moving bodies: replaced below, never boxed here
+  for (std::size_t i = 0; i < n; ++i) ghost[i] = !owned(w, i) && !w.bodies[i].fixed;
+
   // Boxes are remade as update_boxes remakes them in a whole world, where
   // one body leaving its box has all those half way out remade too: the
   // domains agree whether any of their bodies left.
@@ -204,27 +224,21 @@ void exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
   const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, work.foreign);
   const std::vector<std::string> said = all_gather(t, left ? "1" : "");
   const bool any_left = std::any_of(said.begin(), said.end(), [](const std::string& s) { return !s.empty(); });
-  remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, any_left ? kBoxBatchFraction : 1);
+  const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads,
+                                          any_left ? kBoxBatchFraction : 1, ghost);
 
   // Bodies that left the region go to their owners, with their pairs.
   std::vector<std::vector<BodyRecord>> leaving(ranks);
-  std::vector<BodyRecord> kept;  // every body staying: fixed, and owned
-  std::vector<std::uint8_t> kept_foreign;
   std::vector<std::pair<std::uint64_t, int>> moved;  // id, new owner (ids increasing)
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+  std::vector<std::uint8_t> gone(n);
+  for (std::size_t i = 0; i < n; ++i) {
     const Body& b = w.bodies[i];
-    if (b.fixed) {
-      kept.push_back(record_of(w, i)), kept_foreign.push_back(1);
-      continue;
-    }
-    if (!owned(w, i)) continue;  // a ghost: its owner sends it again
+    if (b.fixed || ghost[i]) continue;
     const int owner = layout.owner_of(b.position);
-    if (owner == me) {
-      kept.push_back(record_of(w, i)), kept_foreign.push_back(0);
-    } else {
-      leaving[owner].push_back(record_of(w, i));
-      moved.emplace_back(b.id, owner);
-    }
+    if (owner == me) continue;
+    leaving[owner].push_back(record_of(w, i));
+    moved.emplace_back(b.id, owner);
+    gone[i] = 1;
   }
   std::vector<std::vector<PairState>> leaving_pairs(ranks);
   auto new_owner = [&](std::uint64_t id) {
@@ -243,19 +257,27 @@ void exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
     m.put(leaving[r]), m.put(leaving_pairs[r]);
     out[r] = m.take();
   }
+  counts.moved_out = moved.size();
+  sent(out);
   std::vector<BodyRecord> arrived;
+  std::vector<PairState> arrived_pairs;
   for (const std::string& message : t.exchange(std::move(out))) {
     Reader m(message);
-    m.get(arrived), m.get(w.pairs);
+    m.get(arrived), m.get(arrived_pairs);
   }
-  sort_unique(w.pairs, [](const PairState& p) { return p.key; });
-  for (const BodyRecord& r : arrived) kept.push_back(r), kept_foreign.push_back(0);
+  if (!arrived_pairs.empty()) {
+    w.pairs.insert(w.pairs.end(), arrived_pairs.begin(), arrived_pairs.end());
+    sort_unique(w.pairs, [](const PairState& p) { return p.key; });
+  }
 
   // The ghosts: each owned body goes to the domains its box reaches into
   // (the box holding the boxes of their owned bodies).
+  auto staying = [&](std::size_t i) { return !w.bodies[i].fixed && !ghost[i] && !gone[i]; };
   Aabb reach{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
-  for (std::size_t k = 0; k < kept.size(); ++k)
-    if (!kept_foreign[k]) reach.lo = min(reach.lo, kept[k].box.lo), reach.hi = max(reach.hi, kept[k].box.hi);
+  auto grow = [&](const Aabb& box) { reach.lo = min(reach.lo, box.lo), reach.hi = max(reach.hi, box.hi); };
+  for (std::size_t i = 0; i < n; ++i)
+    if (staying(i)) grow(work.boxes.boxes[i]);
+  for (const BodyRecord& r : arrived) grow(r.box);
   std::string reach_bytes(sizeof reach, '\0');
   std::memcpy(reach_bytes.data(), &reach, sizeof reach);
   std::vector<Aabb> reaches(ranks);
@@ -265,34 +287,66 @@ void exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
     std::memcpy(&reaches[r], all_reaches[r].data(), sizeof(Aabb));
   }
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    if (kept_foreign[k]) continue;
+  auto send_ghost = [&](const BodyRecord& record) {
     for (int r = 0; r < ranks; ++r)
-      if (r != me && overlaps(kept[k].box, reaches[r])) ghosts[r].push_back(kept[k]);
-  }
+      if (r != me && overlaps(record.box, reaches[r])) ghosts[r].push_back(record);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    if (staying(i)) send_ghost(record_of(w, i));
+  for (const BodyRecord& r : arrived) send_ghost(r);
   out.assign(ranks, {});
   for (int r = 0; r < ranks; ++r) {
     Writer m;
     m.put(ghosts[r]);
     out[r] = m.take();
   }
+  sent(out);
+  counts.bytes_sent += (ranks - 1) * (sizeof reach + 1);  // the reaches and the box agreement
   std::vector<BodyRecord> seen;
   for (const std::string& message : t.exchange(std::move(out))) Reader(message).get(seen);
-  for (const BodyRecord& r : seen) kept.push_back(r), kept_foreign.push_back(1);
-  set_bodies(w, kept, kept_foreign);
-  work.kicked_bodies = w.bodies.size();  // every body took its first half kick where it was owned
+  std::sort(seen.begin(), seen.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });
+  counts.ghosts = seen.size();
+  work.kicked_bodies = n;  // every body took its first half kick where it was owned
 
-  // The broad phase starts again where the bodies or their boxes changed.
-  bool same = w.bodies.size() == ids_before.size();
-  for (std::size_t i = 0; same && i < w.bodies.size(); ++i) same = w.bodies[i].id == ids_before[i];
-  if (!same) {
-    work.static_ready = false;
-    work.candidates_current = false;
-  } else if (anchors_before.size() != w.bodies.size() ||
-             !same_bits(anchors_before.data(), work.boxes.anchor_position.data(), anchors_before.size() * sizeof(Vec3)) ||
-             !same_bits(turns_before.data(), work.boxes.anchor_orientation.data(), turns_before.size() * sizeof(Quat))) {
-    work.candidates_current = false;
+  // The same bodies as before (the common case in a bed at rest): the
+  // ghosts are refreshed where they lie.
+  std::size_t k = 0;
+  bool same = moved.empty() && arrived.empty();
+  for (std::size_t i = 0; same && i < n; ++i)
+    if (ghost[i]) same = k < seen.size() && seen[k++].body.id == w.bodies[i].id;
+  if (same && k == seen.size()) {
+    bool boxes_changed = remade > 0;
+    k = 0;
+    BoxCache& c = work.boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!ghost[i]) {
+        counts.owned += w.bodies[i].fixed ? 0 : 1;
+        continue;
+      }
+      const BodyRecord& r = seen[k++];
+      boxes_changed = boxes_changed || !same_bits(&r.anchor_position, &c.anchor_position[i], sizeof(Vec3)) ||
+                      !same_bits(&r.anchor_orientation, &c.anchor_orientation[i], sizeof(Quat));
+      w.bodies[i] = r.body;
+      c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
+    }
+    if (boxes_changed) work.candidates_current = false;
+    return counts;
   }
+
+  // Else the domain is made again: fixed, staying, arrived and seen bodies.
+  std::vector<BodyRecord> records;
+  std::vector<std::uint8_t> foreign;
+  records.reserve(n + arrived.size() + seen.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (w.bodies[i].fixed || staying(i)) records.push_back(record_of(w, i)), foreign.push_back(w.bodies[i].fixed ? 1 : 0);
+  for (const BodyRecord& r : arrived) records.push_back(r), foreign.push_back(0);
+  for (const std::uint8_t f : foreign) counts.owned += f ? 0 : 1;
+  for (const BodyRecord& r : seen) records.push_back(r), foreign.push_back(1);
+  set_bodies(w, records, foreign);
+  work.kicked_bodies = w.bodies.size();
+  work.static_ready = false;  // the bodies' indices changed
+  work.candidates_current = false;
+  return counts;
 }
 
 void gather_world(const World& d, DomainTransport& t, World& whole) {

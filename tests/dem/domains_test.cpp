@@ -7,7 +7,9 @@
 #include "gjkdem/dem/domains.hpp"
 
 #include <barrier>
+#include <algorithm>
 #include <cstring>
+#include <numeric>
 #include <random>
 #include <thread>
 
@@ -104,7 +106,8 @@ Ended run_whole(World world, RunState state, Recorder& recorder) {
 
 // Runs `world` on `ranks` threads, stopping after `stop_at` steps (0: to
 // the end); rank 0's recorder sees the outputs.
-Ended run_on(int ranks, const World& world, const RunState& state, Recorder& recorder, std::uint64_t stop_at = 0) {
+Ended run_on(int ranks, const World& world, const RunState& state, Recorder& recorder, std::uint64_t stop_at = 0,
+             DomainReport* report = nullptr) {
   ThreadRanks all(ranks);
   std::vector<RunOutcome> outcomes(ranks);
   std::vector<World> wholes(ranks, world);
@@ -116,7 +119,7 @@ Ended run_on(int ranks, const World& world, const RunState& state, Recorder& rec
         RunObserver* observers[] = {&recorder};
         const auto seen = r == 0 ? std::span<RunObserver* const>(observers) : std::span<RunObserver* const>();
         outcomes[r] = run_domains(wholes[r], states[r], seen, all.rank(r),
-                                  [&] { return stop_at > 0 && states[r].step == stop_at; });
+                                  [&] { return stop_at > 0 && states[r].step == stop_at; }, {}, {}, report);
       });
   }
   for (int r = 1; r < ranks; ++r) EXPECT_EQ(outcomes[r].status, outcomes[0].status);
@@ -161,8 +164,20 @@ TEST_P(Domains, APourGivesTheSerialBitsOnAnyNumberOfRanks) {
       crossed += layout.owner_of(world.bodies[i].position) != layout.owner_of(whole.world.bodies[i].position);
     EXPECT_GT(crossed, 10) << ranks << " ranks";
     Recorder domains;
-    ASSERT_EQ(run_on(ranks, world, plan, domains).outcome.status, RunStatus::Completed);
+    DomainReport report;
+    ASSERT_EQ(run_on(ranks, world, plan, domains, 0, &report).outcome.status, RunStatus::Completed);
     expect_same(serial.outputs, domains.outputs, ranks);
+    // The grains gathered at the bottom, in the lowest region: the regions
+    // were drawn again, and share the pile.
+    EXPECT_GE(report.rebalances, 1) << ranks << " ranks";
+    std::vector<Real> load(ranks, 0);
+    const std::vector<Real> cost = body_costs(whole.world);
+    for (std::size_t i = 0; i < whole.world.bodies.size(); ++i)
+      if (!whole.world.bodies[i].fixed) load[report.layout.owner_of(whole.world.bodies[i].position)] += cost[i];
+    const Real total = std::accumulate(load.begin(), load.end(), Real(0));
+    EXPECT_LT(*std::max_element(load.begin(), load.end()), 1.5 * total / ranks) << ranks << " ranks";
+    ASSERT_EQ(report.ranks.size(), static_cast<std::size_t>(ranks));
+    for (const DomainReport::Rank& r : report.ranks) EXPECT_GT(r.ghosts, 0) << ranks << " ranks";
   }
 }
 

@@ -43,14 +43,15 @@ std::size_t update_boxes(std::span<const Body> bodies, std::span<const ShapeTemp
 /// body without a box: all of them when the cache is empty or holds more
 /// bodies, fixed ones included), and says whether a body not `ignored`
 /// (empty: none) may have left its box or has none. remake_boxes then
-/// remakes the boxes of the bodies that moved more than `threshold` skins:
+/// remakes the boxes of the bodies that moved more than `threshold` skins
+/// (but those `skipped`):
 /// update_boxes uses 1/2 when any left (else there is nothing to remake),
 /// so that the sweep that follows serves those half way out too, instead of
 /// running again a step later.
 bool measure_box_motion(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
                         BoxCache& cache, int threads, Real drift = 0, std::span<const std::uint8_t> ignored = {});
 std::size_t remake_boxes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, Real skin,
-                         BoxCache& cache, int threads, Real threshold);
+                         BoxCache& cache, int threads, Real threshold, std::span<const std::uint8_t> skipped = {});
 /// The threshold update_boxes remakes boxes at, in skins, once one body left its box.
 inline constexpr Real kBoxBatchFraction = 0.5;
 

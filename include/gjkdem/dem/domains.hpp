@@ -60,11 +60,19 @@ std::string domains_unsupported(const World& whole);
 /// first exchange_bodies().
 World make_domain(const World& whole, const DomainLayout& layout, int rank);
 
+/// What one exchange moved, on one rank.
+struct ExchangeCounts {
+  std::size_t owned = 0;       ///< moving bodies this domain owns afterwards
+  std::size_t ghosts = 0;      ///< other domains' bodies it sees
+  std::size_t moved_out = 0;   ///< bodies it handed to another domain
+  std::size_t bytes_sent = 0;  ///< to other ranks
+};
+
 /// Brings the boxes up to date, moves the bodies that left this domain's
 /// region to their owners (with the state of their pairs) and refreshes the
 /// ghosts. All ranks call it together, between begin_step and finish_step
 /// (world.hpp) and before a first force evaluation.
-void exchange_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
+ExchangeCounts exchange_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
 
 /// The whole world on rank 0, written into `whole` (which keeps what never
 /// changes: settings, templates, materials, walls): bodies, box anchors,
@@ -72,6 +80,34 @@ void exchange_bodies(World& domain, const DomainLayout& layout, DomainTransport&
 /// as a run of the whole world. All ranks call it together; the others
 /// leave `whole` as it is.
 void gather_world(const World& domain, DomainTransport& transport, World& whole);
+
+/// How a domain run balances its domains.
+struct DomainOptions {
+  /// At each output, the regions are drawn again (bisect() weighted by each
+  /// body's cost: 1 + its candidate pairs) when the costliest domain's cost
+  /// exceeds the mean by more than this fraction, and the new regions are
+  /// better; bodies then move to their new owners at the next step. The
+  /// bits of the run do not depend on it.
+  Real imbalance = 0.2;
+};
+
+/// What a domain run did, per rank (means per step), on rank 0.
+struct DomainReport {
+  struct Rank {
+    double owned = 0, ghosts = 0, moved_out = 0, bytes_sent = 0;
+    double step_seconds = 0;      ///< in its own stages of the step
+    double exchange_seconds = 0;  ///< in the exchange, waiting for the others included
+    double loop_seconds = 0;      ///< a whole step, agreements included, outputs not
+  };
+  std::vector<Rank> ranks;
+  std::uint64_t steps = 0;
+  int rebalances = 0;
+  DomainLayout layout;  ///< at the end
+};
+
+/// Each body's cost for the layout: 1 + the pairs of the pair store it is
+/// in (the narrow phase's work), by body.
+std::vector<Real> body_costs(const World& whole);
 
 /// dem::run (run.hpp) on domains: every rank calls it together with the same
 /// whole world (as built, or restored from a checkpoint) and run state.
@@ -83,6 +119,7 @@ void gather_world(const World& domain, DomainTransport& transport, World& whole)
 /// std::invalid_argument for what domains_unsupported() names.
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers,
                        DomainTransport& transport, const std::function<bool()>& stop_requested = {},
-                       const RunGuards& guards = {});
+                       const RunGuards& guards = {}, const DomainOptions& options = {},
+                       DomainReport* report = nullptr);
 
 }  // namespace gjkdem::dem

@@ -71,6 +71,8 @@ class SceneRun {
 
   Scene scene;
   dem::RunState state;
+  /// After a run on domains, on rank 0: what the domains did.
+  dem::DomainReport domain_report;
   RunPaths folder;
   /// Wall time of the run so far, earlier sittings included (s).
   double wall_seconds() const;

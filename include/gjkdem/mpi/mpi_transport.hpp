@@ -1,11 +1,12 @@
 #pragma once
 // Domains over MPI (dem::DomainTransport): `mpirun -np N gjkdem run` runs
-// one scene on N ranks. Built when CMake finds MPI (GJKDEM_HAVE_MPI).
+// one scene on N ranks. The library gjkdem::gjkdem_mpi is built with MPI
+// where CMake finds it (Debian's libopenmpi-dev); without, it answers null.
 #include <memory>
 
 #include "gjkdem/dem/domains.hpp"
 
-namespace gjkdem::app {
+namespace gjkdem::mpi {
 
 /// MPI, initialised when this process was started by an MPI launcher
 /// (mpirun, mpiexec, srun) with more than one rank, and finalised when the
@@ -13,4 +14,4 @@ namespace gjkdem::app {
 /// without MPI).
 std::unique_ptr<dem::DomainTransport> launched_transport();
 
-}  // namespace gjkdem::app
+}  // namespace gjkdem::mpi

@@ -1,4 +1,4 @@
-#include "mpi_transport.hpp"
+#include "gjkdem/mpi/mpi_transport.hpp"
 
 #include <cstdlib>
 #include <stdexcept>
@@ -7,7 +7,7 @@
 #include <mpi.h>
 #endif
 
-namespace gjkdem::app {
+namespace gjkdem::mpi {
 
 #ifdef GJKDEM_HAVE_MPI
 namespace {
@@ -76,4 +76,4 @@ std::unique_ptr<dem::DomainTransport> launched_transport() { return nullptr; }
 
 #endif
 
-}  // namespace gjkdem::app
+}  // namespace gjkdem::mpi
