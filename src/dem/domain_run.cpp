@@ -59,8 +59,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
     mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
   };
+  std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {
-    gather_world(domain, t, whole);
+    if (gathered_at != state.step) gather_world(domain, t, whole);
     outcome = {status, std::move(error)};
     if (root)
       for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
@@ -110,6 +111,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   // recorded first), agreed by all: "" to go on.
   auto output = [&](bool start) {
     gather_world(domain, t, whole);
+    gathered_at = state.step;
     std::string verdict;
     if (root) {
       try {
@@ -156,6 +158,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   while (state.step < state.steps_total) {
     const auto start = Clock::now();
     if (const auto done = stop_or_fail(true)) return *done;
+    gathered_at = ~std::uint64_t{0};  // the domains move on
     auto t0 = Clock::now();
     std::string failed = failure_of(domain, [&] { return begin_step(domain, state.dt); });
     mine.step_seconds += seconds_since(t0);
