@@ -4,9 +4,11 @@
 # cuts between domains while touching: trace.csv, energy.csv, the VTK and
 # view frames and the checkpoint of runs on 2, 3 and 4 ranks are those of
 # the serial run, byte for byte (the checkpoint apart from the wall-clock
-# seconds it records); a run stopped on 3 ranks resumes on 2, one stopped
-# on 1 resumes on 4, with the same bytes; what domains cannot run yet is
-# refused with a message and no run left hanging.
+# seconds it records), with a shaken floor too; a run stopped on 3 ranks
+# resumes on 2, one stopped
+# on 1 resumes on 4, with the same bytes; a failure stops every rank with
+# its message in run.json; what domains cannot run yet is refused with a
+# message and no run left hanging.
 set -euo pipefail
 gjkdem="$1"
 scene="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"
@@ -37,6 +39,15 @@ for n in 2 3 4; do
   same_run serial "ranks$n"
 done
 
+# A shaken floor (its work on the grains is in energy.csv): 3 ranks give the serial bytes.
+sed -e 's/^normal = \[0.0, 0.0, 1.0\]$/normal = [0.0, 0.0, 1.0]\nmotion = { vibration = { amplitude = [0.0, 0.0, 0.002], frequency = 16.0 } }/' \
+  "$scene" > shaken.toml
+grep -q vibration shaken.toml || fail "the shaken scene was not made"
+"$gjkdem" run shaken.toml --out shaken1 --quiet || fail "the serial shaken run did not complete"
+awk -F, 'END { exit !($7 != 0) }' shaken1/energy.csv || fail "the shaken floor did no work"
+"${launch[@]}" -np 3 "$gjkdem" run shaken.toml --out shaken3 --quiet || fail "the shaken run on 3 ranks did not complete"
+same_run shaken1 shaken3
+
 # Stopped on 3 ranks between checkpoints, resumed on 2.
 set +e
 "${launch[@]}" -np 3 "$gjkdem" run "$scene" --out three_two --quiet --stop-after 2500
@@ -53,6 +64,18 @@ set +e
 set -e
 "${launch[@]}" -np 4 "$gjkdem" run --resume one_four --quiet || fail "the resume on 4 ranks did not complete"
 same_run serial one_four
+
+# A failure stops every rank, and run.json says why: a time step above the
+# stability limit, which rank 0's guards see on the gathered world.
+sed -e 's/^dt = "auto"$/dt = 0.01/' "$scene" > unstable.toml
+set +e
+timeout 120 "${launch[@]}" -np 3 "$gjkdem" run unstable.toml --out unstable > unstable.txt 2>&1
+rc=$?
+set -e
+[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "an unstable run on 3 ranks did not fail (exit $rc)"
+grep -q "above the stability limit" unstable.txt || fail "the failure's message is missing: $(cat unstable.txt)"
+grep -q '"status": "failed"' unstable/run.json && grep -q 'above the stability limit' unstable/run.json ||
+  fail "run.json does not say why the run failed"
 
 # A periodic scene cannot run on domains yet: refused, with the reason.
 sed -e 's/^seed = 7$/seed = 7\nperiodic = { x = [-0.1, 0.1] }/' "$scene" > periodic.toml

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -59,6 +60,18 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
     mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
   };
+  // Driven walls and bodies: rank 0 makes the whole world's power and work
+  // of a step again from every domain's contacts (each domain's own sums
+  // are partial). `step`: after a step from `work_before` (else the first
+  // force evaluation).
+  const bool driven = !whole.motions.empty();
+  auto settle_wall_power = [&](Real work_before, bool step) {
+    if (!driven) return;
+    const Real power = whole_wall_power(domain, t);
+    if (!root) return;
+    domain.stats.wall_power = power;
+    if (step) domain.wall_work = work_before + 0.5 * state.dt * (domain.work.power_before + power);
+  };
   std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {
     if (gathered_at != state.step) gather_world(domain, t, whole);
@@ -82,23 +95,38 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     }
     return outcome;
   };
-  // At an output: rank 0 draws the regions again when the domains' costs
-  // drifted apart (a hopper empties into one corner); every rank takes them.
+  // At an output: when the slowest domain's stages took more than the mean
+  // by options.imbalance since the last output (a hopper empties into one
+  // corner), rank 0 draws the regions again, each body weighted by its cost
+  // (1 + its pairs) at the speed its domain measured; every rank takes them.
+  double seconds_at_output = 0;
   auto rebalance = [&] {
+    const double took = mine.step_seconds - seconds_at_output;
+    seconds_at_output = mine.step_seconds;
+    const std::vector<std::string> times = all_gather(t, std::string(reinterpret_cast<const char*>(&took), sizeof took));
     std::string regions;
     if (root) {
-      const std::vector<Real> cost = body_costs(whole);
-      auto worst = [&](const DomainLayout& l) {  // the costliest domain over the mean
-        std::vector<Real> load(l.regions.size(), 0);
-        Real total = 0;
+      const std::size_t ranks = times.size();
+      std::vector<double> seconds(ranks, 0);
+      for (std::size_t r = 0; r < ranks; ++r)
+        if (times[r].size() == sizeof(double)) std::memcpy(&seconds[r], times[r].data(), sizeof(double));
+      const double mean = std::accumulate(seconds.begin(), seconds.end(), 0.0) / static_cast<double>(ranks);
+      const double slowest = *std::max_element(seconds.begin(), seconds.end());
+      if (mean > 0 && slowest > (1 + options.imbalance) * mean) {
+        const std::vector<Real> cost = body_costs(whole);
+        std::vector<Real> load(ranks, 0), weight(whole.bodies.size(), 0);
         for (std::size_t i = 0; i < whole.bodies.size(); ++i)
-          if (!whole.bodies[i].fixed) load[l.owner_of(whole.bodies[i].position)] += cost[i], total += cost[i];
-        return total > 0 ? *std::max_element(load.begin(), load.end()) * static_cast<Real>(load.size()) / total : 1;
-      };
-      const Real now = worst(layout);
-      if (now > 1 + options.imbalance) {
-        const DomainLayout next = layout_domains(whole, t.size(), cost);
-        if (worst(next) < now)
+          if (!whole.bodies[i].fixed) load[layout.owner_of(whole.bodies[i].position)] += cost[i];
+        for (std::size_t i = 0; i < whole.bodies.size(); ++i) {
+          if (whole.bodies[i].fixed) continue;
+          const int r = layout.owner_of(whole.bodies[i].position);
+          weight[i] = cost[i] * seconds[r] / load[r];
+        }
+        const DomainLayout next = layout_domains(whole, t.size(), weight);
+        std::vector<Real> predicted(ranks, 0);
+        for (std::size_t i = 0; i < whole.bodies.size(); ++i)
+          if (!whole.bodies[i].fixed) predicted[next.owner_of(whole.bodies[i].position)] += weight[i];
+        if (*std::max_element(predicted.begin(), predicted.end()) < slowest)
           regions.assign(reinterpret_cast<const char*>(next.regions.data()), next.regions.size() * sizeof(DomainBox));
       }
     }
@@ -137,6 +165,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   exchange_bodies(domain, layout, t);  // the first ghosts
   if (state.step == 0 && state.outputs == 0) {
     std::string failed = agree(t, failure_of(domain, [&] { return compute_forces_now(domain); }));
+    settle_wall_power(Real(0), false);
     if (failed.empty()) failed = output(true);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
   } else {
@@ -164,8 +193,10 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.step_seconds += seconds_since(t0);
     exchange();  // every rank takes part, failed or not
     t0 = Clock::now();
+    const Real work_before = domain.wall_work;
     if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, state.dt); });
     mine.step_seconds += seconds_since(t0);
+    settle_wall_power(work_before, true);
     ++steps;
     failed = agree(t, failed);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));

@@ -79,8 +79,24 @@ BodyRecord record_of(const World& w, std::size_t i) {
 
 bool owned(const World& w, std::size_t i) { return w.work.foreign.empty() || !w.work.foreign[i]; }
 
+// The index of the body with this id (bodies in increasing id order).
+std::uint32_t index_of_id(std::span<const Body> bodies, std::uint64_t id) {
+  const auto it =
+      std::lower_bound(bodies.begin(), bodies.end(), id, [](const Body& b, std::uint64_t v) { return b.id < v; });
+  return static_cast<std::uint32_t>(it - bodies.begin());
+}
+
+// A contact's share of the driven pieces' power (step.cpp's sum), on its way to rank 0.
+struct PowerTerm {
+  PairKey key;
+  Real on_a = 0, on_b = 0;  // driven_power of a's motion, of b's
+  std::uint8_t driven = 0;  // 1: a is driven, 2: b is
+};
+
 // Replaces the domain's bodies and boxes by `records` (any order).
 void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<const std::uint8_t> foreign_of_record) {
+  std::vector<std::uint64_t> driven_ids;  // driven bodies are fixed: every domain holds them
+  for (const DrivenBody& d : w.driven) driven_ids.push_back(w.bodies[d.body].id);
   std::vector<std::uint32_t> order(records.size());
   for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(),
@@ -96,6 +112,7 @@ void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<const std:
     c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
     w.work.foreign[i] = foreign_of_record[order[i]];
   }
+  for (std::size_t k = 0; k < w.driven.size(); ++k) w.driven[k].body = index_of_id(w.bodies, driven_ids[k]);
 }
 
 // Sorts records by key, keeping the first of equal keys (the copies of a
@@ -154,7 +171,6 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
 
 std::string domains_unsupported(const World& w) {
   if (w.cell.active()) return "periodic boundaries";
-  if (!w.motions.empty()) return "driven walls and bodies";
   if (!w.inflows.empty()) return "inflows";
   return "";
 }
@@ -166,6 +182,7 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   d.materials = whole.materials;
   d.material_pairs = whole.material_pairs;
   d.planes = whole.planes;
+  d.motions = whole.motions;
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
@@ -187,6 +204,10 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
     }
   }
   d.work.boxes.moved.resize(d.work.boxes.boxes.size());
+  for (DrivenBody driven : whole.driven) {
+    driven.body = index_of_id(d.bodies, whole.bodies[driven.body].id);
+    d.driven.push_back(driven);
+  }
   for (const PairState& p : whole.pairs)
     if (std::binary_search(mine.begin(), mine.end(), p.key.lo) || std::binary_search(mine.begin(), mine.end(), p.key.hi))
       d.pairs.push_back(p);
@@ -221,7 +242,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   // one body leaving its box has all those half way out remade too: the
   // domains agree whether any of their bodies left.
   const int threads = detail::thread_count(w.settings.threads);
-  const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, work.foreign);
+  const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, ghost);
   const std::vector<std::string> said = all_gather(t, left ? "1" : "");
   const bool any_left = std::any_of(said.begin(), said.end(), [](const std::string& s) { return !s.empty(); });
   const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads,
@@ -392,6 +413,8 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
     return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
   };
   whole.pairs = std::move(pairs);
+  whole.planes = d.planes;  // where their motions have them
+  whole.work.motion_frames = d.work.motion_frames;
   whole.time = d.time;
   whole.forces_current = d.forces_current;
   whole.wall_work = d.wall_work;
@@ -421,8 +444,39 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
     whole.work.contacts.push_back(c);
     whole.work.keys.push_back(r.key);
   }
+  stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power)
   whole.stats = stats;
   whole.work.candidates_current = false;
+}
+
+Real whole_wall_power(const World& d, DomainTransport& t) {
+  std::vector<PowerTerm> terms;
+  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
+    const StepContact& c = d.work.contacts[k];
+    if (!c.active) continue;
+    const std::uint32_t motion_a = c.a_is_plane ? d.planes[c.a].motion : d.bodies[c.a].motion;
+    const std::uint32_t motion_b = d.bodies[c.b].motion;
+    if (!motion_a && !motion_b) continue;
+    PowerTerm p{d.work.keys[k]};
+    if (motion_a) p.on_a = driven_power(d.work.motion_frames[motion_a - 1], c.force, c.torque), p.driven |= 1;
+    if (motion_b) p.on_b = driven_power(d.work.motion_frames[motion_b - 1], c.force, c.torque), p.driven |= 2;
+    terms.push_back(p);
+  }
+  Writer m;
+  m.put(terms);
+  std::vector<std::string> out(t.size());
+  out[0] = m.take();
+  const std::vector<std::string> in = t.exchange(std::move(out));
+  if (t.rank() != 0) return 0;
+  terms.clear();
+  for (const std::string& message : in) Reader(message).get(terms);
+  sort_unique(terms, [](const PowerTerm& p) { return p.key; });
+  Real power = 0;  // as step.cpp sums it: contact by contact, a's share then b's
+  for (const PowerTerm& p : terms) {
+    if (p.driven & 1) power += p.on_a;
+    if (p.driven & 2) power -= p.on_b;
+  }
+  return power;
 }
 
 }  // namespace gjkdem::dem

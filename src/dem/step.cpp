@@ -299,14 +299,8 @@ StepReport compute_forces(World& w, Real dt) {
     // Power of a driven side on the other: its velocity field against the
     // force and torque it exerts (c.force and c.torque act on b).
     const std::uint32_t motion_a = c.a_is_plane ? w.planes[c.a].motion : w.bodies[c.a].motion;
-    if (motion_a) {
-      const MotionFrame& f = work.motion_frames[motion_a - 1];
-      stats.wall_power += dot(c.force, f.velocity_at_origin) + dot(c.torque, f.spin);
-    }
-    if (b.motion) {
-      const MotionFrame& f = work.motion_frames[b.motion - 1];
-      stats.wall_power -= dot(c.force, f.velocity_at_origin) + dot(c.torque, f.spin);
-    }
+    if (motion_a) stats.wall_power += driven_power(work.motion_frames[motion_a - 1], c.force, c.torque);
+    if (b.motion) stats.wall_power -= driven_power(work.motion_frames[b.motion - 1], c.force, c.torque);
     stats.elastic_energy += c.elastic;
     ++stats.contacts;
     if (c.a_is_plane || w.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;

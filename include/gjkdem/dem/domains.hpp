@@ -51,8 +51,8 @@ struct DomainLayout {
 /// of the world, fixed ones ignored; empty: 1 each).
 DomainLayout layout_domains(const World& whole, int ranks, std::span<const Real> weights = {});
 
-/// What a domain run cannot do yet (periodic cells, driven walls and
-/// bodies, inflows): the reason, or "" when the world can run in domains.
+/// What a domain run cannot do yet (periodic cells, inflows): the reason,
+/// or "" when the world can run in domains.
 std::string domains_unsupported(const World& whole);
 
 /// The domain of `rank` cut from the whole world: the moving bodies of its
@@ -81,13 +81,20 @@ ExchangeCounts exchange_bodies(World& domain, const DomainLayout& layout, Domain
 /// leave `whole` as it is.
 void gather_world(const World& domain, DomainTransport& transport, World& whole);
 
+/// The power of the driven walls and bodies on the moving bodies at the
+/// last force evaluation, summed over every domain's contacts in the order
+/// a whole world sums them (World::stats.wall_power): on rank 0; 0 on the
+/// others. All ranks call it together.
+Real whole_wall_power(const World& domain, DomainTransport& transport);
+
 /// How a domain run balances its domains.
 struct DomainOptions {
-  /// At each output, the regions are drawn again (bisect() weighted by each
-  /// body's cost: 1 + its candidate pairs) when the costliest domain's cost
-  /// exceeds the mean by more than this fraction, and the new regions are
-  /// better; bodies then move to their new owners at the next step. The
-  /// bits of the run do not depend on it.
+  /// At each output, the regions are drawn again when the slowest domain's
+  /// stages took longer than the mean by more than this fraction since the
+  /// last output, and the new regions promise better: bisect() weighted by
+  /// each body's cost (body_costs) at the speed its domain measured. The
+  /// bodies then move to their new owners at the next step. The bits of the
+  /// run do not depend on it.
   Real imbalance = 0.2;
 };
 

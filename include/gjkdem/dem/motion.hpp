@@ -43,6 +43,12 @@ struct MotionFrame {
   Vec3 velocity_at_origin;  ///< D'(t) - w x (c + D(t))
 };
 
+/// Power (W) of a driven piece moving with frame f on a body it pushes with
+/// force F and torque T about the world origin (both acting on the body).
+inline Real driven_power(const MotionFrame& f, const Vec3& force, const Vec3& torque) noexcept {
+  return dot(force, f.velocity_at_origin) + dot(torque, f.spin);
+}
+
 /// Throws std::invalid_argument for non-finite values, a negative frequency,
 /// a table whose times do not increase or whose sizes differ.
 void check_motion(const PrescribedMotion& motion);
