@@ -65,24 +65,25 @@ set -e
 "${launch[@]}" -np 4 "$gjkdem" run --resume one_four --quiet || fail "the resume on 4 ranks did not complete"
 same_run serial one_four
 
+# Runs a scene that must fail on N ranks, promptly and saying MESSAGE:
+# expect_failure NAME N MESSAGE (reads NAME.toml, writes NAME/ and NAME.txt).
+expect_failure() {
+  set +e
+  timeout 120 "${launch[@]}" -np "$2" "$gjkdem" run "$1.toml" --out "$1" > "$1.txt" 2>&1
+  local rc=$?
+  set -e
+  [ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "$1 on $2 ranks did not fail (exit $rc)"
+  grep -q "$3" "$1.txt" || fail "$1: the message is missing: $(cat "$1.txt")"
+}
+
 # A failure stops every rank, and run.json says why: a time step above the
 # stability limit, which rank 0's guards see on the gathered world.
 sed -e 's/^dt = "auto"$/dt = 0.01/' "$scene" > unstable.toml
-set +e
-timeout 120 "${launch[@]}" -np 3 "$gjkdem" run unstable.toml --out unstable > unstable.txt 2>&1
-rc=$?
-set -e
-[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "an unstable run on 3 ranks did not fail (exit $rc)"
-grep -q "above the stability limit" unstable.txt || fail "the failure's message is missing: $(cat unstable.txt)"
+expect_failure unstable 3 "above the stability limit"
 grep -q '"status": "failed"' unstable/run.json && grep -q 'above the stability limit' unstable/run.json ||
   fail "run.json does not say why the run failed"
 
 # A periodic scene cannot run on domains yet: refused, with the reason.
 sed -e 's/^seed = 7$/seed = 7\nperiodic = { x = [-0.1, 0.1] }/' "$scene" > periodic.toml
-set +e
-timeout 120 "${launch[@]}" -np 2 "$gjkdem" run periodic.toml --out periodic > refused.txt 2>&1
-rc=$?
-set -e
-[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "a periodic scene on 2 ranks was not refused (exit $rc)"
-grep -q "periodic boundaries" refused.txt || fail "the refusal does not say why: $(cat refused.txt)"
+expect_failure periodic 2 "periodic boundaries"
 echo "mpi_run: serial = 2 = 3 = 4 ranks, 3 -> 2 and 1 -> 4 resumes"
