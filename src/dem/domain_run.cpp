@@ -190,8 +190,14 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     gathered_at = ~std::uint64_t{0};  // the domains move on
     auto t0 = Clock::now();
     std::string failed = failure_of(domain, [&] { return begin_step(domain, state.dt); });
+    const std::uint64_t first_new = insert_inflow_bodies(domain, layout, t);
     mine.step_seconds += seconds_since(t0);
     exchange();  // every rank takes part, failed or not
+    if (first_new != ~std::uint64_t{0})  // bodies inserted now start with their velocity: no half kick
+      domain.work.kicked_bodies = static_cast<std::size_t>(
+          std::lower_bound(domain.bodies.begin(), domain.bodies.end(), first_new,
+                           [](const Body& b, std::uint64_t id) { return b.id < id; }) -
+          domain.bodies.begin());
     t0 = Clock::now();
     const Real work_before = domain.wall_work;
     if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, state.dt); });

@@ -171,7 +171,6 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
 
 std::string domains_unsupported(const World& w) {
   if (w.cell.active()) return "periodic boundaries";
-  if (!w.inflows.empty()) return "inflows";
   return "";
 }
 
@@ -183,6 +182,9 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   d.material_pairs = whole.material_pairs;
   d.planes = whole.planes;
   d.motions = whole.motions;
+  d.inflows = whole.inflows;
+  d.inflow_states = whole.inflow_states;
+  d.work.inflows_by_domains = true;
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
@@ -226,6 +228,48 @@ std::vector<Real> body_costs(const World& w) {
   return cost;
 }
 
+std::uint64_t insert_inflow_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+  constexpr std::uint64_t kNone = ~std::uint64_t{0};
+  if (w.inflows.empty() || !inflows_due(w)) return kNone;  // the same answer on every rank
+  std::vector<Body> near;   // this domain's bodies near an inflow
+  std::vector<std::uint64_t> top{0};  // its highest id
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    top[0] = std::max(top[0], b.id + 1);
+    if (b.fixed || !owned(w, i)) continue;
+    for (const Inflow& f : w.inflows)
+      if (near_inflow(w, f, b)) {
+        near.push_back(b);
+        break;
+      }
+  }
+  Writer m;
+  m.put(near), m.put(top);
+  // Every rank places the bodies among all the bodies near the regions, as
+  // a whole world does, from the same state: they agree without a word.
+  std::vector<Body> all;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    if (w.bodies[i].fixed) all.push_back(w.bodies[i]);
+  std::vector<std::uint64_t> tops;
+  for (const std::string& message : all_gather(t, m.take())) {
+    Reader r(message);
+    r.get(all), r.get(tops);
+  }
+  std::sort(all.begin(), all.end(), [](const Body& x, const Body& y) { return x.id < y.id; });
+  const std::uint64_t first = *std::max_element(tops.begin(), tops.end());
+  std::swap(w.bodies, all);
+  const std::size_t before = w.bodies.size();
+  w.work.inserted = run_inflows(w, first);
+  std::vector<Body> fresh(w.bodies.begin() + static_cast<std::ptrdiff_t>(before), w.bodies.end());
+  std::swap(w.bodies, all);
+  // All are kept: this domain's own, the others' as ghosts until the exchange.
+  for (const Body& b : fresh) {
+    w.bodies.push_back(b);
+    w.work.foreign.push_back(layout.owner_of(b.position) == t.rank() ? 0 : 1);
+  }
+  return fresh.empty() ? kNone : first;
+}
+
 ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
   const int me = t.rank(), ranks = t.size();
   ExchangeCounts counts;
@@ -235,6 +279,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   };
   StepWorkspace& work = w.work;
   const std::size_t n = w.bodies.size();
+  const bool grew = work.boxes.boxes.size() != n;  // inflows inserted bodies: the broad phase lists them anew
   std::vector<std::uint8_t> ghost(n);  // other domains' moving bodies: replaced below, never boxed here
   for (std::size_t i = 0; i < n; ++i) ghost[i] = !owned(w, i) && !w.bodies[i].fixed;
 
@@ -351,6 +396,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
       c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
     }
     if (boxes_changed) work.candidates_current = false;
+    if (grew) work.static_ready = work.candidates_current = false;
     return counts;
   }
 
@@ -413,6 +459,7 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
     return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
   };
   whole.pairs = std::move(pairs);
+  whole.inflow_states = d.inflow_states;  // the same on every rank
   whole.planes = d.planes;  // where their motions have them
   whole.work.motion_frames = d.work.motion_frames;
   whole.time = d.time;

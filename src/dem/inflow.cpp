@@ -29,21 +29,25 @@ Quat uniform_rotation(Real u1, Real u2, Real u3) noexcept {
 // The bodies (or their periodic images) that might touch a body placed in
 // the inflow's region.
 std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f, const std::vector<Vec3>& shifts) {
-  Real reach = 0;
-  for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
   std::vector<std::uint32_t> near;
-  for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
-    const Body& b = w.bodies[i];
-    for (const Vec3& s : shifts) {
-      const Vec3 image = b.position + s;
-      const Vec3 closest = max(f.lo, min(f.hi, image));  // of the region, to the body
-      if (length(image - closest) < w.templates[b.shape].reach + reach) {
+  for (std::uint32_t i = 0; i < w.bodies.size(); ++i)
+    for (const Vec3& s : shifts)
+      if (near_inflow(w, f, w.bodies[i], s)) {
         near.push_back(i);
         break;
       }
-    }
-  }
   return near;
+}
+
+// Whether the next body of inflow k is due at w.time.
+bool due(const World& w, std::size_t k) {
+  const Inflow& f = w.inflows[k];
+  const InflowState& s = w.inflow_states[k];
+  if (w.time < f.start || (f.count > 0 && s.inserted >= f.count)) return false;
+  const Real elapsed = std::fmin(w.time, f.stop) - f.start;
+  const ShapeTemplate& t = w.templates[f.templates[inflow_variant(f, s.inserted)]];
+  const Real mass = w.materials[f.material].density * t.unit_mass.volume;
+  return f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
 }
 
 bool is_free(const World& w, const std::vector<std::uint32_t>& near, const std::vector<Vec3>& shifts,
@@ -65,6 +69,20 @@ bool is_free(const World& w, const std::vector<std::uint32_t>& near, const std::
 }
 
 }  // namespace
+
+bool near_inflow(const World& w, const Inflow& f, const Body& b, const Vec3& shift) noexcept {
+  Real reach = 0;
+  for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
+  const Vec3 image = b.position + shift;
+  const Vec3 closest = max(f.lo, min(f.hi, image));  // of the region, to the body
+  return length(image - closest) < w.templates[b.shape].reach + reach;
+}
+
+bool inflows_due(const World& w) {
+  for (std::size_t k = 0; k < w.inflows.size(); ++k)
+    if (due(w, k)) return true;
+  return false;
+}
 
 Real keyed_uniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b, std::uint64_t c) noexcept {
   const std::uint64_t h = mix(mix(mix(mix(seed) ^ a) ^ b) ^ c);
@@ -89,23 +107,20 @@ std::uint64_t inflow_capacity(const World& w, const Inflow& f) noexcept {
   return most < 1.8e19 ? static_cast<std::uint64_t>(most) : std::numeric_limits<std::uint64_t>::max();
 }
 
-std::size_t run_inflows(World& w) {
+std::size_t run_inflows(World& w) { return run_inflows(w, w.bodies.empty() ? 0 : w.bodies.back().id + 1); }
+
+std::size_t run_inflows(World& w, std::uint64_t next_id) {
   std::size_t added = 0;
   for (std::size_t k = 0; k < w.inflows.size(); ++k) {
     const Inflow& f = w.inflows[k];
     InflowState& s = w.inflow_states[k];
-    if (w.time < f.start) continue;
-    const Real elapsed = std::fmin(w.time, f.stop) - f.start;
     std::vector<std::uint32_t> near;
     std::vector<Vec3> shifts;  // made once a body is due: most steps insert nothing
     bool looked = false;
-    while (f.count == 0 || s.inserted < f.count) {
+    while (due(w, k)) {
       const std::uint32_t v = inflow_variant(f, s.inserted);
       const ShapeTemplate& t = w.templates[f.templates[v]];
       const Real mass = w.materials[f.material].density * t.unit_mass.volume;
-      const bool due = f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed
-                                  : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
-      if (!due) break;
       if (!looked) {
         shifts = image_shifts(w.cell);
         near = bodies_near(w, f, shifts);
@@ -127,7 +142,7 @@ std::size_t run_inflows(World& w) {
         ++s.behind;
         break;
       }
-      body.id = w.bodies.empty() ? 0 : w.bodies.back().id + 1;
+      body.id = next_id++;
       w.bodies.push_back(body);
       near.push_back(static_cast<std::uint32_t>(w.bodies.size() - 1));
       ++s.inserted;

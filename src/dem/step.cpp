@@ -342,7 +342,7 @@ StepReport begin_step(World& w, Real dt) {
   w.work.power_before = w.stats.wall_power;
   w.time += dt;
   w.work.kicked_bodies = w.bodies.size();
-  w.work.inserted = w.inflows.empty() ? 0 : run_inflows(w);
+  w.work.inserted = w.inflows.empty() || w.work.inflows_by_domains ? 0 : run_inflows(w);
   if (!w.motions.empty()) place_driven(w);
   w.forces_current = false;
   return {};

@@ -18,6 +18,7 @@
 
 #include "dem/beds.hpp"
 #include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -135,8 +136,9 @@ Ended run_on(int ranks, const World& world, const RunState& state, Recorder& rec
 // Polyhedra with friction poured into a box of fixed slabs on a plane
 // floor, past a fixed obstacle: a tall region, so the cuts are horizontal
 // and the grains fall through them.
-// `driven`: the floor shakes (2 g) and the obstacle turns about the vertical.
-World pour(ContactModel model, bool driven = false) {
+// `driven`: the floor shakes (2 g) and the obstacle turns about the vertical;
+// `inflow`: 300 grains per second rain in across the top of the box.
+World pour(ContactModel model, bool driven = false, bool inflow = false) {
   WorldSettings s;
   s.model = model;
   s.gravity = {0, 0, -9.81};
@@ -150,6 +152,16 @@ World pour(ContactModel model, bool driven = false) {
   b.add_body({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .material = rock, .position = {0.01, 0, 0.05},
               .fixed = true, .motion = turn, .label = "obstacle"});
   std::mt19937_64 rng(15);
+  if (inflow)
+    b.add_inflow({.variants = {{random_polyhedron(8, 0.008, rng), {}}, {Shape{Box{{0.004, 0.004, 0.004}}}, {}}},
+                  .weights = {},
+                  .lo = {-0.02, -0.02, 0.22},
+                  .hi = {0.02, 0.02, 0.26},
+                  .material = rock,
+                  .velocity = {0, 0, -0.5},
+                  .rate = 300,
+                  .count = 100,
+                  .label = "rain"});
   test::fill_polyhedra(b, {.count = 90, .variants = 4, .vertices = 10, .size = 0.012, .lo = {-0.025, -0.025, 0.07},
                            .hi = {0.025, 0.025, 0.2}, .material = rock},
                        rng);
@@ -215,6 +227,26 @@ TEST(Domains, DrivenWallsAndBodiesGiveTheSerialBits) {
   }
 }
 
+// Grains rain in through an inflow while others pour: every rank places the
+// new bodies among those near the inflow, gathered from every domain, and
+// the run keeps the serial bits.
+TEST(Domains, AnInflowGivesTheSerialBits) {
+  const World world = pour(ContactModel::Hertz, false, true);
+  const RunState plan = plan_run(0.2, critical_time_step(world), 0.02);
+  Recorder serial;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed);
+  ASSERT_GT(whole.world.inflow_states[0].inserted, 40u);
+  for (const int ranks : {2, 3}) {
+    Recorder domains;
+    const Ended split = run_on(ranks, world, plan, domains);
+    ASSERT_EQ(split.outcome.status, RunStatus::Completed);
+    expect_same(serial.outputs, domains.outputs, ranks);
+    EXPECT_EQ(split.world.inflow_states[0].inserted, whole.world.inflow_states[0].inserted);
+    EXPECT_EQ(std::memcmp(&split.world.inflow_states[0].energy, &whole.world.inflow_states[0].energy, sizeof(Real)), 0);
+  }
+}
+
 // A run stopped on 3 ranks and continued on 2 from the whole world it left
 // (what a checkpoint holds) ends with the serial run's bits.
 TEST(Domains, AStoppedRunContinuesOnAnotherNumberOfRanks) {
@@ -257,8 +289,8 @@ TEST(Domains, AFailingDomainStopsTheRunWithItsMessage) {
 TEST(Domains, WhatDomainsCannotRunIsRefused) {
   World world = pour(ContactModel::Hertz);
   EXPECT_EQ(domains_unsupported(world), "");
-  world.inflows.push_back({});
-  EXPECT_EQ(domains_unsupported(world), "inflows");
+  world.cell.axes[0] = true;
+  EXPECT_EQ(domains_unsupported(world), "periodic boundaries");
   RunState state = plan_run(0.01, critical_time_step(world), 0.01);
   ThreadRanks two(2);
   EXPECT_THROW(run_domains(world, state, {}, two.rank(0)), std::invalid_argument);

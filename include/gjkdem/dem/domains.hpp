@@ -51,8 +51,8 @@ struct DomainLayout {
 /// of the world, fixed ones ignored; empty: 1 each).
 DomainLayout layout_domains(const World& whole, int ranks, std::span<const Real> weights = {});
 
-/// What a domain run cannot do yet (periodic cells, inflows): the reason,
-/// or "" when the world can run in domains.
+/// What a domain run cannot do yet (periodic cells): the reason, or "" when
+/// the world can run in domains.
 std::string domains_unsupported(const World& whole);
 
 /// The domain of `rank` cut from the whole world: the moving bodies of its
@@ -80,6 +80,13 @@ ExchangeCounts exchange_bodies(World& domain, const DomainLayout& layout, Domain
 /// as a run of the whole world. All ranks call it together; the others
 /// leave `whole` as it is.
 void gather_world(const World& domain, DomainTransport& transport, World& whole);
+
+/// Inserts the bodies the inflows owe, as a whole world would: every rank
+/// places them among the bodies near the inflows' regions, gathered from
+/// every domain, and keeps them all (its own, the others' as ghosts until
+/// the exchange). All ranks call it together, after begin_step. Returns the
+/// first new id, or all ones when none was inserted.
+std::uint64_t insert_inflow_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
 
 /// The power of the driven walls and bodies on the moving bodies at the
 /// last force evaluation, summed over every domain's contacts in the order

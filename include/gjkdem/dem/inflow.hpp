@@ -21,6 +21,7 @@
 
 namespace gjkdem::dem {
 
+struct Body;
 struct World;
 
 inline constexpr int kInflowAttemptsPerStep = 8;
@@ -58,8 +59,17 @@ std::uint64_t inflow_capacity(const World& world, const Inflow& inflow) noexcept
 inline constexpr std::uint64_t kMaxInflowBodies = 10'000'000;
 
 /// Inserts the bodies the world's inflows owe at world.time, appended after
-/// every body with the next ids. Returns how many.
+/// every body with the next ids (from `next_id`: a domain run's world holds
+/// only some of the bodies). Returns how many.
 std::size_t run_inflows(World& world);
+std::size_t run_inflows(World& world, std::uint64_t next_id);
+
+/// Whether an inflow owes a body at world.time.
+bool inflows_due(const World& world);
+
+/// Whether a body (moved by `shift`: a periodic image) lies near enough to
+/// the inflow's region to stop a body from being placed there.
+bool near_inflow(const World& world, const Inflow& inflow, const Body& body, const Vec3& shift = {}) noexcept;
 
 /// A uniform number in [0, 1) from a key (splitmix64 of the key's parts).
 Real keyed_uniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b, std::uint64_t c) noexcept;

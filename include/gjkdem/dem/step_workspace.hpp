@@ -57,6 +57,9 @@ struct StepWorkspace {
   /// (other domains' bodies seen here, the fixed bodies every domain holds);
   /// pairs of two such bodies are not listed. Empty: the world owns all.
   std::vector<std::uint8_t> foreign;
+  /// Domain runs insert the inflows' bodies themselves, between begin_step
+  /// and the exchange (insert_inflow_bodies): begin_step leaves them.
+  bool inflows_by_domains = false;
   // Between begin_step and finish_step (world.hpp).
   std::size_t kicked_bodies = 0;  ///< bodies that took the first half kick (inflows insert after them)
   std::size_t inserted = 0;       ///< bodies the inflows inserted
