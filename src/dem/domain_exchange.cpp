@@ -1,0 +1,210 @@
+// Between the halves of a step: the inflows' new bodies, the boxes, the
+// bodies that change domain and the ghosts (domains.hpp).
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "domain_records.hpp"
+#include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/domains.hpp"
+#include "gjkdem/dem/inflow.hpp"
+#include "parallel.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+using namespace detail;
+
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+}  // namespace
+
+std::uint64_t insert_inflow_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+  constexpr std::uint64_t kNone = ~std::uint64_t{0};
+  if (w.inflows.empty() || !inflows_due(w)) return kNone;  // the same answer on every rank
+  std::vector<Body> near;   // this domain's bodies near an inflow
+  std::vector<std::uint64_t> top{0};  // its highest id
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    top[0] = std::max(top[0], b.id + 1);
+    if (b.fixed || !owned(w, i)) continue;
+    for (const Inflow& f : w.inflows)
+      if (near_inflow(w, f, b)) {
+        near.push_back(b);
+        break;
+      }
+  }
+  Writer m;
+  m.put(near), m.put(top);
+  // Every rank places the bodies among all the bodies near the regions, as
+  // a whole world does, from the same state: they agree without a word.
+  std::vector<Body> all;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    if (w.bodies[i].fixed) all.push_back(w.bodies[i]);
+  std::vector<std::uint64_t> tops;
+  for (const std::string& message : all_gather(t, m.take())) {
+    Reader r(message);
+    r.get(all), r.get(tops);
+  }
+  std::sort(all.begin(), all.end(), [](const Body& x, const Body& y) { return x.id < y.id; });
+  const std::uint64_t first = *std::max_element(tops.begin(), tops.end());
+  std::swap(w.bodies, all);
+  const std::size_t before = w.bodies.size();
+  w.work.inserted = run_inflows(w, first);
+  std::vector<Body> fresh(w.bodies.begin() + static_cast<std::ptrdiff_t>(before), w.bodies.end());
+  std::swap(w.bodies, all);
+  // All are kept: this domain's own, the others' as ghosts until the exchange.
+  for (const Body& b : fresh) {
+    w.bodies.push_back(b);
+    w.work.foreign.push_back(layout.owner_of(b.position) == t.rank() ? 0 : 1);
+  }
+  return fresh.empty() ? kNone : first;
+}
+
+ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+  const int me = t.rank(), ranks = t.size();
+  ExchangeCounts counts;
+  auto sent = [&](const std::vector<std::string>& out) {
+    for (int r = 0; r < ranks; ++r)
+      if (r != me) counts.bytes_sent += out[r].size();
+  };
+  StepWorkspace& work = w.work;
+  const std::size_t n = w.bodies.size();
+  const bool grew = work.boxes.boxes.size() != n;  // inflows inserted bodies: the broad phase lists them anew
+  std::vector<std::uint8_t> ghost(n);  // other domains' moving bodies: replaced below, never boxed here
+  for (std::size_t i = 0; i < n; ++i) ghost[i] = !owned(w, i) && !w.bodies[i].fixed;
+
+  // Boxes are remade as update_boxes remakes them in a whole world, where
+  // one body leaving its box has all those half way out remade too: the
+  // domains agree whether any of their bodies left.
+  const int threads = detail::thread_count(w.settings.threads);
+  const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, ghost);
+  const std::vector<std::string> said = all_gather(t, left ? "1" : "");
+  const bool any_left = std::any_of(said.begin(), said.end(), [](const std::string& s) { return !s.empty(); });
+  const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads,
+                                          any_left ? kBoxBatchFraction : 1, ghost);
+
+  // Bodies that left the region go to their owners, with their pairs.
+  std::vector<std::vector<BodyRecord>> leaving(ranks);
+  std::vector<std::pair<std::uint64_t, int>> moved;  // id, new owner (ids increasing)
+  std::vector<std::uint8_t> gone(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Body& b = w.bodies[i];
+    if (b.fixed || ghost[i]) continue;
+    const int owner = layout.owner_of(b.position);
+    if (owner == me) continue;
+    leaving[owner].push_back(record_of(w, i));
+    moved.emplace_back(b.id, owner);
+    gone[i] = 1;
+  }
+  std::vector<std::vector<PairState>> leaving_pairs(ranks);
+  auto new_owner = [&](std::uint64_t id) {
+    const auto it = std::lower_bound(moved.begin(), moved.end(), std::pair<std::uint64_t, int>(id, -1));
+    return it != moved.end() && it->first == id ? it->second : -1;
+  };
+  if (!moved.empty())
+    for (const PairState& p : w.pairs) {
+      const int lo = new_owner(p.key.lo), hi = new_owner(p.key.hi);
+      if (lo >= 0) leaving_pairs[lo].push_back(p);
+      if (hi >= 0 && hi != lo) leaving_pairs[hi].push_back(p);
+    }
+  std::vector<std::string> out(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    Writer m;
+    m.put(leaving[r]), m.put(leaving_pairs[r]);
+    out[r] = m.take();
+  }
+  counts.moved_out = moved.size();
+  sent(out);
+  std::vector<BodyRecord> arrived;
+  std::vector<PairState> arrived_pairs;
+  for (const std::string& message : t.exchange(std::move(out))) {
+    Reader m(message);
+    m.get(arrived), m.get(arrived_pairs);
+  }
+  if (!arrived_pairs.empty()) {
+    w.pairs.insert(w.pairs.end(), arrived_pairs.begin(), arrived_pairs.end());
+    sort_unique(w.pairs, [](const PairState& p) { return p.key; });
+  }
+
+  // The ghosts: each owned body goes to the domains its box reaches into
+  // (the box holding the boxes of their owned bodies).
+  auto staying = [&](std::size_t i) { return !w.bodies[i].fixed && !ghost[i] && !gone[i]; };
+  Aabb reach{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  auto grow = [&](const Aabb& box) { reach.lo = min(reach.lo, box.lo), reach.hi = max(reach.hi, box.hi); };
+  for (std::size_t i = 0; i < n; ++i)
+    if (staying(i)) grow(work.boxes.boxes[i]);
+  for (const BodyRecord& r : arrived) grow(r.box);
+  std::string reach_bytes(sizeof reach, '\0');
+  std::memcpy(reach_bytes.data(), &reach, sizeof reach);
+  std::vector<Aabb> reaches(ranks);
+  const std::vector<std::string> all_reaches = all_gather(t, reach_bytes);
+  for (int r = 0; r < ranks; ++r) {
+    if (all_reaches[r].size() != sizeof(Aabb)) throw std::runtime_error("a domain's reach came damaged");
+    std::memcpy(&reaches[r], all_reaches[r].data(), sizeof(Aabb));
+  }
+  std::vector<std::vector<BodyRecord>> ghosts(ranks);
+  auto send_ghost = [&](const BodyRecord& record) {
+    for (int r = 0; r < ranks; ++r)
+      if (r != me && overlaps(record.box, reaches[r])) ghosts[r].push_back(record);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    if (staying(i)) send_ghost(record_of(w, i));
+  for (const BodyRecord& r : arrived) send_ghost(r);
+  out.assign(ranks, {});
+  for (int r = 0; r < ranks; ++r) {
+    Writer m;
+    m.put(ghosts[r]);
+    out[r] = m.take();
+  }
+  sent(out);
+  counts.bytes_sent += (ranks - 1) * (sizeof reach + 1);  // the reaches and the box agreement
+  std::vector<BodyRecord> seen;
+  for (const std::string& message : t.exchange(std::move(out))) Reader(message).get(seen);
+  std::sort(seen.begin(), seen.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });
+  counts.ghosts = seen.size();
+  work.kicked_bodies = n;  // every body took its first half kick where it was owned
+
+  // The same bodies as before (the common case in a bed at rest): the
+  // ghosts are refreshed where they lie.
+  std::size_t k = 0;
+  bool same = moved.empty() && arrived.empty();
+  for (std::size_t i = 0; same && i < n; ++i)
+    if (ghost[i]) same = k < seen.size() && seen[k++].body.id == w.bodies[i].id;
+  if (same && k == seen.size()) {
+    bool boxes_changed = remade > 0;
+    k = 0;
+    BoxCache& c = work.boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!ghost[i]) {
+        counts.owned += w.bodies[i].fixed ? 0 : 1;
+        continue;
+      }
+      const BodyRecord& r = seen[k++];
+      boxes_changed = boxes_changed || !same_bits(&r.anchor_position, &c.anchor_position[i], sizeof(Vec3)) ||
+                      !same_bits(&r.anchor_orientation, &c.anchor_orientation[i], sizeof(Quat));
+      w.bodies[i] = r.body;
+      c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
+    }
+    if (boxes_changed) work.candidates_current = false;
+    if (grew) work.static_ready = work.candidates_current = false;
+    return counts;
+  }
+
+  // Else the domain is made again: fixed, staying, arrived and seen bodies.
+  std::vector<BodyRecord> records;
+  std::vector<std::uint8_t> foreign;
+  records.reserve(n + arrived.size() + seen.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (w.bodies[i].fixed || staying(i)) records.push_back(record_of(w, i)), foreign.push_back(w.bodies[i].fixed ? 1 : 0);
+  for (const BodyRecord& r : arrived) records.push_back(r), foreign.push_back(0);
+  for (const std::uint8_t f : foreign) counts.owned += f ? 0 : 1;
+  for (const BodyRecord& r : seen) records.push_back(r), foreign.push_back(1);
+  set_bodies(w, records, foreign);
+  work.kicked_bodies = w.bodies.size();
+  work.static_ready = false;  // the bodies' indices changed
+  work.candidates_current = false;
+  return counts;
+}
+
+}  // namespace gjkdem::dem
