@@ -1,5 +1,7 @@
 #include "gjkdem/io/scene_run.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
@@ -16,11 +18,17 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
+// "Every core" (0) is every core this process may use: under mpirun, the
+// node's cores shared among its ranks (Open MPI says how many there are).
 int resolve_threads(int requested) {
+  if (requested > 0) return requested;
+  int cores = 1;
 #ifdef _OPENMP
-  if (requested <= 0) return omp_get_max_threads();
+  cores = omp_get_max_threads();
 #endif
-  return requested <= 0 ? 1 : requested;
+  const char* local_ranks = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  const int ranks = local_ranks ? std::atoi(local_ranks) : 1;
+  return ranks > 1 ? std::max(1, cores / ranks) : cores;
 }
 
 Json read_run_json(const RunPaths& folder) {
