@@ -2,12 +2,12 @@
 # mpirun -np N gjkdem run (issue 15) on a pour with friction, walls and a
 # fixed hopper (tests/data/scenes/mpi_pour.toml), whose grains fall through the
 # cuts between domains while touching: trace.csv, energy.csv, the VTK and
-# view frames and the checkpoint of runs on 2, 3 and 4 ranks are those of
-# the serial run, byte for byte (the checkpoint apart from the wall-clock
-# seconds it records), with a shaken floor too, and so is the hopper
-# example's (inflow, compounds, a belt) on 2; a run stopped on 3 ranks
-# resumes on 2, one stopped
-# on 1 resumes on 4, with the same bytes; a failure stops every rank with
+# view frames and the checkpoint of a run on 2 ranks are those of the
+# serial run, byte for byte (the checkpoint apart from the wall-clock
+# seconds it records), and so are those of a run stopped on 3 ranks and
+# resumed on 2, and of one stopped on 1 and resumed on 4; with a shaken
+# floor too, and for the hopper example (inflow, compounds, a belt) and the
+# periodic shear example on 2 ranks; a failure stops every rank with
 # its message in run.json; what domains cannot run yet is refused with a
 # message and no run left hanging.
 set -euo pipefail
@@ -35,20 +35,20 @@ same_run() {  # folder A, folder B
 "$gjkdem" run "$scene" --out serial --quiet || fail "the serial run did not complete"
 # The pour must have piled up: contacts at the end (energy.csv's 6th column).
 awk -F, 'END { exit !($6 > 100) }' serial/energy.csv || fail "the grains did not pile up"
-for n in 2 3 4; do
-  "${launch[@]}" -np "$n" "$gjkdem" run "$scene" --out "ranks$n" --quiet || fail "the run on $n ranks did not complete"
-  grep -q '"status": "completed"' "ranks$n/run.json" || fail "run.json of $n ranks does not say completed"
-  same_run serial "ranks$n"
-done
+# More ranks than the 2 cores of the CI machine wait on each other at every
+# collective: 3 and 4 ranks run half of the steps each, in the resumes below.
+"${launch[@]}" -np 2 "$gjkdem" run "$scene" --out ranks2 --quiet || fail "the run on 2 ranks did not complete"
+grep -q '"status": "completed"' ranks2/run.json || fail "run.json of 2 ranks does not say completed"
+same_run serial ranks2
 
-# A shaken floor (its work on the grains is in energy.csv): 3 ranks give the serial bytes.
+# A shaken floor (its work on the grains is in energy.csv): 2 ranks give the serial bytes.
 sed -e 's/^normal = \[0.0, 0.0, 1.0\]$/normal = [0.0, 0.0, 1.0]\nmotion = { vibration = { amplitude = [0.0, 0.0, 0.002], frequency = 16.0 } }/' \
   "$scene" > shaken.toml
 grep -q vibration shaken.toml || fail "the shaken scene was not made"
 "$gjkdem" run shaken.toml --out shaken1 --quiet || fail "the serial shaken run did not complete"
 awk -F, 'END { exit !($7 != 0) }' shaken1/energy.csv || fail "the shaken floor did no work"
-"${launch[@]}" -np 3 "$gjkdem" run shaken.toml --out shaken3 --quiet || fail "the shaken run on 3 ranks did not complete"
-same_run shaken1 shaken3
+"${launch[@]}" -np 2 "$gjkdem" run shaken.toml --out shaken2 --quiet || fail "the shaken run on 2 ranks did not complete"
+same_run shaken1 shaken2
 
 # The hopper example, cut to 0.5 s: an inflow of polyhedra and L-shaped
 # compounds onto a moving belt, on 2 ranks.
@@ -96,7 +96,17 @@ expect_failure unstable 3 "above the stability limit"
 grep -q '"status": "failed"' unstable/run.json && grep -q 'above the stability limit' unstable/run.json ||
   fail "run.json does not say why the run failed"
 
-# A periodic scene cannot run on domains yet: refused, with the reason.
-sed -e 's/^seed = 7$/seed = 7\nperiodic = { x = [-0.1, 0.1] }/' "$scene" > periodic.toml
-expect_failure periodic 2 "periodic boundaries"
-echo "mpi_run: serial = 2 = 3 = 4 ranks, 3 -> 2 and 1 -> 4 resumes"
+# The periodic shear example, cut to 0.06 s: a bed periodic across x and y
+# under a sliding plate, on 2 ranks (the cell's stress in cell.csv too).
+sed -e 's/^duration = 2.0$/duration = 0.06/' "$root/examples/scenes/periodic_shear.toml" > shear.toml
+grep -q "^duration = 0.06$" shear.toml || fail "the shear scene was not cut"
+"$gjkdem" run shear.toml --out shear1 --quiet || fail "the serial shear run did not complete"
+"${launch[@]}" -np 2 "$gjkdem" run shear.toml --out shear2 --quiet || fail "the shear run on 2 ranks did not complete"
+for f in trace.csv energy.csv cell.csv view/index.csv view/frame_000003.bin; do
+  cmp -s "shear1/$f" "shear2/$f" || fail "$f differs between the shear runs on 1 and 2 ranks"
+done
+
+# A deforming periodic cell cannot run on domains yet: refused, with the reason.
+sed -e 's/^duration = 2.0$/duration = 0.01/' "$root/examples/scenes/periodic_simple_shear.toml" > servo.toml
+expect_failure servo 2 "a deforming periodic cell"
+echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper and periodic shear on 2 ranks"

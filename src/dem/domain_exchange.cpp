@@ -143,10 +143,19 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
     if (all_reaches[r].size() != sizeof(Aabb)) throw std::runtime_error("a domain's reach came damaged");
     std::memcpy(&reaches[r], all_reaches[r].data(), sizeof(Aabb));
   }
+  // In a periodic cell, a box reaches a domain through any of its images
+  // (the domain's broad phase then finds the image itself).
+  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(w.cell) : std::vector<Vec3>{Vec3{}};
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
   auto send_ghost = [&](const BodyRecord& record) {
-    for (int r = 0; r < ranks; ++r)
-      if (r != me && overlaps(record.box, reaches[r])) ghosts[r].push_back(record);
+    for (int r = 0; r < ranks; ++r) {
+      if (r == me) continue;
+      for (const Vec3& s : shifts)
+        if (overlaps(Aabb{record.box.lo + s, record.box.hi + s}, reaches[r])) {
+          ghosts[r].push_back(record);
+          break;
+        }
+    }
   };
   for (std::size_t i = 0; i < n; ++i)
     if (staying(i)) send_ghost(record_of(w, i));

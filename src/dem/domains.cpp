@@ -71,7 +71,7 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
 }
 
 std::string domains_unsupported(const World& w) {
-  if (w.cell.active()) return "periodic boundaries";
+  if (w.settings.cell_control.deforms()) return "a deforming periodic cell";
   return "";
 }
 
@@ -86,6 +86,11 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   d.inflows = whole.inflows;
   d.inflow_states = whole.inflow_states;
   d.work.inflows_by_domains = true;
+  d.cell = whole.cell;
+  d.cell_rate = whole.cell_rate;
+  d.cell_stress = whole.cell_stress;
+  d.work.search_cell = whole.work.search_cell;
+  d.work.search_cell_restored = whole.work.search_cell_restored;
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
@@ -184,20 +189,25 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   whole.work.contacts.clear(), whole.work.keys.clear();
   for (Body& b : whole.bodies)
     if (b.fixed) b.force = b.torque = {};
+  const bool periodic = d.cell.active();
+  CellTensor virial{};
   for (ContactRecord& r : contacts) {
     StepContact& c = r.contact;
     c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
+    const Vec3 shift = c.image == kNoImage ? Vec3{} : image_shift(d.cell, c.image);
     if (b.fixed) {
       b.force += c.force;
-      b.torque += c.torque - cross(b.position, c.force);
+      b.torque += c.torque - cross(b.position + shift, c.force);
     }
     if (!c.a_is_plane && whole.bodies[c.a].fixed) {
       Body& a = whole.bodies[c.a];
       a.force -= c.force;
       a.torque -= c.torque - cross(a.position, c.force);
     }
+    if (periodic)
+      add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : whole.bodies[c.a].position));
     stats.elastic_energy += c.elastic;
     ++stats.contacts;
     if (c.a_is_plane || whole.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
@@ -206,9 +216,16 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   }
   stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power)
   whole.stats = stats;
+  whole.cell = d.cell;
+  whole.cell_rate = d.cell_rate;
+  whole.work.search_cell = d.work.search_cell;
+  if (periodic)
+    for (int k = 0; k < 6; ++k) whole.cell_stress[k] = virial[k] / cell_volume(whole.cell);
   whole.work.candidates_current = false;
 }
 
+// (A periodic cell that does not deform adds nothing: its images' term,
+// step.cpp's, is a zero, which leaves the sum as it is.)
 Real whole_wall_power(const World& d, DomainTransport& t) {
   std::vector<PowerTerm> terms;
   for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {

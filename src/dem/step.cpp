@@ -287,11 +287,7 @@ StepReport compute_forces(World& w, Real dt) {
       a.torque -= c.torque - cross(a.position, c.force);
     }
     if (periodic) {
-      const Vec3 branch = b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position);
-      virial[0] += c.force.x * branch.x, virial[1] += c.force.y * branch.y, virial[2] += c.force.z * branch.z;
-      virial[kXY] += 0.5 * (c.force.x * branch.y + c.force.y * branch.x);
-      virial[kXZ] += 0.5 * (c.force.x * branch.z + c.force.z * branch.x);
-      virial[kYZ] += 0.5 * (c.force.y * branch.z + c.force.z * branch.y);
+      add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position));
       // A deforming cell works on the bodies through the images' motion.
       if (c.image != kNoImage) stats.wall_power -= dot(c.force, affine_velocity(w.cell_rate, shift));
     }

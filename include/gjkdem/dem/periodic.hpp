@@ -121,6 +121,16 @@ inline Vec3 image_shift(const PeriodicCell& cell, std::uint8_t code) noexcept {
 /// one period either way on each periodic axis (only no shift without a cell).
 std::vector<Vec3> image_shifts(const PeriodicCell& cell);
 
+/// Adds a contact's share to the symmetric sum of f x branch (the cell's
+/// stress times its volume): force on b, branch from a's centre (or the
+/// wall's contact point) to b's centre or image.
+inline void add_virial(CellTensor& sum, const Vec3& force, const Vec3& branch) noexcept {
+  sum[0] += force.x * branch.x, sum[1] += force.y * branch.y, sum[2] += force.z * branch.z;
+  sum[kXY] += 0.5 * (force.x * branch.y + force.y * branch.x);
+  sum[kXZ] += 0.5 * (force.x * branch.z + force.z * branch.x);
+  sum[kYZ] += 0.5 * (force.y * branch.z + force.z * branch.y);
+}
+
 /// Puts the moving bodies back into the cell, moving their box anchors and
 /// boxes with them (and their velocities by the affine velocity of the
 /// move in a deforming cell). Returns how many crossed.
