@@ -97,22 +97,29 @@ void install_signal_handlers() {
   std::signal(SIGTERM, on_stop_signal);
 }
 
+// The run this rank takes part in (on a follower, one that writes
+// nothing); null when the run to resume is already completed.
+std::unique_ptr<io::SceneRun> open_run(const RunOptions& opt, bool follower) {
+  if (!opt.resume.empty()) {
+    if (io::SceneRun::completed(opt.resume)) return nullptr;
+    return io::SceneRun::resume(opt.resume, opt.threads, follower);
+  }
+  return io::SceneRun::start(opt.scene,
+                             {.out = opt.out, .overwrite = opt.overwrite, .threads = opt.threads, .follower = follower});
+}
+
 // A rank other than 0: its domain of the run rank 0 writes; silent, rank 0
 // reports for all (its exit status follows the run's).
 int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
                  const std::function<bool(const std::string&)>& started) {
   std::unique_ptr<io::SceneRun> run;
   try {
-    if (!opt.resume.empty()) {
-      if (io::SceneRun::completed(opt.resume)) return started("completed"), 0;
-      run = io::SceneRun::resume(opt.resume, opt.threads, true);
-    } else {
-      run = io::SceneRun::start(opt.scene, {.out = opt.out, .threads = opt.threads, .follower = true});
-    }
+    run = open_run(opt, true);
   } catch (const std::exception& e) {
     started(e.what());
     return 2;
   }
+  if (!run) return started("completed"), 0;
   if (!started("")) return 2;
   install_signal_handlers();  // rank 0 decides when to stop
   try {
@@ -137,28 +144,19 @@ int run_simulation(const RunOptions& opt) {
     const std::vector<std::string> all = dem::all_gather(*transport, error);
     return std::all_of(all.begin(), all.end(), [](const std::string& e) { return e.empty(); });
   };
-  if (follower) {
-    RunOptions quiet = opt;
-    quiet.quiet = true;
-    return run_follower(quiet, *transport, started);
-  }
+  if (follower) return run_follower(opt, *transport, started);
   try {
     std::unique_ptr<io::SceneRun> run;
-    std::string error;
     try {
-      if (!opt.resume.empty()) {
-        if (io::SceneRun::completed(opt.resume)) {
-          started("completed");
-          std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
-          return 0;
-        }
-        run = io::SceneRun::resume(opt.resume, opt.threads);
-      } else {
-        run = io::SceneRun::start(opt.scene, {.out = opt.out, .overwrite = opt.overwrite, .threads = opt.threads});
-      }
+      run = open_run(opt, false);
     } catch (const std::exception& e) {
       started(e.what());
       throw;
+    }
+    if (!run) {
+      started("completed");
+      std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
+      return 0;
     }
     if (!started("")) {
       std::cerr << "gjkdem: error: another rank could not start the run\n";

@@ -147,19 +147,19 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   // (the domain's broad phase then finds the image itself).
   const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(w.cell) : std::vector<Vec3>{Vec3{}};
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
-  auto send_ghost = [&](const BodyRecord& record) {
+  auto send_ghost = [&](const Aabb& box, const auto& record) {  // record() made only for a domain it reaches
     for (int r = 0; r < ranks; ++r) {
       if (r == me) continue;
       for (const Vec3& s : shifts)
-        if (overlaps(Aabb{record.box.lo + s, record.box.hi + s}, reaches[r])) {
-          ghosts[r].push_back(record);
+        if (overlaps(Aabb{box.lo + s, box.hi + s}, reaches[r])) {
+          ghosts[r].push_back(record());
           break;
         }
     }
   };
   for (std::size_t i = 0; i < n; ++i)
-    if (staying(i)) send_ghost(record_of(w, i));
-  for (const BodyRecord& r : arrived) send_ghost(r);
+    if (staying(i)) send_ghost(work.boxes.boxes[i], [&] { return record_of(w, i); });
+  for (const BodyRecord& r : arrived) send_ghost(r.box, [&] { return r; });
   out.assign(ranks, {});
   for (int r = 0; r < ranks; ++r) {
     Writer m;

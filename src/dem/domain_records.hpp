@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "gjkdem/dem/domains.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem::detail {
@@ -20,6 +21,15 @@ struct BodyRecord {
   Vec3 anchor_position;
   Quat anchor_orientation;
 };
+
+/// Every rank's message, by rank, on rank 0 (none elsewhere).
+inline std::vector<std::string> gather_to_root(DomainTransport& t, std::string mine) {
+  std::vector<std::string> out(static_cast<std::size_t>(t.size()));
+  out[0] = std::move(mine);
+  std::vector<std::string> in = t.exchange(std::move(out));
+  if (t.rank() != 0) in.clear();
+  return in;
+}
 
 static_assert(std::is_trivially_copyable_v<BodyRecord> && std::is_trivially_copyable_v<PairState>);
 

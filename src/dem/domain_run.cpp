@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "domain_records.hpp"
 #include "gjkdem/dem/domains.hpp"
 #include "run_guard.hpp"
 
@@ -194,10 +195,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.step_seconds += seconds_since(t0);
     exchange();  // every rank takes part, failed or not
     if (first_new != ~std::uint64_t{0})  // bodies inserted now start with their velocity: no half kick
-      domain.work.kicked_bodies = static_cast<std::size_t>(
-          std::lower_bound(domain.bodies.begin(), domain.bodies.end(), first_new,
-                           [](const Body& b, std::uint64_t id) { return b.id < id; }) -
-          domain.bodies.begin());
+      domain.work.kicked_bodies = detail::index_of_id(domain.bodies, first_new);
     t0 = Clock::now();
     const Real work_before = domain.wall_work;
     if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, state.dt); });

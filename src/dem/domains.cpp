@@ -150,9 +150,7 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   pairs.insert(pairs.end(), d.pairs.begin(), d.pairs.end());
   Writer m;
   m.put(bodies), m.put(pairs), m.put(contacts);
-  std::vector<std::string> out(t.size());
-  out[0] = m.take();
-  const std::vector<std::string> in = t.exchange(std::move(out));
+  const std::vector<std::string> in = gather_to_root(t, m.take());
   if (t.rank() != 0) return;
   bodies.clear(), pairs.clear(), contacts.clear();
   for (const std::string& message : in) {
@@ -197,15 +195,8 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
     const Vec3 shift = c.image == kNoImage ? Vec3{} : image_shift(d.cell, c.image);
-    if (b.fixed) {
-      b.force += c.force;
-      b.torque += c.torque - cross(b.position + shift, c.force);
-    }
-    if (!c.a_is_plane && whole.bodies[c.a].fixed) {
-      Body& a = whole.bodies[c.a];
-      a.force -= c.force;
-      a.torque -= c.torque - cross(a.position, c.force);
-    }
+    if (b.fixed) push_b(b, c, shift);
+    if (!c.a_is_plane && whole.bodies[c.a].fixed) push_a(whole.bodies[c.a], c);
     if (periodic)
       add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : whole.bodies[c.a].position));
     stats.elastic_energy += c.elastic;
@@ -241,9 +232,7 @@ Real whole_wall_power(const World& d, DomainTransport& t) {
   }
   Writer m;
   m.put(terms);
-  std::vector<std::string> out(t.size());
-  out[0] = m.take();
-  const std::vector<std::string> in = t.exchange(std::move(out));
+  const std::vector<std::string> in = gather_to_root(t, m.take());
   if (t.rank() != 0) return 0;
   terms.clear();
   for (const std::string& message : in) Reader(message).get(terms);

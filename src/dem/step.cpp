@@ -279,13 +279,8 @@ StepReport compute_forces(World& w, Real dt) {
     }
     Body& b = w.bodies[c.b];
     const Vec3 shift = shift_of(w, c);
-    b.force += c.force;
-    b.torque += c.torque - cross(b.position + shift, c.force);
-    if (!c.a_is_plane) {
-      Body& a = w.bodies[c.a];
-      a.force -= c.force;
-      a.torque -= c.torque - cross(a.position, c.force);
-    }
+    push_b(b, c, shift);
+    if (!c.a_is_plane) push_a(w.bodies[c.a], c);
     if (periodic) {
       add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position));
       // A deforming cell works on the bodies through the images' motion.

@@ -32,6 +32,18 @@ struct StepContact {
   Real elastic = 0;         ///< energy stored in the contact (J)
 };
 
+/// What a contact adds to b's force and torque (b at its image, moved by
+/// `shift`; torque about b's centre), and to a's: summed in the order of
+/// the contact list (step.cpp, and a domain run's gathered world).
+inline void push_b(Body& b, const StepContact& c, const Vec3& shift) noexcept {
+  b.force += c.force;
+  b.torque += c.torque - cross(b.position + shift, c.force);
+}
+inline void push_a(Body& a, const StepContact& c) noexcept {
+  a.force -= c.force;
+  a.torque -= c.torque - cross(a.position, c.force);
+}
+
 struct StepWorkspace {
   BoxCache boxes;
   StaticTree fixed_tree;             ///< of the fixed bodies' boxes
