@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 #include "domain_records.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/domains.hpp"
 #include "gjkdem/dem/inflow.hpp"
+#include "gjkdem/dem/periodic.hpp"
 #include "parallel.hpp"
 
 namespace gjkdem::dem {
@@ -76,13 +78,25 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
 
   // Boxes are remade as update_boxes remakes them in a whole world, where
   // one body leaving its box has all those half way out remade too: the
-  // domains agree whether any of their bodies left.
+  // domains agree whether any of their bodies left. A periodic world's
+  // search cell is the whole world's: renewed, by all, when a box was
+  // remade or a body wrapped anywhere, or a tilt was taken back.
   const int threads = detail::thread_count(w.settings.threads);
-  const bool left = measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, 0, ghost);
-  const std::vector<std::string> said = all_gather(t, left ? "1" : "");
-  const bool any_left = std::any_of(said.begin(), said.end(), [](const std::string& s) { return !s.empty(); });
+  const bool left =
+      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, cell_drift(w), ghost);
+  const std::vector<std::string> said = all_gather(t, std::string{left ? '1' : '0', work.renew_search_cell ? '1' : '0'});
+  bool any_left = false, renew = false;
+  for (const std::string& s : said) {
+    if (s.size() != 2) throw std::runtime_error("a domain's box agreement came damaged");
+    any_left |= s[0] == '1', renew |= s[1] == '1';
+  }
   const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads,
                                           any_left ? kBoxBatchFraction : 1, ghost);
+  work.renew_search_cell = false;
+  if (any_left || renew) {
+    work.search_cell = w.cell;  // before the ghosts' images below, and the search
+    work.candidates_current = false;
+  }
 
   // Bodies that left the region go to their owners, with their pairs.
   std::vector<std::vector<BodyRecord>> leaving(ranks);
@@ -144,8 +158,8 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
     std::memcpy(&reaches[r], all_reaches[r].data(), sizeof(Aabb));
   }
   // In a periodic cell, a box reaches a domain through any of its images
-  // (the domain's broad phase then finds the image itself).
-  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(w.cell) : std::vector<Vec3>{Vec3{}};
+  // in the search cell (the domain's broad phase then finds the image itself).
+  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(work.search_cell) : std::vector<Vec3>{Vec3{}};
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
   auto send_ghost = [&](const Aabb& box, const auto& record) {  // record() made only for a domain it reaches
     for (int r = 0; r < ranks; ++r) {
@@ -167,7 +181,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
     out[r] = m.take();
   }
   sent(out);
-  counts.bytes_sent += (ranks - 1) * (sizeof reach + 1);  // the reaches and the box agreement
+  counts.bytes_sent += (ranks - 1) * (sizeof reach + 2);  // the reaches and the box agreement
   std::vector<BodyRecord> seen;
   for (const std::string& message : t.exchange(std::move(out))) Reader(message).get(seen);
   std::sort(seen.begin(), seen.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });

@@ -43,8 +43,6 @@ std::string failure_of(World& domain, F f) {
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers, DomainTransport& t,
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
-  if (const std::string why = domains_unsupported(whole); !why.empty())
-    throw std::invalid_argument("a run on more than one rank cannot have " + why + " yet: run it on one rank");
   const bool root = t.rank() == 0;
   DomainLayout layout = layout_domains(whole, t.size());
   World domain = make_domain(whole, layout, t.rank());
@@ -61,17 +59,28 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
     mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
   };
-  // Driven walls and bodies: rank 0 makes the whole world's power and work
-  // of a step again from every domain's contacts (each domain's own sums
-  // are partial). `step`: after a step from `work_before` (else the first
-  // force evaluation).
-  const bool driven = !whole.motions.empty();
+  // Driven walls and bodies, a deforming cell: rank 0 makes the whole
+  // world's power and work of a step again from every domain's contacts
+  // (each domain's own sums are partial), and every rank takes the whole
+  // stress a servo reads. `step`: after a step from `work_before` (else the
+  // first force evaluation).
+  const bool deforming = whole.settings.cell_control.deforms();
+  const bool driven = !whole.motions.empty() || deforming;
+  const bool servo = whole.settings.cell_control.servo();
   auto settle_wall_power = [&](Real work_before, bool step) {
+    if (servo) domain.cell_stress = whole_cell_stress(domain, t);
     if (!driven) return;
     const Real power = whole_wall_power(domain, t);
     if (!root) return;
     domain.stats.wall_power = power;
     if (step) domain.wall_work = work_before + 0.5 * state.dt * (domain.work.power_before + power);
+  };
+  // The work of a deforming cell's new field on the bodies (begin_step's
+  // control_cell), summed again on rank 0.
+  auto settle_field_work = [&] {
+    if (!deforming) return;
+    const Real added = whole_field_work(domain, t);
+    if (root && added != 0) domain.wall_work += added;
   };
   std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {
@@ -191,6 +200,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     gathered_at = ~std::uint64_t{0};  // the domains move on
     auto t0 = Clock::now();
     std::string failed = failure_of(domain, [&] { return begin_step(domain, state.dt); });
+    settle_field_work();
     const std::uint64_t first_new = insert_inflow_bodies(domain, layout, t);
     mine.step_seconds += seconds_since(t0);
     exchange();  // every rank takes part, failed or not

@@ -26,12 +26,33 @@ struct ContactRecord {
 
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
 
-// A contact's share of the driven pieces' power (step.cpp's sum), on its way to rank 0.
+// A contact's share of the driven pieces' and the cell's power (step.cpp's
+// sum), on its way to rank 0.
 struct PowerTerm {
   PairKey key;
-  Real on_a = 0, on_b = 0;  // driven_power of a's motion, of b's
-  std::uint8_t driven = 0;  // 1: a is driven, 2: b is
+  Real on_image = 0, on_a = 0, on_b = 0;  // of the cell through b's image, driven_power of a's motion, of b's
+  std::uint8_t driven = 0;                // 1: a is driven, 2: b is, 4: b's image moves with the cell
 };
+
+// A contact's share of the cell's stress (step.cpp's virial), on its way to rank 0.
+struct VirialTerm {
+  PairKey key;
+  Vec3 force, branch;
+};
+
+// Every rank's records, gathered on rank 0 and sorted by key (copies of a
+// contact two domains share kept once); empty on the others.
+template <class T, class Key>
+std::vector<T> gather_sorted(DomainTransport& t, std::vector<T> mine, Key key) {
+  Writer m;
+  m.put(mine);
+  const std::vector<std::string> in = gather_to_root(t, m.take());
+  mine.clear();
+  if (t.rank() != 0) return mine;
+  for (const std::string& message : in) Reader(message).get(mine);
+  sort_unique(mine, key);
+  return mine;
+}
 
 }  // namespace
 
@@ -70,11 +91,6 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
   return {std::move(d.boxes)};
 }
 
-std::string domains_unsupported(const World& w) {
-  if (w.settings.cell_control.deforms()) return "a deforming periodic cell";
-  return "";
-}
-
 World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   World d;
   d.settings = whole.settings;
@@ -90,7 +106,8 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   d.cell_rate = whole.cell_rate;
   d.cell_stress = whole.cell_stress;
   d.work.search_cell = whole.work.search_cell;
-  d.work.search_cell_restored = whole.work.search_cell_restored;
+  d.work.renew_search_cell = whole.work.renew_search_cell;
+  d.work.whole_reach = largest_reach(whole);
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
@@ -210,39 +227,63 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   whole.cell = d.cell;
   whole.cell_rate = d.cell_rate;
   whole.work.search_cell = d.work.search_cell;
+  whole.work.renew_search_cell = d.work.renew_search_cell;
   if (periodic)
     for (int k = 0; k < 6; ++k) whole.cell_stress[k] = virial[k] / cell_volume(whole.cell);
   whole.work.candidates_current = false;
 }
 
-// (A periodic cell that does not deform adds nothing: its images' term,
-// step.cpp's, is a zero, which leaves the sum as it is.)
 Real whole_wall_power(const World& d, DomainTransport& t) {
+  const bool deforming = d.settings.cell_control.deforms();
   std::vector<PowerTerm> terms;
   for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
     const StepContact& c = d.work.contacts[k];
     if (!c.active) continue;
     const std::uint32_t motion_a = c.a_is_plane ? d.planes[c.a].motion : d.bodies[c.a].motion;
     const std::uint32_t motion_b = d.bodies[c.b].motion;
-    if (!motion_a && !motion_b) continue;
+    const bool image = deforming && c.image != kNoImage;  // (a fixed cell's images add a zero)
+    if (!motion_a && !motion_b && !image) continue;
     PowerTerm p{d.work.keys[k]};
+    if (image) p.on_image = dot(c.force, affine_velocity(d.cell_rate, image_shift(d.cell, c.image))), p.driven |= 4;
     if (motion_a) p.on_a = driven_power(d.work.motion_frames[motion_a - 1], c.force, c.torque), p.driven |= 1;
     if (motion_b) p.on_b = driven_power(d.work.motion_frames[motion_b - 1], c.force, c.torque), p.driven |= 2;
     terms.push_back(p);
   }
-  Writer m;
-  m.put(terms);
-  const std::vector<std::string> in = gather_to_root(t, m.take());
-  if (t.rank() != 0) return 0;
-  terms.clear();
-  for (const std::string& message : in) Reader(message).get(terms);
-  sort_unique(terms, [](const PowerTerm& p) { return p.key; });
-  Real power = 0;  // as step.cpp sums it: contact by contact, a's share then b's
-  for (const PowerTerm& p : terms) {
+  Real power = 0;  // as step.cpp sums it: contact by contact, the image's share, a's, then b's
+  for (const PowerTerm& p : gather_sorted(t, std::move(terms), [](const PowerTerm& p) { return p.key; })) {
+    if (p.driven & 4) power -= p.on_image;
     if (p.driven & 1) power += p.on_a;
     if (p.driven & 2) power -= p.on_b;
   }
   return power;
+}
+
+CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
+  std::vector<VirialTerm> terms;
+  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
+    const StepContact& c = d.work.contacts[k];
+    if (!c.active) continue;
+    const Vec3 shift = c.image == kNoImage ? Vec3{} : image_shift(d.cell, c.image);
+    const Vec3 from = c.a_is_plane ? c.geometry.point : d.bodies[c.a].position;
+    terms.push_back({d.work.keys[k], c.force, d.bodies[c.b].position + shift - from});
+  }
+  CellTensor virial{};
+  for (const VirialTerm& v : gather_sorted(t, std::move(terms), [](const VirialTerm& v) { return v.key; }))
+    add_virial(virial, v.force, v.branch);
+  for (Real& s : virial) s /= cell_volume(d.cell);
+  const std::string said = all_gather(t, std::string(reinterpret_cast<const char*>(virial.data()), sizeof virial))[0];
+  if (said.size() != sizeof virial) throw std::runtime_error("the cell's stress came damaged");
+  std::memcpy(virial.data(), said.data(), sizeof virial);
+  return virial;
+}
+
+Real whole_field_work(World& d, DomainTransport& t) {
+  std::vector<StepWorkspace::FieldWork> terms;
+  std::swap(terms, d.work.field_work);
+  Real added = 0;  // as control_cell sums it: body by body, in id order
+  for (const StepWorkspace::FieldWork& f : gather_sorted(t, std::move(terms), [](const auto& f) { return f.id; }))
+    added += f.joules;
+  return added;
 }
 
 }  // namespace gjkdem::dem

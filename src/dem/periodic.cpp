@@ -73,10 +73,11 @@ std::size_t wrap_bodies(World& w) {
   const PeriodicCell& cell = w.cell;
   BoxCache& cache = w.work.boxes;
   const bool boxed = cache.boxes.size() == w.bodies.size();
+  const std::vector<std::uint8_t>& foreign = w.work.foreign;
   std::size_t crossed = 0;
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     Body& b = w.bodies[i];
-    if (b.fixed) continue;
+    if (b.fixed || (!foreign.empty() && foreign[i])) continue;
     const Vec3 move = into_cell(cell, b.position);
     if (move == Vec3{}) continue;
     ++crossed;
@@ -111,11 +112,15 @@ void control_cell(World& w) {
   w.cell_rate = rate;
   if (!changed) return;
   const Vec3 centre = cell_centre(w.cell);
+  const std::vector<std::uint8_t>& foreign = w.work.foreign;
   Real added = 0;  // kinetic energy the new field gives the bodies
-  for (Body& b : w.bodies) {
-    if (b.fixed) continue;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    Body& b = w.bodies[i];
+    if (b.fixed || (!foreign.empty() && foreign[i])) continue;
     const Vec3 v = b.velocity + affine_velocity(change, b.position - centre);
-    added += 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+    const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+    if (foreign.empty()) added += gained;
+    else w.work.field_work.push_back({b.id, gained});
     b.velocity = v;
   }
   w.wall_work += added;
@@ -167,14 +172,16 @@ Real cell_drift(const World& w) noexcept {
   return drift;
 }
 
-Real shortest_period(const World& w) noexcept {
-  Real reach = 0;  // of moving bodies, and of those inflows will insert
+Real largest_reach(const World& w) noexcept {
+  Real reach = w.work.whole_reach;  // of moving bodies, and of those inflows will insert
   for (const Body& b : w.bodies)
     if (!b.fixed) reach = std::fmax(reach, w.templates[b.shape].reach);
   for (const Inflow& f : w.inflows)
     for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
-  return 4 * reach * (1 + w.settings.box_skin);
+  return reach;
 }
+
+Real shortest_period(const World& w) noexcept { return 4 * largest_reach(w) * (1 + w.settings.box_skin); }
 
 void find_periodic_candidates(World& w, int threads) {
   StepWorkspace& work = w.work;

@@ -45,8 +45,7 @@ void find_candidates(World& w, int threads) {
   work.moving_boxes.resize(work.moving.size());
   for (std::size_t k = 0; k < work.moving.size(); ++k) work.moving_boxes[k] = boxes[work.moving[k]];
   if (w.cell.active()) {
-    if (work.search_cell_restored) work.search_cell_restored = false;  // the search the checkpoint's run made
-    else work.search_cell = w.cell;
+    if (work.renew_search_cell) work.search_cell = w.cell, work.renew_search_cell = false;
     find_periodic_candidates(w, threads);
     work.candidates_current = true;
     return;
@@ -221,6 +220,7 @@ StepReport compute_forces(World& w, Real dt) {
   }
   const std::size_t updated =
       update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, cell_drift(w));
+  if (updated > 0) work.renew_search_cell = true;
   if (updated > 0 || !work.static_ready || !work.candidates_current) find_candidates(w, threads);
   list_contacts(w);
   align_pair_states(work.keys, w.pairs);
@@ -321,7 +321,7 @@ StepReport begin_step(World& w, Real dt) {
   if (deforming) control_cell(w);
   drift(w.bodies, w.templates, w.materials, dt, threads);
   if (deforming) {
-    if (deform_cell(w, dt)) w.work.candidates_current = false;  // a tilt taken back: images renamed
+    if (deform_cell(w, dt)) w.work.candidates_current = false, w.work.renew_search_cell = true;  // images renamed
     const Real shortest = shortest_period(w);
     for (int a = 0; a < 3; ++a)
       if (w.cell.axes[a] && !(cell_width(w.cell, a) > shortest)) {
@@ -329,7 +329,7 @@ StepReport begin_step(World& w, Real dt) {
         return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0};
       }
   }
-  if (w.cell.active() && wrap_bodies(w) > 0) w.work.candidates_current = false;  // images changed
+  if (w.cell.active() && wrap_bodies(w) > 0) w.work.candidates_current = false, w.work.renew_search_cell = true;
   w.work.power_before = w.stats.wall_power;
   w.time += dt;
   w.work.kicked_bodies = w.bodies.size();

@@ -341,7 +341,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   if (anchors > 0) {
     w.work.boxes = std::move(boxes);
     w.work.search_cell = searched;
-    w.work.search_cell_restored = searched.active();
+    w.work.renew_search_cell = !searched.active();
     dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.work.boxes);
   }
   return c;

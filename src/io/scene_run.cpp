@@ -192,9 +192,6 @@ double SceneRun::wall_seconds() const { return writers_ ? writers_->wall_seconds
 dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop,
                               dem::DomainTransport* transport) {
   const bool domains = transport && transport->size() > 1;
-  if (domains)
-    if (const std::string why = dem::domains_unsupported(scene.world); !why.empty())
-      throw SceneError("this scene has " + why + ", which a run on more than one rank cannot have yet: run it on one");
   if (!writers_) {  // a follower
     if (!domains) throw std::logic_error("SceneRun: a follower runs only on domains");
     return dem::run_domains(scene.world, state, {}, *transport, {}, scene.guards);

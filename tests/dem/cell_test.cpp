@@ -9,7 +9,9 @@
 // - sheared at a rate (Lees-Edwards), its tilt grows as the rate says and
 //   is taken back at half the edge, the grains stay in it, their mean
 //   velocity follows the shear, and no energy is made;
-// - a servoed, shearing cell continues from a checkpoint with the same bits;
+// - a servoed, shearing cell continues from a checkpoint with the same bits,
+//   also from the step before a grain wraps (the continued run renews its
+//   search cell where the run that did not stop renews it);
 // - a cell compressed below four reaches stops the run with a message.
 #include <gtest/gtest.h>
 
@@ -266,6 +268,48 @@ TEST(DeformingCell, AServoedShearingCellContinuesFromACheckpointBitForBit) {
   EXPECT_EQ(std::memcmp(&straight.cell, &resumed.cell, sizeof(PeriodicCell)), 0);
   EXPECT_EQ(straight.cell_rate, resumed.cell_rate);
   EXPECT_EQ(straight.wall_work, resumed.wall_work);
+}
+
+// A checkpoint written the step before a grain wraps across a face: the
+// continued run's first candidate search keeps the search cell it restored,
+// but the wrap renews it, as in the run that did not stop.
+TEST(DeformingCell, ARunContinuedJustBeforeAGrainWrapsGivesTheSameBits) {
+  CellControl c = isotropic(kPressure, 1.0);
+  c.mode[kXZ] = CellMode::StrainRate, c.value[kXZ] = 3;
+  const auto fresh = [&] { return loose_box(60, 0.045, c, 0.3); };
+  World probe = fresh();
+  const RunState plan = plan_run(0.06, critical_time_step(probe), 0.02);
+  // The steps at which some grain wraps (its centre jumps by most of a period).
+  std::vector<std::uint64_t> wraps;
+  for (std::uint64_t k = 1; k <= plan.steps_total; ++k) {
+    const std::vector<Body> before = probe.bodies;
+    ASSERT_EQ(step(probe, plan.dt).status, StepStatus::Ok);
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (length(probe.bodies[i].position - before[i].position) > 0.02) {
+        wraps.push_back(k);
+        break;
+      }
+  }
+  ASSERT_GE(wraps.size(), 3u);
+  World straight = fresh();
+  RunState run = plan;
+  ASSERT_EQ(dem::run(straight, run, {}).status, RunStatus::Completed);
+  for (const std::uint64_t wrap : {wraps[0], wraps[wraps.size() / 2], wraps.back()}) {
+    World first = fresh();
+    RunState part = plan;
+    dem::run(first, part, {}, [&] { return part.step == wrap - 1; });
+    ASSERT_EQ(part.step, wrap - 1);
+    World resumed = fresh();
+    RunState rest = io::decode_checkpoint(io::encode_checkpoint(first, {part, {}}, 7), resumed, 7, "memory").run;
+    ASSERT_EQ(dem::run(resumed, rest, {}).status, RunStatus::Completed);
+    SCOPED_TRACE(testing::Message() << "continued before step " << wrap);
+    for (std::size_t i = 0; i < straight.bodies.size(); ++i)
+      ASSERT_EQ(std::memcmp(&straight.bodies[i], &resumed.bodies[i], sizeof(Body)), 0) << "body " << i;
+    const BoxCache &s = straight.work.boxes, &r = resumed.work.boxes;
+    EXPECT_EQ(std::memcmp(s.anchor_position.data(), r.anchor_position.data(), s.anchor_position.size() * sizeof(Vec3)), 0);
+    EXPECT_EQ(std::memcmp(&straight.work.search_cell, &resumed.work.search_cell, sizeof(PeriodicCell)), 0);
+    EXPECT_EQ(straight.wall_work, resumed.wall_work);
+  }
 }
 
 TEST(DeformingCell, ACellCompressedBelowFourReachesStopsTheRun) {

@@ -323,14 +323,53 @@ TEST(Domains, AFailingDomainStopsTheRunWithItsMessage) {
   EXPECT_EQ(split.state.step, whole.state.step);
 }
 
-TEST(Domains, WhatDomainsCannotRunIsRefused) {
-  World world = pour(ContactModel::Hertz);
-  EXPECT_EQ(domains_unsupported(world), "");
-  world.settings.cell_control.mode[0] = CellMode::Stress;
-  EXPECT_EQ(domains_unsupported(world), "a deforming periodic cell");
-  RunState state = plan_run(0.01, critical_time_step(world), 0.01);
-  ThreadRanks two(2);
-  EXPECT_THROW(run_domains(world, state, {}, two.rank(0)), std::invalid_argument);
+// Grains in a cell periodic on every axis, squeezed by a servo towards a
+// pressure while it shears fast enough that its tilt is taken back: every
+// step the servo reads the whole stress (summed again from every domain's
+// contacts), the cell's new field works on every domain's bodies, and the
+// search cell is renewed when the whole world's would be, not when a
+// domain's ghosts change.
+TEST_P(Domains, AServoedShearingCellGivesTheSerialBits) {
+  WorldSettings s;
+  s.model = GetParam();
+  s.gravity = {};
+  s.periodic.axes[0] = s.periodic.axes[1] = s.periodic.axes[2] = true;
+  s.periodic.lo = {0, 0, 0};
+  s.periodic.hi = {0.06, 0.06, 0.06};
+  for (int k = 0; k < 6; ++k) s.cell_control.mode[k] = CellMode::Stress, s.cell_control.value[k] = k < 3 ? 2e4 : 0;
+  s.cell_control.mode[kXZ] = CellMode::StrainRate, s.cell_control.value[kXZ] = 8;
+  s.cell_control.max_strain_rate = 5;
+  WorldBuilder b(s);
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+  std::mt19937_64 rng(17);
+  test::fill_polyhedra(b, {.count = 150, .variants = 4, .vertices = 10, .size = 0.008, .lo = {0.003, 0.003, 0.003},
+                           .hi = {0.057, 0.057, 0.057}, .material = rock},
+                       rng);
+  World world = b.build();
+  std::uniform_real_distribution<Real> u(-0.2, 0.2);
+  for (Body& body : world.bodies) body.velocity = {u(rng), u(rng), u(rng)};
+  const RunState plan = plan_run(0.12, critical_time_step(world), 0.01);
+  Recorder serial;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed) << whole.outcome.error;
+  ASSERT_LT(whole.world.cell.tilt.y, 0) << "the tilt was taken back";
+  ASSERT_LT(whole.world.cell.hi.x - whole.world.cell.lo.x, 0.045) << "the servo squeezed the cell";
+  ASSERT_GT(serial.outputs.back().stats.contacts, 15);
+  for (const int ranks : {2, 3}) {
+    Recorder domains;
+    DomainReport report;
+    const Ended split = run_on(ranks, world, plan, domains, 0, &report);
+    ASSERT_EQ(split.outcome.status, RunStatus::Completed);
+    expect_same(serial.outputs, domains.outputs, ranks);
+    EXPECT_EQ(std::memcmp(&split.world.cell, &whole.world.cell, sizeof(PeriodicCell)), 0) << ranks << " ranks";
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(std::memcmp(&split.world.cell_rate[k], &whole.world.cell_rate[k], sizeof(Real)), 0) << k;
+      EXPECT_EQ(std::memcmp(&split.world.cell_stress[k], &whole.world.cell_stress[k], sizeof(Real)), 0) << k;
+    }
+    double moved = 0;
+    for (const DomainReport::Rank& r : report.ranks) moved += r.moved_out;
+    EXPECT_GT(moved * static_cast<double>(report.steps), 5) << ranks << " ranks";
+  }
 }
 
 }  // namespace

@@ -51,10 +51,6 @@ struct DomainLayout {
 /// of the world, fixed ones ignored; empty: 1 each).
 DomainLayout layout_domains(const World& whole, int ranks, std::span<const Real> weights = {});
 
-/// What a domain run cannot do yet (periodic cells): the reason, or "" when
-/// the world can run in domains.
-std::string domains_unsupported(const World& whole);
-
 /// The domain of `rank` cut from the whole world: the moving bodies of its
 /// region, every fixed body, the pairs of its bodies. Ghosts come with the
 /// first exchange_bodies().
@@ -88,11 +84,24 @@ void gather_world(const World& domain, DomainTransport& transport, World& whole)
 /// first new id, or all ones when none was inserted.
 std::uint64_t insert_inflow_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
 
-/// The power of the driven walls and bodies on the moving bodies at the
-/// last force evaluation, summed over every domain's contacts in the order
-/// a whole world sums them (World::stats.wall_power): on rank 0; 0 on the
-/// others. All ranks call it together.
+/// The power of the driven walls and bodies, and of a deforming cell
+/// through the images, on the moving bodies at the last force evaluation,
+/// summed over every domain's contacts in the order a whole world sums them
+/// (World::stats.wall_power): on rank 0; 0 on the others. All ranks call
+/// it together.
 Real whole_wall_power(const World& domain, DomainTransport& transport);
+
+/// The cell's stress at the last force evaluation (World::cell_stress),
+/// which a servo reads at every step: every domain's contacts summed on
+/// rank 0 in the order of their keys, as a whole world sums them, and told
+/// to every rank. All ranks call it together.
+CellTensor whole_cell_stress(const World& domain, DomainTransport& transport);
+
+/// The kinetic energy a change of a deforming cell's field gave the whole
+/// world's bodies this step (every domain's StepWorkspace::field_work,
+/// summed in id order as control_cell sums it): on rank 0; 0 on the
+/// others. Clears field_work. All ranks call it together.
+Real whole_field_work(World& domain, DomainTransport& transport);
 
 /// How a domain run balances its domains.
 struct DomainOptions {
@@ -129,8 +138,7 @@ std::vector<Real> body_costs(const World& whole);
 /// the gathered whole world at each output (on_step sees rank 0's domain);
 /// the other ranks pass no observers. A failure on any rank fails the run
 /// on all, with the message of the lowest failing rank. On return, rank
-/// 0's `whole` holds the world as of the last output. Throws
-/// std::invalid_argument for what domains_unsupported() names.
+/// 0's `whole` holds the world as of the last output.
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers,
                        DomainTransport& transport, const std::function<bool()>& stop_requested = {},
                        const RunGuards& guards = {}, const DomainOptions& options = {},

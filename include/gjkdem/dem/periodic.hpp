@@ -133,13 +133,15 @@ inline void add_virial(CellTensor& sum, const Vec3& force, const Vec3& branch) n
 
 /// Puts the moving bodies back into the cell, moving their box anchors and
 /// boxes with them (and their velocities by the affine velocity of the
-/// move in a deforming cell). Returns how many crossed.
+/// move in a deforming cell). Returns how many crossed. A domain moves
+/// only its own bodies (their owners move the others).
 std::size_t wrap_bodies(World& world);
 
 /// A deforming cell, before the drift of a step: sets the velocity
 /// gradient (the servo's from the stress of the last force evaluation),
 /// changes the moving bodies' velocities by the change of the affine field,
-/// and counts the kinetic energy that adds as work done on the bodies.
+/// and counts the kinetic energy that adds as work done on the bodies (a
+/// domain lists it per body in StepWorkspace::field_work instead).
 void control_cell(World& world);
 
 /// Moves the cell's edges by the velocity gradient over dt (with the
@@ -151,9 +153,12 @@ bool deform_cell(World& world, Real dt);
 /// the broad phase counts it as motion.
 Real cell_drift(const World& world) noexcept;
 
+/// The largest reach of the moving bodies (those the inflows insert
+/// included; in a domain, of the whole world's: StepWorkspace::whole_reach).
+Real largest_reach(const World& world) noexcept;
+
 /// The shortest width the cell may have across each periodic axis: four
-/// times the largest moving body's reach with its box skin (bodies the
-/// inflows insert included).
+/// times the largest reach with its box skin.
 Real shortest_period(const World& world) noexcept;
 
 /// The cell's width across axis a: the distance between its two faces

@@ -56,7 +56,12 @@ struct StepWorkspace {
   /// of its periods away); a checkpoint restores it, with the box anchors,
   /// so that a continued run finds the same candidates.
   PeriodicCell search_cell;
-  bool search_cell_restored = false;
+  /// The next candidate search takes the cell as it is now: set when a box
+  /// was remade, a body wrapped or a tilt was taken back (and in a fresh
+  /// world). A search for any other reason (a restored checkpoint, a
+  /// domain's new ghosts) keeps the search cell, as the run that did not
+  /// stop, or the whole world, has it.
+  bool renew_search_cell = true;
   std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
@@ -72,6 +77,17 @@ struct StepWorkspace {
   /// Domain runs insert the inflows' bodies themselves, between begin_step
   /// and the exchange (insert_inflow_bodies): begin_step leaves them.
   bool inflows_by_domains = false;
+  /// Domain runs: the largest reach of the whole world's moving bodies (a
+  /// domain holds only some; shortest_period takes it). 0 elsewhere.
+  Real whole_reach = 0;
+  /// Domain runs: the kinetic energy a change of a deforming cell's field
+  /// gave each body this domain owns (id, joules); rank 0 sums them in id
+  /// order, as control_cell does in a whole world.
+  struct FieldWork {
+    std::uint64_t id;
+    Real joules;
+  };
+  std::vector<FieldWork> field_work;
   // Between begin_step and finish_step (world.hpp).
   std::size_t kicked_bodies = 0;  ///< bodies that took the first half kick (inflows insert after them)
   std::size_t inserted = 0;       ///< bodies the inflows inserted
