@@ -75,12 +75,10 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     domain.stats.wall_power = power;
     if (step) domain.wall_work = work_before + 0.5 * state.dt * (domain.work.power_before + power);
   };
-  // The work of a deforming cell's new field on the bodies (begin_step's
-  // control_cell), summed again on rank 0.
+  // The work of a deforming cell's field on the bodies in begin_step (its
+  // change, the wraps), summed again on rank 0.
   auto settle_field_work = [&] {
-    if (!deforming) return;
-    const Real added = whole_field_work(domain, t);
-    if (root && added != 0) domain.wall_work += added;
+    if (deforming) add_field_work(domain, t);
   };
   std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {

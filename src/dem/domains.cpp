@@ -277,13 +277,25 @@ CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
   return virial;
 }
 
-Real whole_field_work(World& d, DomainTransport& t) {
-  std::vector<StepWorkspace::FieldWork> terms;
-  std::swap(terms, d.work.field_work);
-  Real added = 0;  // as control_cell sums it: body by body, in id order
-  for (const StepWorkspace::FieldWork& f : gather_sorted(t, std::move(terms), [](const auto& f) { return f.id; }))
-    added += f.joules;
-  return added;
+void add_field_work(World& d, DomainTransport& t) {
+  using Term = StepWorkspace::FieldWork;
+  Writer m;
+  m.put(d.work.field_work), m.put(d.work.wrap_work);
+  d.work.field_work.clear(), d.work.wrap_work.clear();
+  const std::vector<std::string> in = gather_to_root(t, m.take());
+  if (t.rank() != 0) return;
+  std::vector<Term> changes, wraps;
+  for (const std::string& message : in) {
+    Reader r(message);
+    r.get(changes), r.get(wraps);
+  }
+  for (std::vector<Term>* terms : {&changes, &wraps}) {
+    if (terms->empty()) continue;  // as a whole world, which adds nothing then
+    sort_unique(*terms, [](const Term& f) { return f.id; });
+    Real added = 0;  // body by body, in id order
+    for (const Term& f : *terms) added += f.joules;
+    d.wall_work += added;
+  }
 }
 
 }  // namespace gjkdem::dem

@@ -74,7 +74,8 @@ std::size_t wrap_bodies(World& w) {
   BoxCache& cache = w.work.boxes;
   const bool boxed = cache.boxes.size() == w.bodies.size();
   const std::vector<std::uint8_t>& foreign = w.work.foreign;
-  std::size_t crossed = 0;
+  std::size_t crossed = 0, jumped = 0;
+  Real added = 0;  // kinetic energy the wrapped bodies gained
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     Body& b = w.bodies[i];
     if (b.fixed || (!foreign.empty() && foreign[i])) continue;
@@ -82,13 +83,25 @@ std::size_t wrap_bodies(World& w) {
     if (move == Vec3{}) continue;
     ++crossed;
     b.position += move;
-    b.velocity += affine_velocity(w.cell_rate, move);
+    // In the field L (x - centre) the image one lattice vector m away moves
+    // faster by L m: the body takes that velocity, and the kinetic energy
+    // it gains or loses is the cell's work on it (Lees-Edwards' boundary
+    // drives the flow this way).
+    const Vec3 jump = affine_velocity(w.cell_rate, move);
+    if (jump != Vec3{}) {
+      const Vec3 v = b.velocity + jump;
+      const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+      if (foreign.empty()) added += gained, ++jumped;
+      else w.work.wrap_work.push_back({b.id, gained});
+      b.velocity = v;
+    }
     if (boxed) {
       cache.anchor_position[i] += move;
       cache.boxes[i].lo += move;
       cache.boxes[i].hi += move;
     }
   }
+  if (jumped > 0) w.wall_work += added;
   return crossed;
 }
 

@@ -97,11 +97,12 @@ Real whole_wall_power(const World& domain, DomainTransport& transport);
 /// to every rank. All ranks call it together.
 CellTensor whole_cell_stress(const World& domain, DomainTransport& transport);
 
-/// The kinetic energy a change of a deforming cell's field gave the whole
-/// world's bodies this step (every domain's StepWorkspace::field_work,
-/// summed in id order as control_cell sums it): on rank 0; 0 on the
-/// others. Clears field_work. All ranks call it together.
-Real whole_field_work(World& domain, DomainTransport& transport);
+/// Adds to rank 0's World::wall_work the kinetic energy a deforming cell's
+/// field gave the whole world's bodies this step: by its change, then by
+/// the wraps (every domain's StepWorkspace::field_work and wrap_work, each
+/// summed in id order as control_cell and wrap_bodies sum them). Clears
+/// both lists. All ranks call it together, after begin_step.
+void add_field_work(World& domain, DomainTransport& transport);
 
 /// How a domain run balances its domains.
 struct DomainOptions {

@@ -133,8 +133,10 @@ inline void add_virial(CellTensor& sum, const Vec3& force, const Vec3& branch) n
 
 /// Puts the moving bodies back into the cell, moving their box anchors and
 /// boxes with them (and their velocities by the affine velocity of the
-/// move in a deforming cell). Returns how many crossed. A domain moves
-/// only its own bodies (their owners move the others).
+/// move in a deforming cell, whose kinetic energy is counted as the cell's
+/// work: a domain lists it in StepWorkspace::wrap_work). Returns how many
+/// crossed. A domain moves only its own bodies (their owners move the
+/// others).
 std::size_t wrap_bodies(World& world);
 
 /// A deforming cell, before the drift of a step: sets the velocity

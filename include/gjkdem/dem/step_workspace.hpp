@@ -80,14 +80,15 @@ struct StepWorkspace {
   /// Domain runs: the largest reach of the whole world's moving bodies (a
   /// domain holds only some; shortest_period takes it). 0 elsewhere.
   Real whole_reach = 0;
-  /// Domain runs: the kinetic energy a change of a deforming cell's field
-  /// gave each body this domain owns (id, joules); rank 0 sums them in id
-  /// order, as control_cell does in a whole world.
+  /// Domain runs: the kinetic energy a deforming cell's field gave each
+  /// body this domain owns this step (id, joules), by a change of the field
+  /// (control_cell) and by a wrap (wrap_bodies); rank 0 sums each in id
+  /// order, as those functions do in a whole world.
   struct FieldWork {
     std::uint64_t id;
     Real joules;
   };
-  std::vector<FieldWork> field_work;
+  std::vector<FieldWork> field_work, wrap_work;
   // Between begin_step and finish_step (world.hpp).
   std::size_t kicked_bodies = 0;  ///< bodies that took the first half kick (inflows insert after them)
   std::size_t inserted = 0;       ///< bodies the inflows inserted
