@@ -9,7 +9,8 @@
 # floor too, and for the hopper example (inflow, compounds, a belt) and the
 # periodic shear example and a servoed shearing cell on 2 ranks (the
 # latter also stopped on 1 and resumed on 2); a failure stops every rank
-# with its message in run.json and no run left hanging.
+# with its message in run.json, and a rank failing outside the run's
+# agreements ends them all: no run left hanging.
 set -euo pipefail
 gjkdem="$1"
 scene="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"
@@ -39,6 +40,8 @@ awk -F, 'END { exit !($6 > 100) }' serial/energy.csv || fail "the grains did not
 # collective: 3 and 4 ranks run half of the steps each, in the resumes below.
 "${launch[@]}" -np 2 "$gjkdem" run "$scene" --out ranks2 --quiet || fail "the run on 2 ranks did not complete"
 grep -q '"status": "completed"' ranks2/run.json || fail "run.json of 2 ranks does not say completed"
+grep -q '"ranks": 2,' ranks2/run.json || fail "run.json of 2 ranks does not say 2 ranks"
+grep -q '"ranks": 1,' serial/run.json || fail "run.json of the serial run does not say 1 rank"
 same_run serial ranks2
 
 # A shaken floor (its work on the grains is in energy.csv): 2 ranks give the serial bytes.
@@ -95,6 +98,21 @@ sed -e 's/^dt = "auto"$/dt = 0.01/' "$scene" > unstable.toml
 expect_failure unstable 3 "above the stability limit"
 grep -q '"status": "failed"' unstable/run.json && grep -q 'above the stability limit' unstable/run.json ||
   fail "run.json does not say why the run failed"
+
+# A rank that fails outside the run's agreements ends every rank at once
+# (MPI_Abort), instead of leaving the others waiting for it: here rank 0
+# cannot write run.json when a resume starts (a directory stands where its
+# temporary file goes).
+set +e
+"$gjkdem" run "$scene" --out blocked --quiet --stop-after 300
+set -e
+mkdir -p blocked/run.json.tmp && touch blocked/run.json.tmp/keep
+set +e
+timeout 120 "${launch[@]}" -np 2 "$gjkdem" run --resume blocked > blocked.txt 2>&1
+rc=$?
+set -e
+[ "$rc" -ne 0 ] && [ "$rc" -ne 124 ] || fail "a rank that could not write run.json left the run hanging or passing (exit $rc)"
+grep -q "cannot write" blocked.txt || fail "the failing rank's message is missing: $(cat blocked.txt)"
 
 # The periodic shear example, cut to 0.06 s: a bed periodic across x and y
 # under a sliding plate, on 2 ranks (the cell's stress in cell.csv too).

@@ -215,6 +215,7 @@ void RunInfoWriter::write(const std::string& status, const dem::World& w, const 
   if (status == "interrupted" && !stopped_by.empty()) info["stopped_by"] = stopped_by;
   if (!error.empty()) info["error"] = error;
   for (const std::string& warning : warnings_) info["warnings"].push_back(warning);
+  info["ranks"] = ranks;
   info["steps"] = state.step;
   info["steps_total"] = state.steps_total;
   info["simulated_time"] = w.time;

@@ -199,6 +199,7 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
   std::vector<dem::RunObserver*> observers = writers_->observers();
   observers.insert(observers.end(), extra.begin(), extra.end());
   RunInfoWriter& info = writers_->info();
+  info.ranks = domains ? transport->size() : 1;
   info.started(scene.world, state);
   const auto stop_and_say = [&] {
     if (!stop) return false;

@@ -70,9 +70,19 @@ std::unique_ptr<dem::DomainTransport> launched_transport() {
   return t;  // one rank too: the caller runs the whole world then
 }
 
+void abort_job(int status) {
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  if (initialised && !finalised) MPI_Abort(MPI_COMM_WORLD, status);
+  std::exit(status);
+}
+
 #else
 
 std::unique_ptr<dem::DomainTransport> launched_transport() { return nullptr; }
+
+void abort_job(int status) { std::exit(status); }
 
 #endif
 

@@ -138,6 +138,8 @@ class RunInfoWriter : public dem::RunObserver {
   void on_warning(const dem::World& world, const dem::RunState& state, const std::string& message) override;
   /// What stopped a run that was stopped ("SIGINT", "--stop-after", ...).
   std::string stopped_by;
+  /// The MPI ranks the run is on (1: one process; docs/scaling.md).
+  int ranks = 1;
 
  private:
   void write(const std::string& status, const dem::World& world, const dem::RunState& state,

@@ -14,4 +14,10 @@ namespace gjkdem::mpi {
 /// without MPI).
 std::unique_ptr<dem::DomainTransport> launched_transport();
 
+/// Ends every rank of the job now (MPI_Abort) with `status`: for a rank that
+/// fails outside the run's agreements (an exception out of a domain run),
+/// which the others would otherwise wait for in their next exchange, for
+/// ever. Without MPI, exits this process.
+[[noreturn]] void abort_job(int status);
+
 }  // namespace gjkdem::mpi
