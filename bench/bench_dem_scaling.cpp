@@ -22,10 +22,17 @@
 // Under `mpirun -np R` the timed steps run on R domains (dem::run_domains),
 // with each rank's bodies, ghosts and traffic per step (docs/scaling.md).
 //
+// `--narrow` also times the narrow phase alone on each bed, one thread,
+// over the step's candidate pairs of two bodies with the warm starts they
+// have in the bed: per touching contact, the whole query (GJK's test, then
+// the overlap region) and the GJK test alone; per candidate that does not
+// touch, the query (issue 12's goal: under 5 us per contact).
+//
 //   bench_dem_scaling --free-fall [--threads T] [--steps S] [--export FILE]
 //
 // times 1,000 grains falling freely instead; `--export FILE` writes them (and
 // FILE.spin, their angular velocities) for bench/yade_free_fall.py.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,7 +44,9 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/domains.hpp"
+#include "gjkdem/dem/narrow_phase.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/mpi/mpi_transport.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
@@ -233,11 +242,48 @@ void free_fall(int threads, int steps, const std::string& export_file) {
               w.settings.box_skin);
 }
 
+// The narrow phase alone on the contact list of the world's last step (its
+// pairs of two bodies), `passes` times, each pass from the pair's warm
+// start as the bed left it; the fastest pass counts.
+void time_narrow_phase(const World& w, int passes) {
+  std::vector<std::size_t> touching, apart;
+  for (std::size_t k = 0; k < w.work.contacts.size(); ++k) {
+    const StepContact& c = w.work.contacts[k];
+    if (c.a_is_plane) continue;
+    (c.active ? touching : apart).push_back(k);
+  }
+  OverlapWorkspace work;
+  auto best_ns = [&](const std::vector<std::size_t>& list, bool whole) {
+    double best = 1e300;
+    int sink = 0;
+    for (int p = 0; p < passes; ++p) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (const std::size_t k : list) {
+        const StepContact& c = w.work.contacts[k];
+        const PartPose a = part_pose(w.templates[w.bodies[c.a].shape], w.bodies[c.a], c.part_a);
+        const PartPose b = part_pose(w.templates[w.bodies[c.b].shape], w.bodies[c.b], c.part_b);
+        GjkCache cache = w.pairs[k].gjk;
+        if (whole) sink += body_contact(*a.shape, a.pose, *b.shape, b.pose, w.settings.model, &cache, work).status ==
+                           GeometryStatus::Touching;
+        else sink += intersect(*a.shape, a.pose, *b.shape, b.pose, &cache);
+      }
+      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    if (sink < 0) std::printf("?");
+    return list.empty() ? 0.0 : 1e9 * best / static_cast<double>(list.size());
+  };
+  std::printf("  narrow phase, 1 thread, fastest of %d passes: %zu touching pairs of bodies, %.0f ns each "
+              "(GJK's test alone %.0f ns); %zu candidates apart, %.0f ns each\n",
+              passes, touching.size(), best_ns(touching, true), best_ns(touching, false), apart.size(),
+              best_ns(apart, true));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool cubes = false;
   int threads = 0, settle = 20, steps = 0, free_fall_steps = 0;
+  bool narrow = false;
   std::string export_prefix, block_cache;
   std::vector<int> counts;
   for (int i = 1; i < argc; ++i) {
@@ -249,12 +295,13 @@ int main(int argc, char** argv) {
     else if (a == "--export" && i + 1 < argc) export_prefix = argv[++i];
     else if (a == "--block" && i + 1 < argc) block_cache = argv[++i];
     else if (a == "--free-fall") free_fall_steps = 2000;
+    else if (a == "--narrow") narrow = true;
     else if (a == "--skin" && i + 1 < argc) g_skin = std::atof(argv[++i]);
     else if (std::atoi(a.c_str()) >= kBlockCount && std::atoi(a.c_str()) % kBlockCount == 0) counts.push_back(std::atoi(a.c_str()));
     else {
       std::fprintf(stderr,
                    "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE]\n"
-                   "          [--skin S] N [N ...]\n"
+                   "          [--skin S] [--narrow] N [N ...]\n"
                    "       %s --free-fall [--threads T] [--steps S] [--skin S] [--export FILE]\n"
                    "  --skin: box skin, relative to each grain's reach (WorldSettings::box_skin)\n"
                    "  N: multiples of 1000 (default 1000 10000 100000)\n",
@@ -321,6 +368,7 @@ int main(int argc, char** argv) {
                   r, d.owned, d.ghosts, d.moved_out, d.bytes_sent / 1e3, 1e3 * d.step_seconds, 1e3 * d.exchange_seconds,
                   1e3 * d.loop_seconds, 1e6 * d.loop_seconds / static_cast<double>(bodies));
     }
+    if (narrow && !domains) time_narrow_phase(w, 20);
     std::fflush(stdout);
   }
   return 0;

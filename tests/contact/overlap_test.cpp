@@ -168,5 +168,39 @@ TEST(Overlap, ClosedForms) {
   EXPECT_EQ(overlap(tri, Transform::identity(), cube, Transform::identity(), work).status, OverlapStatus::Empty);
 }
 
+// A thin plate (B: a box of thickness 2t) pushed through the top face of a
+// cube (A) at a random tilt, without reaching another face: the part of A's
+// surface inside B is a strip of that face, so the contact normal is the
+// face's normal, +z, exactly. Both sides' area vectors say so, but B's is
+// the sum of the plate's two large faces, which nearly cancel (the strip is
+// a millionth of them at t = 1e-6): their difference S_A - S_B turned the
+// normal by up to 2.6e-9 rad here (and 1.5e-4 rad on a sliver of
+// tests/data/poly-hard); weighted towards the better-conditioned sum, 7e-16.
+TEST(Overlap, AThinPlateThroughAFaceHasThatFacesNormal) {
+  std::mt19937_64 rng(72);
+  std::uniform_real_distribution<double> u(-1, 1);
+  OverlapWorkspace work;
+  const Shape cube{Box{{0.5, 0.5, 0.5}}};
+  Real worst = 0;
+  int plates = 0;
+  for (const Real t : {1e-4, 1e-6, 1e-8}) {
+    const Shape plate{Box{{0.25, 0.25, t}}};  // its corners stay 0.45 from the axis: within the top face
+    for (int k = 0; k < 100; ++k) {
+      const Quat q = normalized(Quat{u(rng), u(rng), u(rng), u(rng)});
+      const Vec3 normal = rotate(q, Vec3{0, 0, 1});
+      if (std::fabs(normal.z) > 0.95) continue;  // nearly flat on the face: it would not go through
+      const Vec3 centre{0.1 * u(rng), 0.1 * u(rng), 0.5 + 0.1 * u(rng)};
+      const OverlapResult r = overlap(cube, Transform::identity(), plate, Transform::from(centre, q), work);
+      ASSERT_EQ(r.status, OverlapStatus::Overlapping) << "t " << t << ", plate " << k;
+      ASSERT_TRUE(r.has_normal);
+      worst = std::fmax(worst, length(cross(r.contact_normal, Vec3{0, 0, 1})));
+      EXPECT_GT(r.contact_normal.z, 0);
+      ++plates;
+    }
+  }
+  EXPECT_GT(plates, 250);
+  EXPECT_LT(worst, 1e-9) << "the largest angle off the face's normal (rad)";
+}
+
 }  // namespace
 }  // namespace gjkdem

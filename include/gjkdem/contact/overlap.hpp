@@ -58,6 +58,7 @@ struct OverlapWorkspace {
   std::vector<Vec3> face_normal[2];
   std::vector<Vec3> cap;
   std::vector<std::pair<Real, Vec3>> cap_keyed;  ///< cap points with their pseudo-angles, for sorting
+  std::vector<Real> side;  ///< each point's signed distance to the plane clipping it
   struct Plane {
     Vec3 n;  ///< unit, outward
     Real d;  ///< n . x on the plane
