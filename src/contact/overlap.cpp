@@ -40,35 +40,42 @@ struct Beyond {
   Real from = -std::numeric_limits<Real>::infinity();
 };
 
-/// Face polygons of a clippable core, mapped by `to` (its local frame -> the
-/// working frame): those with a corner in `keep`.
+/// Face polygons of a clippable core (a polytope's facets, coplanar
+/// triangles merged), mapped by `to` (its local frame -> the working
+/// frame): those with a corner in `keep`.
 void append_faces(const Shape& s, const Transform& to, std::vector<Vec3>& pts, std::vector<int>& begin,
                   std::vector<unsigned char>& body, std::vector<Vec3>& normal, unsigned char tag,
                   const Beyond& keep = {}) {
-  auto add = [&](std::initializer_list<Vec3> poly) {
-    Vec3 mapped[4];
+  // `corner(k)` gives the polygon's k-th corner (local frame), `local_normal` its unit normal.
+  auto add = [&](int corners, auto corner, const Vec3& local_normal) {
+    const std::size_t at = pts.size();
     bool reaches = false;
-    int n = 0;
-    for (const Vec3& p : poly) {
-      mapped[n] = apply(to, p);
-      reaches = reaches || dot(keep.u, mapped[n]) >= keep.from;
-      ++n;
+    for (int k = 0; k < corners; ++k) {
+      pts.push_back(apply(to, corner(k)));
+      reaches = reaches || dot(keep.u, pts.back()) >= keep.from;
     }
-    if (!reaches) return;
-    begin.push_back(static_cast<int>(pts.size()));
-    pts.insert(pts.end(), mapped, mapped + n);
-    normal.push_back(normalized(cross(mapped[1] - mapped[0], mapped[2] - mapped[0])));
+    if (!reaches) {
+      pts.resize(at);
+      return;
+    }
+    begin.push_back(static_cast<int>(at));
+    normal.push_back(apply_rotation(to, local_normal));
     body.push_back(tag);
   };
   if (const auto* p = std::get_if<Polytope>(&s.core)) {
-    const auto& v = p->data->vertices;
-    for (const auto& t : p->data->triangles) add({v[t[0]], v[t[1]], v[t[2]]});
+    const PolytopeData& d = *p->data;
+    for (std::size_t f = 0; f + 1 < d.facet_begin.size(); ++f) {
+      const std::uint32_t* ids = d.facet_vertices.data() + d.facet_begin[f];
+      add(static_cast<int>(d.facet_begin[f + 1] - d.facet_begin[f]), [&](int k) { return d.vertices[ids[k]]; },
+          d.facet_normals[f]);
+    }
   } else if (const auto* bx = std::get_if<Box>(&s.core)) {
     for (int axis = 0; axis < 3; ++axis)
       for (Real sign : {Real(1), Real(-1)}) {
-        Vec3 c[4];
+        Vec3 c[4], n;
         box_face(*bx, axis, sign, c);
-        add({c[0], c[1], c[2], c[3]});
+        n[axis] = sign;
+        add(4, [&](int k) { return c[k]; }, n);
       }
   }
 }
@@ -87,8 +94,10 @@ struct FarSide {
 /// The face planes of B (working frame `to`) that pass within `radius` of
 /// `centre`: only they can cut a region inside that ball. False when the ball
 /// lies wholly outside one of them (the region misses B). Polytopes are
-/// tested in B's frame on unnormalised triangle normals; only the planes
-/// kept are normalised. A polytope's triangles wholly beyond `far` (where
+/// tested in B's frame on unnormalised triangle normals (a triangle's plane
+/// is exact, a merged facet's only within the hull's tolerance: a needle's
+/// then cut 4e-12 from a pair that only touches); only the planes kept are
+/// normalised. A polytope's triangles wholly beyond `far` (where
 /// the other body ends) are left out too: when B meets a half-space S, B's
 /// part in S is cut by the planes of the faces that reach into S alone (a
 /// point of S outside B leaves B, on the way from a point of B in S,
