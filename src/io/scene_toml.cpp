@@ -277,8 +277,8 @@ class SceneBuilder {
     if (seed < 0) r.fail("seed", "must be >= 0");
     scene_.seed = static_cast<std::uint64_t>(seed);
     Json periodic = Json::object();
-    if (const toml::table* t = r.table("periodic")) {
-      TableReader p(*t, r.where() + ".periodic");
+    if (const toml::table* periodic_table = r.table("periodic")) {
+      TableReader p(*periodic_table, r.where() + ".periodic");
       const char* names[3] = {"x", "y", "z"};
       for (int a = 0; a < 3; ++a) {
         const std::vector<Real> range = p.numbers(names[a], 2);
@@ -293,9 +293,9 @@ class SceneBuilder {
       // How the cell deforms: per component a strain rate or a target stress.
       dem::CellControl& control = settings_.cell_control;
       const auto components = [&](const char* key, dem::CellMode mode, const char* example) {
-        const toml::table* t = p.table(key);
-        if (!t) return;
-        TableReader q(*t, p.where() + "." + key);
+        const toml::table* given_table = p.table(key);
+        if (!given_table) return;
+        TableReader q(*given_table, p.where() + "." + key);
         Json given = Json::object();
         for (int k = 0; k < 6; ++k) {
           const char* name = dem::kCellComponents[k];

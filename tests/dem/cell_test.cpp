@@ -98,8 +98,11 @@ TEST_P(ServoedBox, ComesToRestAtTheAppliedPressure) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const Real s = m.stress.row[i][j] * scale;
-      if (i == j) EXPECT_NEAR(s, kPressure, 0.01 * kPressure) << "sigma " << i << i;
-      else EXPECT_LT(std::fabs(s), 0.01 * kPressure) << "sigma " << i << j;
+      if (i == j) {
+        EXPECT_NEAR(s, kPressure, 0.01 * kPressure) << "sigma " << i << i;
+      } else {
+        EXPECT_LT(std::fabs(s), 0.01 * kPressure) << "sigma " << i << j;
+      }
       // The servo's own sum (branch vectors between centres) agrees.
       const int k = i == j ? i : i + j == 1 ? kXY : i + j == 2 ? kXZ : kYZ;
       EXPECT_NEAR(s, w.cell_stress[k], 1e-6 * kPressure);
@@ -119,8 +122,9 @@ TEST(DeformingCell, AStretchedCellMovesItsFacesAndGivesTheGrainsItsField) {
   for (std::size_t i = 0; i < before.size(); ++i) {
     const Vec3 v = before[i].velocity + Vec3{0.5 * (before[i].position.x - centre.x), 0, 0};
     expected_work += 0.5 * mass_of(w, before[i]) * (dot(v, v) - dot(before[i].velocity, before[i].velocity));
-    if (w.bodies[i].position.x >= before[i].position.x + v.x * dt - 1e-12)  // not wrapped
+    if (w.bodies[i].position.x >= before[i].position.x + v.x * dt - 1e-12) {  // not wrapped
       EXPECT_NEAR(w.bodies[i].velocity.x, v.x, 1e-12);
+    }
   }
   EXPECT_NEAR(w.wall_work, expected_work, 1e-15);
   EXPECT_NEAR(kinetic_energy(w) - start_energy, expected_work, 1e-12);
@@ -291,7 +295,9 @@ TEST(DeformingCell, TheEnergyOfGrainsWrappingInADeformingCellIsCounted) {
     } watch;
     RunObserver* observers[] = {&watch};
     ASSERT_EQ(dem::run(w, run, observers).status, RunStatus::Completed);
-    if (shear) EXPECT_LT(w.cell.tilt.y, 0) << "the tilt was taken back";
+    if (shear) {
+      EXPECT_LT(w.cell.tilt.y, 0) << "the tilt was taken back";
+    }
     EXPECT_GT(watch.least_dissipated, -1e-6 * w.wall_work) << (shear ? "shearing" : "squeezed");
     EXPECT_GT(energy_balance(w, run.initial_energy).dissipated, 0) << (shear ? "shearing" : "squeezed");
   }

@@ -152,7 +152,9 @@ TEST(Inflow, AFullRegionFallsBehindAndSaysSo) {
   d.velocity = {};
   d.rate = 5000;
   d.stop = 10;
-  WorldBuilder b(WorldSettings{.gravity = {0, 0, 0}});
+  WorldSettings no_gravity;
+  no_gravity.gravity = {0, 0, 0};
+  WorldBuilder b(no_gravity);
   const std::uint32_t m = b.add_material({"grain", 2500, 1e6});
   d.material = m;
   b.add_inflow(d);
