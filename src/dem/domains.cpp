@@ -211,11 +211,11 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
     c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
-    const Vec3 shift = c.image == kNoImage ? Vec3{} : image_shift(d.cell, c.image);
+    const Vec3 shift = image_shift_of(d.cell, c);
     if (b.fixed) push_b(b, c, shift);
     if (!c.a_is_plane && whole.bodies[c.a].fixed) push_a(whole.bodies[c.a], c);
     if (periodic)
-      add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : whole.bodies[c.a].position));
+      add_virial(virial, c.force, virial_branch(whole.bodies, c, shift));
     stats.elastic_energy += c.elastic;
     ++stats.contacts;
     if (c.a_is_plane || whole.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
@@ -244,7 +244,7 @@ Real whole_wall_power(const World& d, DomainTransport& t) {
     const bool image = deforming && c.image != kNoImage;  // (a fixed cell's images add a zero)
     if (!motion_a && !motion_b && !image) continue;
     PowerTerm p{d.work.keys[k]};
-    if (image) p.on_image = dot(c.force, affine_velocity(d.cell_rate, image_shift(d.cell, c.image))), p.driven |= 4;
+    if (image) p.on_image = dot(c.force, affine_velocity(d.cell_rate, image_shift_of(d.cell, c))), p.driven |= 4;
     if (motion_a) p.on_a = driven_power(d.work.motion_frames[motion_a - 1], c.force, c.torque), p.driven |= 1;
     if (motion_b) p.on_b = driven_power(d.work.motion_frames[motion_b - 1], c.force, c.torque), p.driven |= 2;
     terms.push_back(p);
@@ -263,9 +263,7 @@ CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
   for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
     const StepContact& c = d.work.contacts[k];
     if (!c.active) continue;
-    const Vec3 shift = c.image == kNoImage ? Vec3{} : image_shift(d.cell, c.image);
-    const Vec3 from = c.a_is_plane ? c.geometry.point : d.bodies[c.a].position;
-    terms.push_back({d.work.keys[k], c.force, d.bodies[c.b].position + shift - from});
+    terms.push_back({d.work.keys[k], c.force, virial_branch(d.bodies, c, image_shift_of(d.cell, c))});
   }
   CellTensor virial{};
   for (const VirialTerm& v : gather_sorted(t, std::move(terms), [](const VirialTerm& v) { return v.key; }))

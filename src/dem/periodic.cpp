@@ -69,16 +69,45 @@ Real cell_width(const PeriodicCell& cell, int axis) noexcept {
   return size.x * size.y * size.z / length(face);
 }
 
+namespace {
+
+// A moving body this world moves: a domain moves only its own (their
+// owners move the others).
+bool moves_here(const World& w, std::size_t i) {
+  return !w.bodies[i].fixed && (w.work.foreign.empty() || !w.work.foreign[i]);
+}
+
+// The kinetic energy the cell's field gives moving bodies (a change of the
+// field, a wrap) is the cell's work on them: summed in body order into
+// wall_work in a whole world, listed per body (id, joules) in a domain,
+// which owns only some (domains.hpp sums the lists on rank 0 in id order).
+struct FieldWork {
+  World& w;
+  std::vector<StepWorkspace::FieldWork>& listed;
+  Real added = 0;
+  bool any = false;
+  void give(Body& b, const Vec3& v) {
+    const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+    if (w.work.foreign.empty()) added += gained, any = true;
+    else listed.push_back({b.id, gained});
+    b.velocity = v;
+  }
+  void finish() {
+    if (any) w.wall_work += added;
+  }
+};
+
+}  // namespace
+
 std::size_t wrap_bodies(World& w) {
   const PeriodicCell& cell = w.cell;
   BoxCache& cache = w.work.boxes;
   const bool boxed = cache.boxes.size() == w.bodies.size();
-  const std::vector<std::uint8_t>& foreign = w.work.foreign;
-  std::size_t crossed = 0, jumped = 0;
-  Real added = 0;  // kinetic energy the wrapped bodies gained
+  std::size_t crossed = 0;
+  FieldWork work{w, w.work.wrap_work};
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     Body& b = w.bodies[i];
-    if (b.fixed || (!foreign.empty() && foreign[i])) continue;
+    if (!moves_here(w, i)) continue;
     const Vec3 move = into_cell(cell, b.position);
     if (move == Vec3{}) continue;
     ++crossed;
@@ -87,21 +116,14 @@ std::size_t wrap_bodies(World& w) {
     // faster by L m: the body takes that velocity, and the kinetic energy
     // it gains or loses is the cell's work on it (Lees-Edwards' boundary
     // drives the flow this way).
-    const Vec3 jump = affine_velocity(w.cell_rate, move);
-    if (jump != Vec3{}) {
-      const Vec3 v = b.velocity + jump;
-      const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
-      if (foreign.empty()) added += gained, ++jumped;
-      else w.work.wrap_work.push_back({b.id, gained});
-      b.velocity = v;
-    }
+    if (const Vec3 jump = affine_velocity(w.cell_rate, move); jump != Vec3{}) work.give(b, b.velocity + jump);
     if (boxed) {
       cache.anchor_position[i] += move;
       cache.boxes[i].lo += move;
       cache.boxes[i].hi += move;
     }
   }
-  if (jumped > 0) w.wall_work += added;
+  work.finish();
   return crossed;
 }
 
@@ -125,18 +147,10 @@ void control_cell(World& w) {
   w.cell_rate = rate;
   if (!changed) return;
   const Vec3 centre = cell_centre(w.cell);
-  const std::vector<std::uint8_t>& foreign = w.work.foreign;
-  Real added = 0;  // kinetic energy the new field gives the bodies
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    Body& b = w.bodies[i];
-    if (b.fixed || (!foreign.empty() && foreign[i])) continue;
-    const Vec3 v = b.velocity + affine_velocity(change, b.position - centre);
-    const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
-    if (foreign.empty()) added += gained;
-    else w.work.field_work.push_back({b.id, gained});
-    b.velocity = v;
-  }
-  w.wall_work += added;
+  FieldWork work{w, w.work.field_work};
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    if (moves_here(w, i)) work.give(w.bodies[i], w.bodies[i].velocity + affine_velocity(change, w.bodies[i].position - centre));
+  work.finish();
 }
 
 bool deform_cell(World& w, Real dt) {

@@ -67,9 +67,7 @@ void find_candidates(World& w, int threads) {
 }
 
 // Where b's image lies from b in a periodic world (zero otherwise).
-Vec3 shift_of(const World& w, const StepContact& c) {
-  return c.image == kNoImage ? Vec3{} : image_shift(w.cell, c.image);
-}
+Vec3 shift_of(const World& w, const StepContact& c) { return image_shift_of(w.cell, c); }
 
 // A sphere about each part of a body, world frame (one for a convex body).
 struct PartSphere {
@@ -282,7 +280,7 @@ StepReport compute_forces(World& w, Real dt) {
     push_b(b, c, shift);
     if (!c.a_is_plane) push_a(w.bodies[c.a], c);
     if (periodic) {
-      add_virial(virial, c.force, b.position + shift - (c.a_is_plane ? c.geometry.point : w.bodies[c.a].position));
+      add_virial(virial, c.force, virial_branch(w.bodies, c, shift));
       // A deforming cell works on the bodies through the images' motion.
       if (c.image != kNoImage) stats.wall_power -= dot(c.force, affine_velocity(w.cell_rate, shift));
     }

@@ -3,6 +3,7 @@
 // the world only so that its memory is reused. Nothing here survives into a
 // checkpoint; a world restored without it rebuilds it on its first step.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gjkdem/contact/overlap.hpp"
@@ -31,6 +32,16 @@ struct StepContact {
   PairHistory history;      ///< the springs after this evaluation
   Real elastic = 0;         ///< energy stored in the contact (J)
 };
+
+/// Where b's image lies from b (periodic worlds; zero without an image).
+inline Vec3 image_shift_of(const PeriodicCell& cell, const StepContact& c) noexcept {
+  return c.image == kNoImage ? Vec3{} : image_shift(cell, c.image);
+}
+/// The branch a periodic cell's stress sums force x branch over: from a's
+/// centre (or a wall's contact point) to b's image, moved by `shift`.
+inline Vec3 virial_branch(std::span<const Body> bodies, const StepContact& c, const Vec3& shift) noexcept {
+  return bodies[c.b].position + shift - (c.a_is_plane ? c.geometry.point : bodies[c.a].position);
+}
 
 /// What a contact adds to b's force and torque (b at its image, moved by
 /// `shift`; torque about b's centre), and to a's: summed in the order of
