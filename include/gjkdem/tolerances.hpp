@@ -64,13 +64,6 @@ inline constexpr Real kSharedFaceCos = 1 - 1e-9;
 /// flip-flop between nearly equal faces from one step to the next.
 inline constexpr Real kManifoldReferenceBias = 1e-3;
 
-/// GJK's closest point on a triangle is taken as the origin's projection on
-/// its plane (direction exact to round-off) rather than the weighted sum of
-/// the vertices (whose direction is off by eps * size / |v|) once |v| is
-/// below this fraction of the triangle's distance from the origin: shapes
-/// nearly touching along nearly parallel faces. Squared, as compared.
-inline constexpr Real kProjectedClosestRelSq = 1e-8;
-
 /// Newton polish: finite-difference step (radians) for the Hessian of the
 /// support function on the sphere. Smaller is more round-off, larger more bias.
 inline constexpr Real kPolishStep = 1e-5;

@@ -47,7 +47,7 @@ Json to_json(const py::handle& v, const std::string& what) {
 PyShape make_shape(const Json& fields) {
   try {
     const io::PlacedInput placed = io::parse_shape(fields.dump());
-    return {placed.shape, placed.pose, fields.value("type", "")};
+    return {placed.shape, placed.pose, fields.value("type", ""), {}};
   } catch (const io::QueryFormatError& e) {
     throw py::value_error(e.what());
   } catch (const std::invalid_argument& e) {

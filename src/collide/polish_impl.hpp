@@ -31,26 +31,112 @@ inline constexpr bool kUniqueSupport = std::is_same_v<T, Ellipsoid> || std::is_s
 template <class T>
 inline constexpr bool kCurvedCore = kUniqueSupport<T> || std::is_same_v<T, Cylinder> || std::is_same_v<T, Cone>;
 
+/// A direction of the polish with its value f = h_{A-B}(u), support point
+/// and tangential gradient.
+struct PolishPoint {
+  Vec3 u, gradient;
+  Real f = 0;
+  SupportPoint sp;
+};
+
 template <class MD>
 Vec3 tangential(MD& md, const Vec3& u, SupportPoint& sp) noexcept {
   sp = md.support(u);
   return sp.w - u * dot(sp.w, u);
 }
 
+template <class MD>
+PolishPoint polish_point(MD& md, const Vec3& u) noexcept {
+  PolishPoint p;
+  p.u = u;
+  p.gradient = tangential(md, u, p.sp);
+  p.f = dot(p.sp.w, u);
+  return p;
+}
+
+/// Evaluates f at the unit direction u_new and takes it as `best` when lower.
+template <class MD>
+bool try_direction(MD& md, const Vec3& u_new, PolishPoint& best) noexcept {
+  const PolishPoint p = polish_point(md, u_new);
+  if (!(p.f < best.f)) return false;
+  best = p;
+  return true;
+}
+
+/// The point of the convex hull of g[0..n) (2D) nearest the origin: the
+/// steepest descent direction of a max of smooth pieces whose gradients these
+/// are. Zero when the hull holds the origin.
+inline Vec2 min_norm_in_hull(const Vec2* g, int n) noexcept {
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k) {
+        const Real a = cross(g[j] - g[i], -g[i]), b = cross(g[k] - g[j], -g[j]), c = cross(g[i] - g[k], -g[k]);
+        const bool inside = (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
+        if (inside && cross(g[j] - g[i], g[k] - g[i]) != 0) return {};
+      }
+  Vec2 best = g[0];
+  for (int i = 0; i < n; ++i) {
+    if (dot(g[i], g[i]) < dot(best, best)) best = g[i];
+    for (int j = i + 1; j < n; ++j) {
+      const Vec2 e = g[j] - g[i];
+      const Real ee = dot(e, e);
+      if (!(ee > 0)) continue;
+      const Vec2 p = g[i] + e * std::clamp(-dot(g[i], e) / ee, Real(0), Real(1));
+      if (dot(p, p) < dot(best, best)) best = p;
+    }
+  }
+  return best;
+}
+
+/// A descent step along a kinked valley, where f is the max of smooth pieces
+/// (a cylinder's rim: the support point jumps from one cap to the other) and
+/// neither Newton nor steepest descent lowers f much: the gradients are
+/// sampled at the point tilted by `spread` four ways, and the step goes
+/// against the point of their hull nearest the origin (gradient sampling,
+/// Burke, Lewis and Overton 2005), along the valley. The spread shrinks
+/// tenfold while no step helps. On success `best` is the new point and
+/// `length` the step (rad).
+template <class MD>
+bool valley_step(MD& md, const PolishPoint& from, Real radius, Real size, PolishPoint& best, Real& length) noexcept {
+  Vec3 e1, e2;
+  orthonormal_basis(from.u, e1, e2);
+  const Vec3 tilt[4] = {e1, -e1, e2, -e2};
+  for (Real spread = radius; spread > 1e-12; spread *= 0.1) {
+    Vec2 g[5];
+    g[0] = {dot(from.gradient, e1), dot(from.gradient, e2)};
+    for (int m = 0; m < 4; ++m) {
+      const Vec3 gm = polish_point(md, normalized(from.u + tilt[m] * spread)).gradient;
+      g[m + 1] = {dot(gm, e1), dot(gm, e2)};
+    }
+    const Vec2 d = min_norm_in_hull(g, 5);
+    const Real dn = gjkdem::length(d);
+    if (!(dn > kPolishRelTol * size)) continue;  // stationary at this spread
+    // The valley's floor can be nearly level (coaxial cylinders a hair off
+    // axis: a slope of 5e-3 against walls of 35, the minimum 1.6 rad away),
+    // so the search starts long whatever the spread.
+    for (Real t = std::fmax(Real(0.5), 4 * spread); t > 1e-3 * spread; t *= 0.25) {
+      if (try_direction(md, normalized(from.u - (e1 * d.x + e2 * d.y) * (t / dn)), best)) {
+        length = t;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 /// Minimises f from the unit direction u; returns false when nothing improved.
 /// On return u is the best direction, f its value and sp its support point.
 template <class MD>
 bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int& iterations) noexcept {
-  Vec3 g3 = tangential(md, u, sp);
-  f = dot(sp.w, u);
-  const Real f_start = f;
+  PolishPoint at = polish_point(md, u);
+  const Real f_start = at.f;
   Real radius = 0.05;  // trust radius, radians
   constexpr Real eta = kPolishStep;
   for (int it = 0; it < kMaxPolishIterations; ++it) {
     ++iterations;
     Vec3 e1, e2;
-    orthonormal_basis(u, e1, e2);
-    const Real g[2] = {dot(g3, e1), dot(g3, e2)};
+    orthonormal_basis(at.u, e1, e2);
+    const Real g[2] = {dot(at.gradient, e1), dot(at.gradient, e2)};
     const Real gnorm = std::hypot(g[0], g[1]);
     if (!(gnorm > kPolishRelTol * size)) break;
     // Hessian of f in the chart by central differences of the tangential gradient.
@@ -58,8 +144,8 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
     SupportPoint tmp;
     const Vec3 e[2] = {e1, e2};
     for (int j = 0; j < 2; ++j) {
-      const Vec3 tp = tangential(md, normalized(u + e[j] * eta), tmp);
-      const Vec3 tm = tangential(md, normalized(u - e[j] * eta), tmp);
+      const Vec3 tp = tangential(md, normalized(at.u + e[j] * eta), tmp);
+      const Vec3 tm = tangential(md, normalized(at.u - e[j] * eta), tmp);
       h[0][j] = dot(tp - tm, e1) / (2 * eta);
       h[1][j] = dot(tp - tm, e2) / (2 * eta);
     }
@@ -78,25 +164,35 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
     // Backtrack along the Newton step; at a kink (a cylinder's rim, where f
     // has a V-shaped valley) the finite-difference Hessian can point it
     // across the valley, so then backtrack along steepest descent.
-    bool improved = false;
+    PolishPoint next = at;
+    bool improved = false, full_newton = false;
     for (int pass = 0; pass < 2 && !improved; ++pass) {
       if (pass == 1) step[0] = -g[0] / gnorm * radius, step[1] = -g[1] / gnorm * radius;
       for (int tries = 0; tries < 30 && !improved; ++tries) {
-        const Vec3 u_new = normalized(u + e1 * step[0] + e2 * step[1]);
-        SupportPoint sp_new;
-        const Vec3 g_new = tangential(md, u_new, sp_new);
-        const Real f_new = dot(sp_new.w, u_new);
-        if (f_new < f) {
-          u = u_new; f = f_new; sp = sp_new; g3 = g_new;
-          improved = true;
-        } else {
-          step[0] *= 0.25; step[1] *= 0.25;
-        }
+        improved = try_direction(md, normalized(at.u + e1 * step[0] + e2 * step[1]), next);
+        if (improved) full_newton = pass == 0 && tries == 0;
+        else step[0] *= 0.25, step[1] *= 0.25;
+      }
+    }
+    Real length = std::hypot(step[0], step[1]);
+    if (!full_newton) {
+      // Backtracked or fell back to steepest descent: a kink. Steepest
+      // descent zigzags across a V-shaped valley in ever shorter steps (two
+      // coaxial cylinders stopped 1.6e-4 deep of the minimum after 30), so
+      // the valley's own direction is tried too, and the lower point kept.
+      Real length_v = 0;
+      if (valley_step(md, at, radius, size, next, length_v)) {
+        length = length_v;
+        improved = true;
       }
     }
     if (!improved) break;
-    radius = std::fmin(0.5, 2 * std::hypot(step[0], step[1]) + 1e-12);
+    at = next;
+    radius = std::fmin(0.5, 2 * length + 1e-12);
   }
+  u = at.u;
+  f = at.f;
+  sp = at.sp;
   return f < f_start;
 }
 
@@ -181,8 +277,8 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
   }
   const Real tol = kWitnessProbeTol * size;
   Vec2 ha[kProbes], hb[kProbes];
-  const std::vector<int> hull_a = convex_hull_2d(pa, tol), hull_b = convex_hull_2d(pb, tol);
-  const int na = static_cast<int>(hull_a.size()), nb = static_cast<int>(hull_b.size());
+  int hull_a[3 * kProbes], hull_b[3 * kProbes];
+  const int na = static_cast<int>(convex_hull_2d(pa, tol, hull_a)), nb = static_cast<int>(convex_hull_2d(pb, tol, hull_b));
   for (int m = 0; m < na; ++m) ha[m] = pa[hull_a[m]];
   for (int m = 0; m < nb; ++m) hb[m] = pb[hull_b[m]];
   Vec2 sum{};
@@ -226,7 +322,7 @@ void penetration_witnesses(MD& md, const Vec3& u, Real f, Real size, Vec3& on_a,
 /// f at the polished normal, and the witness on a unique-support side is its
 /// support point (else penetration_witnesses).
 template <class MD>
-void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
+void polish_penetration(MD& md, EpaOutput& e, const EpaPolytope& poly, Real size) noexcept {
   using CoreA = typename MD::TypeA;
   using CoreB = typename MD::TypeB;
   if constexpr (kCurvedCore<CoreA> || kCurvedCore<CoreB>) {
@@ -242,6 +338,26 @@ void polish_penetration(MD& md, EpaOutput& e, Real size) noexcept {
     // cylinders came out 3e-4 short), and f there is the depth.
     polish_direction(md, u, f, sp, size, steps);
     if (f < lower_bound) return;
+    // f can have more than one local minimum on the sphere: two coaxial
+    // cylinders have a ring of radial minima (f = R all round) and one
+    // along the axis (H - offset), and EPA's closest face may lie on the
+    // ring (6.4e-5 too deep). f at each normal of EPA's faces is an upper
+    // bound too (f >= the face's distance): the lowest one, when below the
+    // polished f, lies in a lower basin, and the polish starts again there.
+    const Real below = f - (kEpaRelTol * f + kEpaAbsTol * size);
+    Vec3 u2;
+    Real f2 = below;
+    for (int k = 0; k < poly.num_faces; ++k) {
+      const EpaFace& face = poly.faces[k];
+      if (face.obsolete || !(face.dist < f2)) continue;
+      const Real fk = dot(md.support(face.normal).w, face.normal);
+      if (fk < f2) { f2 = fk; u2 = face.normal; }
+    }
+    if (f2 < below) {
+      SupportPoint sp2;
+      polish_direction(md, u2, f2, sp2, size, steps);
+      if (f2 < f) { u = u2; f = f2; sp = sp2; }
+    }
     e.iterations += steps;
     e.depth = f;
     e.normal = u;

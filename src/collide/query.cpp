@@ -137,7 +137,7 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
     } else {
       detail::EpaPolytope poly;
       auto e = detail::epa(md, g.simplex, size, st, poly);
-      detail::polish_penetration(md, e, size);
+      detail::polish_penetration(md, e, poly, size);
       r.epa_status = e.status;
       r.epa_iterations = e.iterations;
       n = e.normal;

@@ -50,32 +50,41 @@ std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, co
 
 }  // namespace
 
-std::vector<int> convex_hull_2d(std::span<const Vec2> points, Real tol) {
-  // Andrew's monotone chain: sort by x then y, build the lower and upper chains.
-  std::vector<int> order(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
+std::size_t convex_hull_2d(std::span<const Vec2> points, Real tol, std::span<int> scratch) noexcept {
+  // Andrew's monotone chain: sort by x then y, build the lower and upper
+  // chains. scratch: the sorted order (n), then the chains (2n).
+  const std::size_t n = points.size();
+  int* order = scratch.data();
+  int* h = scratch.data() + n;
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
+  std::sort(order, order + n, [&](int a, int b) {
     return points[a].x < points[b].x || (points[a].x == points[b].x && points[a].y < points[b].y);
   });
-  order.erase(std::unique(order.begin(), order.end(), [&](int a, int b) { return points[a] == points[b]; }), order.end());
-  if (order.size() < 3) return order;
+  const std::size_t m =
+      static_cast<std::size_t>(std::unique(order, order + n, [&](int a, int b) { return points[a] == points[b]; }) - order);
+  if (m < 3) return m;  // order is the start of scratch
   // c makes a strict left turn after a -> b when it lies more than tol (a length) left of a -> c.
   auto left_turn = [&](int a, int b, int c) {
     const Vec2 ab = points[b] - points[a], ac = points[c] - points[a];
     return cross(ab, ac) > tol * length(ac);
   };
-  std::vector<int> h(2 * order.size());
   std::size_t k = 0;
-  for (int pt : order) {
-    while (k >= 2 && !left_turn(h[k - 2], h[k - 1], pt)) --k;
-    h[k++] = pt;
+  for (std::size_t i = 0; i < m; ++i) {
+    while (k >= 2 && !left_turn(h[k - 2], h[k - 1], order[i])) --k;
+    h[k++] = order[i];
   }
-  for (std::size_t i = order.size() - 1, lower = k + 1; i-- > 0;) {
+  for (std::size_t i = m - 1, lower = k + 1; i-- > 0;) {
     while (k >= lower && !left_turn(h[k - 2], h[k - 1], order[i])) --k;
     h[k++] = order[i];
   }
-  h.resize(k - 1);  // the last point repeats the first
-  return h;
+  std::copy(h, h + k - 1, scratch.data());  // the last point repeats the first
+  return k - 1;
+}
+
+std::vector<int> convex_hull_2d(std::span<const Vec2> points, Real tol) {
+  std::vector<int> scratch(3 * points.size());
+  scratch.resize(convex_hull_2d(points, tol, scratch));
+  return scratch;
 }
 
 ConvexHull convex_hull(std::span<const Vec3> points) {

@@ -141,9 +141,40 @@ TEST(Measure, TwoGrainsPushedApartCompressAlongTheirLine) {
   EXPECT_NEAR(half.stress.row[0].x * half.region_volume, r * force, 1e-15);
 }
 
+/// The weight's moment, g sum m z over the moving bodies (the Love-Weber
+/// vertical stress times the volume of a bed at rest).
+Real weight_moment_of(const World& w) {
+  Real sum = 0;
+  for (const Body& body : w.bodies)
+    if (!body.fixed) sum += -w.settings.gravity.z * mass_of(w, body) * body.position.z;
+  return sum;
+}
+
+/// Sums, over the outputs from `from` seconds on, the bed's measured
+/// vertical stress times the region's volume and the weight's moment.
+struct WeightAverager : RunObserver {
+  MeasureRegion region;
+  Real from = 0, stress_sum = 0, weight_sum = 0;
+  int samples = 0;
+  MeasureWorkspace work;
+  void on_output(const World& w, const RunState& state) override {
+    if (static_cast<Real>(state.step) * state.dt < from) return;
+    const Measures m = measure(w, touching_contacts(w), region, work);
+    stress_sum += m.stress.row[2].z * m.region_volume;
+    weight_sum += weight_moment_of(w);
+    ++samples;
+  }
+};
+
 // 60 polyhedra settled on a floor in a cell periodic on x and y. At rest the
 // floor carries the weight and the Love-Weber vertical stress of the whole
 // bed is g sum m z / V; with the bodies' own forces it is exact at any time.
+// The bed still rocks (kinetic energy about 4e-4 of the potential: flat
+// faces on Hertz's single points), and its stress swings by +-3% about the
+// weight (0.985, 1.026, 0.974 at 1.5, 2 and 2.5 s), so the weight is
+// compared with the stress's mean over the last half second: bounded motion
+// averages sum z m a_z = d/dt(sum z m v_z) - sum m v_z^2 to at most twice
+// the kinetic energy.
 TEST(Measure, ABedAtRestCarriesItsWeight) {
   WorldSettings s;
   s.model = ContactModel::Hertz;
@@ -155,21 +186,24 @@ TEST(Measure, ABedAtRestCarriesItsWeight) {
   std::mt19937_64 rng(4);
   test::fill_polyhedra(b, {.count = 60, .size = 0.012, .lo = {0, 0, 0}, .hi = {0.08, 0.08, 0.05}, .material = m}, rng);
   World w = b.build();
-  RunState run = plan_run(1.5, critical_time_step(w), 1.5);
-  ASSERT_EQ(dem::run(w, run, {}).status, RunStatus::Completed);
+  RunState run = plan_run(1.5, critical_time_step(w), 0.01);
+  const MeasureRegion region{{0, 0, -0.01}, {0.08, 0.08, 0.1}};  // grains press a little into the floor
+  WeightAverager average;
+  average.region = region;
+  average.from = 1.0;
+  RunObserver* observers[] = {&average};
+  ASSERT_EQ(dem::run(w, run, observers).status, RunStatus::Completed);
   ASSERT_LT(kinetic_energy(w), 1e-3 * potential_energy(w)) << "the bed should be at rest";
 
   const std::vector<MeasuredContact> contacts = touching_contacts(w);
-  const MeasureRegion region{{0, 0, -0.01}, {0.08, 0.08, 0.1}};  // grains press a little into the floor
   MeasureWorkspace work;
   const Measures measured = measure(w, contacts, region, work);
   ASSERT_EQ(measured.grains, 60u);
-  Real weight_moment = 0, exact = 0;
+  Real exact = 0;
   std::size_t ends = 0;
   for (const Body& body : w.bodies) {
     if (body.fixed) continue;
     const Real mass = mass_of(w, body);
-    weight_moment += -w.settings.gravity.z * mass * body.position.z;
     // -(sum over contacts of z_c f_z) + z_p (F - m g)_z: the contacts between grains cancel.
     exact += body.position.z * (body.force.z - mass * w.settings.gravity.z);
   }
@@ -179,7 +213,9 @@ TEST(Measure, ABedAtRestCarriesItsWeight) {
   }
   const Real vertical = measured.stress.row[2].z * measured.region_volume;
   EXPECT_NEAR(vertical, exact, 1e-9 * std::fabs(exact));
-  EXPECT_NEAR(vertical / weight_moment, 1, 0.01);
+  ASSERT_GE(average.samples, 50);
+  EXPECT_NEAR(average.stress_sum / average.weight_sum, 1, 0.01);
+  RecordProperty("mean_stress_over_weight", std::to_string(average.stress_sum / average.weight_sum));
   EXPECT_NEAR(measured.coordination, static_cast<Real>(ends) / 60, 1e-12);
   EXPECT_GT(measured.coordination, 2);
   // The region spans the cell: every grain counts whole, across the faces too.

@@ -39,6 +39,18 @@ struct SubSimplex {
 
 inline bool same_sign(Real a, Real b) noexcept { return (a > 0 && b > 0) || (a < 0 && b < 0); }
 
+/// A normal of triangle (a, b, c), oriented as cross(b - a, c - a), from its
+/// two shortest edges. On a sliver (two support points a micron apart on a
+/// rim, the third far off) an edge from the far vertex carries its round-off,
+/// eps * size, across the short edge and tilts the plane by eps * size /
+/// (short edge): 4e-11 rad on a cone's side, which ended GJK 1e-10 short.
+/// Close points subtract exactly.
+inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) noexcept {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const Real lab = dot(ab, ab), lbc = dot(bc, bc), lca = dot(ca, ca);
+  return lab >= lbc && lab >= lca ? cross(bc, ca) : lbc >= lca ? cross(ca, ab) : cross(ab, bc);
+}
+
 inline void closest_on_segment(const Vec3* w, int i, int j, SubSimplex& r) noexcept {
   const Vec3 t = w[j] - w[i];
   const Real tt = dot(t, t);
@@ -50,12 +62,18 @@ inline void closest_on_segment(const Vec3* w, int i, int j, SubSimplex& r) noexc
     r.mask = 1u << j; r.lambda[j] = 1; r.v = w[j];
   } else {
     r.mask = (1u << i) | (1u << j); r.lambda[i] = 1 - s; r.lambda[j] = s; r.v = w[i] + t * s;
+    // The sum cancels to |v| with the round-off of the ends, eps * |w|, along
+    // t as well: a point 1e-9 off a cone's side got a normal tilted 3e-8 rad
+    // along the generator, which the flat generator turns into a 1e-8 error.
+    // v is perpendicular to t; taking the along-t part out again is exact to
+    // eps * |v|.
+    r.v -= t * (dot(r.v, t) / tt);
   }
   r.dist_sq = dot(r.v, r.v);
 }
 
 inline void closest_on_triangle(const Vec3* w, int i, int j, int k, SubSimplex& r) noexcept {
-  const Vec3 n = cross(w[j] - w[i], w[k] - w[i]);
+  const Vec3 n = triangle_normal(w[i], w[j], w[k]);
   const Real nn = dot(n, n);
   if (nn > 0) {
     const Vec3 p0 = n * (dot(w[i], n) / nn);  // origin projected on the plane
@@ -71,16 +89,15 @@ inline void closest_on_triangle(const Vec3* w, int i, int j, int k, SubSimplex& 
       r = {};
       r.mask = (1u << i) | (1u << j) | (1u << k);
       r.lambda[i] = ci / mu; r.lambda[j] = cj / mu; r.lambda[k] = ck / mu;
-      r.v = w[i] * r.lambda[i] + w[j] * r.lambda[j] + w[k] * r.lambda[k];
-      // Near the origin, the projection: the weighted sum of numbers of the
-      // simplex's size cancels to a point of size |v| with the error of the
-      // size, so when shapes nearly touch along parallel faces v's direction
-      // was off by eps * size / |v| (1e-8 rad for 1e-9 m on 1 m boxes), the
-      // next support point came back already in the simplex, and GJK stopped
-      // 8x too far (FCL's issue 388 setting). The projection's direction is
-      // the normal's, exact to round-off.
-      const Real extent = std::fmax(dot(w[i], w[i]), std::fmax(dot(w[j], w[j]), dot(w[k], w[k])));
-      if (dot(r.v, r.v) < kProjectedClosestRelSq * extent) r.v = p0;
+      // The closest point is the origin's projection on the plane, not the
+      // weighted sum of the vertices: that sum cancels to a point of size |v|
+      // with the round-off of the vertices, eps * size, so near touching its
+      // direction was off by eps * size / |v| (1e-8 rad for 1e-9 m on 1 m
+      // boxes, FCL's issue 388 setting: GJK stopped 8x too far), and on a
+      // sliver its weights are off too (a cone's side: the triangle came out
+      // farther than its own edge). The projection is along the accurate
+      // normal, exact to round-off.
+      r.v = p0;
       r.dist_sq = dot(r.v, r.v);
       return;
     }
@@ -111,15 +128,32 @@ inline void closest_on_tetrahedron(const Vec3* w, SubSimplex& r) noexcept {
   const Real c[4] = {dot(w[1], cross(w[2], w[3])), -dot(w[0], cross(w[2], w[3])), dot(w[0], cross(w[1], w[3])),
                      -dot(w[0], cross(w[1], w[2]))};
   const Real mu = c[0] + c[1] + c[2] + c[3];
-  if (same_sign(mu, c[0]) && same_sign(mu, c[1]) && same_sign(mu, c[2]) && same_sign(mu, c[3])) {
-    r = {};
-    r.mask = 15;
-    for (int m = 0; m < 4; ++m) r.lambda[m] = c[m] / mu;
-    return;  // origin inside: v = 0
+  bool outside[4];
+  for (int m = 0; m < 4; ++m) outside[m] = mu == 0 || !same_sign(mu, c[m]);
+  if (!outside[0] && !outside[1] && !outside[2] && !outside[3]) {
+    // The volumes say inside. Each is a triple product from the origin, with
+    // the round-off eps * |w|^3, which on a sliver face outweighs the
+    // origin's distance to it: a corner 1e-12 x size off a cone's rim was
+    // enclosed by a tetrahedron of three rim points. Each face's side is
+    // checked again with its accurate normal.
+    bool any = false;
+    for (int m = 0; m < 4; ++m) {
+      const Vec3& a = w[(m + 1) % 4];
+      const Vec3 n = triangle_normal(a, w[(m + 2) % 4], w[(m + 3) % 4]);
+      const Real towards_m = dot(n, w[m] - a), towards_origin = -dot(n, a);
+      outside[m] = (towards_m > 0 && towards_origin < 0) || (towards_m < 0 && towards_origin > 0);
+      any |= outside[m];
+    }
+    if (!any) {
+      r = {};
+      r.mask = 15;
+      for (int m = 0; m < 4; ++m) r.lambda[m] = c[m] / mu;
+      return;  // origin inside: v = 0
+    }
   }
   bool found = false;
   for (int m = 0; m < 4; ++m) {
-    if (mu != 0 && same_sign(mu, c[m])) continue;
+    if (!outside[m]) continue;
     SubSimplex f;
     closest_on_triangle(w, (m + 1) % 4, (m + 2) % 4, (m + 3) % 4, f);
     if (!found || f.dist_sq < r.dist_sq) { r = f; found = true; }

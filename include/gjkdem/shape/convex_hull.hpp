@@ -41,4 +41,9 @@ ConvexHull convex_hull(std::span<const Vec3> points);
 /// come back as they are (distinct ones, sorted).
 std::vector<int> convex_hull_2d(std::span<const Vec2> points, Real tol = 0);
 
+/// The same without allocating (the narrow phase's witnesses): `scratch` holds
+/// at least 3 x points.size() ints; the hull's indices are written to its
+/// start, and their count returned.
+std::size_t convex_hull_2d(std::span<const Vec2> points, Real tol, std::span<int> scratch) noexcept;
+
 }  // namespace gjkdem
