@@ -128,6 +128,12 @@ inline constexpr Real kStepCountRelTol = 1e-9;
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;
 
+/// Polytopes with at least this many (padded) vertices scan 4 at a time where
+/// the processor has AVX2 (chosen at run time; the 2-wide SSE2 scan
+/// elsewhere, and inlined below this size, where a call costs more than the
+/// wider scan saves). Both give the same vertex.
+inline constexpr int kWideScanMinVertices = 16;
+
 /// Points within kHullRelTol * (bounding diagonal) of a hull plane are treated as
 /// on it (relative). Raising it merges more near-coplanar points away.
 inline constexpr Real kHullRelTol = 1e-12;

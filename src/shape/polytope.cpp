@@ -1,5 +1,9 @@
 #include "gjkdem/shape/polytope.hpp"
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include <cstddef>
 #include <memory>
 #include <new>
@@ -97,7 +101,7 @@ Polytope make_polytope(std::span<const Vec3> points) {
   } else {
     for (const Vec3& v : a.vertices) header.centroid += v / static_cast<Real>(n);
   }
-  header.soa_stride = static_cast<int>((n + 1) / 2 * 2);
+  header.soa_stride = static_cast<int>((n + 3) / 4 * 4);  // whole steps of the 4-wide scan
   a.soa.resize(3 * static_cast<std::size_t>(header.soa_stride));
   for (int i = 0; i < header.soa_stride; ++i) {
     const Vec3& v = a.vertices[static_cast<std::size_t>(i) < n ? i : 0];
@@ -134,5 +138,56 @@ Polytope make_polytope(std::span<const Vec3> points) {
   }
   return Polytope{pack(header, a)};
 }
+
+namespace detail {
+
+#if defined(__x86_64__)
+namespace {
+
+// The 4-wide scan: lane k keeps the first maximum of vertices k, k + 4, ...
+// and its index; the lanes' maxima then give the first vertex with the
+// largest product, ties to the smaller index, as the 2-wide scan does. The
+// products are the same sums in the same order (no fused multiply-add), so
+// the vertex is the same bits on any processor.
+__attribute__((target("avx2"))) int scan_avx2(const PolytopeData& s, const Vec3& d) noexcept {
+  const Real* xs = s.soa.data();
+  const Real* ys = xs + s.soa_stride;
+  const Real* zs = ys + s.soa_stride;
+  const int m = s.soa_stride;
+  const __m256d dx = _mm256_set1_pd(d.x), dy = _mm256_set1_pd(d.y), dz = _mm256_set1_pd(d.z);
+  __m256d best = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(xs), dx), _mm256_mul_pd(_mm256_loadu_pd(ys), dy)),
+                               _mm256_mul_pd(_mm256_loadu_pd(zs), dz));
+  __m256d index = _mm256_set_pd(3, 2, 1, 0);
+  __m256d at = index;
+  const __m256d four = _mm256_set1_pd(4);
+  for (int i = 4; i < m; i += 4) {
+    at = _mm256_add_pd(at, four);
+    const __m256d t = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(xs + i), dx), _mm256_mul_pd(_mm256_loadu_pd(ys + i), dy)),
+        _mm256_mul_pd(_mm256_loadu_pd(zs + i), dz));
+    const __m256d more = _mm256_cmp_pd(t, best, _CMP_GT_OQ);
+    best = _mm256_blendv_pd(best, t, more);
+    index = _mm256_blendv_pd(index, at, more);
+  }
+  alignas(32) double b[4], k[4];
+  _mm256_store_pd(b, best);
+  _mm256_store_pd(k, index);
+  int lane = 0;
+  for (int l = 1; l < 4; ++l)
+    if (b[l] > b[lane] || (b[l] == b[lane] && k[l] < k[lane])) lane = l;
+  return static_cast<int>(k[lane]);
+}
+
+}  // namespace
+#endif
+
+int scan_support_index_wide(const PolytopeData& s, const Vec3& d) noexcept {
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx2")) return scan_avx2(s, d);
+#endif
+  return scan_support_index_narrow(s, d);
+}
+
+}  // namespace detail
 
 }  // namespace gjkdem

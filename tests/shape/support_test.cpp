@@ -127,5 +127,40 @@ TEST(Support, PolytopeHillClimbMatchesScan) {
   }
 }
 
+// The 4-wide scan (AVX2 where the processor has it) and the 2-wide one
+// return the same vertex, the first with the largest product, also on ties:
+// grids of points whose hulls have many vertices in a plane, probed along
+// the axes and diagonals, and random hulls of every size the scans serve.
+TEST(Support, WideAndNarrowScansPickTheSameVertex) {
+  std::mt19937_64 rng(6);
+  std::normal_distribution<double> g;
+  std::vector<Polytope> hulls;
+  for (int n = 4; n <= kHillClimbMinVertices; ++n) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < n; ++i) pts.push_back(Vec3{g(rng), g(rng), g(rng)});
+    hulls.push_back(make_polytope(pts));
+  }
+  for (int side = 2; side <= 4; ++side) {  // a cube's grid: hull vertices tie along the axes
+    std::vector<Vec3> pts;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) pts.push_back(Vec3{Real(i), Real(j), 0}), pts.push_back(Vec3{Real(i), Real(j), 1});
+    hulls.push_back(make_polytope(pts));
+  }
+  std::vector<Vec3> dirs = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1, 0}, {1, 1, 1}};
+  for (int k = 0; k < 200; ++k) dirs.push_back(Vec3{g(rng), g(rng), g(rng)});
+  int wide = 0;
+  for (const Polytope& p : hulls) {
+    const PolytopeData& s = *p.data;
+    ASSERT_EQ(s.soa_stride % 4, 0);
+    wide += s.soa_stride >= kWideScanMinVertices;
+    for (const Vec3& d : dirs) {
+      const int a = detail::scan_support_index_wide(s, d), b = detail::scan_support_index_narrow(s, d);
+      ASSERT_EQ(a, b) << "hull of " << s.vertices.size() << " vertices, direction " << d.x << " " << d.y << " " << d.z;
+      ASSERT_LT(a, static_cast<int>(s.vertices.size()));
+    }
+  }
+  EXPECT_GT(wide, 10);
+}
+
 }  // namespace
 }  // namespace gjkdem

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gjkdem/math/vec3.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 
@@ -52,9 +53,14 @@ struct PolytopeData {
 
 namespace detail {
 
+/// scan_support_index for larger hulls, out of line: 4 vertices at a time
+/// where the processor has AVX2, else the inline 2-wide scan; the same vertex
+/// either way (the first one with the maximum, from the same products).
+int scan_support_index_wide(const PolytopeData& s, const Vec3& d) noexcept;
+
 /// Index of the first vertex maximising d . v, by one vectorised pass:
 /// branch-free, which beats hill climbing on small hulls.
-inline int scan_support_index(const PolytopeData& s, const Vec3& d) noexcept {
+inline int scan_support_index_narrow(const PolytopeData& s, const Vec3& d) noexcept {
   const Real* xs = s.soa.data();
   const Real* ys = xs + s.soa_stride;
   const Real* zs = ys + s.soa_stride;
@@ -91,6 +97,10 @@ inline int scan_support_index(const PolytopeData& s, const Vec3& d) noexcept {
   }
   return best;
 #endif
+}
+
+inline int scan_support_index(const PolytopeData& s, const Vec3& d) noexcept {
+  return s.soa_stride >= kWideScanMinVertices ? scan_support_index_wide(s, d) : scan_support_index_narrow(s, d);
 }
 
 /// Cube-map cell of direction d (not zero): face by dominant axis, then a
