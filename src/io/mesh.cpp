@@ -182,20 +182,39 @@ TriangleMesh read_mesh(const std::filesystem::path& path) {
   return m;
 }
 
+bool is_watertight(const TriangleMesh& mesh) {
+  // Each directed edge once, and its reverse present.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  for (const auto& [e, count] : edges) {
+    const auto rev = edges.find({e.second, e.first});
+    if (count != 1 || rev == edges.end() || rev->second != 1) return false;
+  }
+  return !mesh.triangles.empty();
+}
+
+Real winding_number(const TriangleMesh& mesh, const Vec3& p) {
+  // Each triangle's signed solid angle seen from p (Van Oosterom and
+  // Strackee's formula), summed: 4 pi inside a closed mesh, 0 outside, with
+  // no special case for rays through edges or vertices.
+  Real solid = 0;
+  for (const auto& t : mesh.triangles) {
+    const Vec3 a = mesh.vertices[t[0]] - p, b = mesh.vertices[t[1]] - p, c = mesh.vertices[t[2]] - p;
+    const Real la = length(a), lb = length(b), lc = length(c);
+    const Real numerator = dot(a, cross(b, c));
+    const Real denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    solid += 2 * std::atan2(numerator, denominator);
+  }
+  return solid / (4 * kPi);
+}
+
 ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
   if (mesh.triangles.empty()) fail(name, "the mesh has no triangles");
   const ConvexHull hull = convex_hull(mesh.vertices);
   if (hull.dimension != HullDimension::Solid) fail(name, "the mesh is flat (its points span no volume)");
   ConvexMesh out;
-  // Watertight: each directed edge once, and its reverse present.
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
-  out.watertight = true;
-  for (const auto& [e, count] : edges) {
-    const auto rev = edges.find({e.second, e.first});
-    if (count != 1 || rev == edges.end() || rev->second != 1) { out.watertight = false; break; }
-  }
+  out.watertight = is_watertight(mesh);
   Real mesh_volume = 0;
   for (const auto& t : mesh.triangles)
     mesh_volume += dot(mesh.vertices[t[0]], cross(mesh.vertices[t[1]], mesh.vertices[t[2]])) / 6;

@@ -43,6 +43,8 @@ constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
 constexpr Real kMaxSceneCoordinate = 1e100;
 constexpr std::int64_t kMaxVariants = 100'000;
 constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
+// Triangle-body pairs a generator's containment check may visit (about a second).
+constexpr double kMaxContainmentWork = 2e7;
 
 std::string line_of(const toml::node& n) {
   const auto line = n.source().begin.line;
@@ -777,7 +779,8 @@ class SceneBuilder {
     Mix mix = read_mix(r, count, rng);
     fill.variants = std::move(mix.variants);
     fill.weights = std::move(mix.weights);
-    building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
+    const std::vector<std::uint32_t> placed = building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
+    warn_of_bodies_outside_containers(r.where(), placed);
     Json j = {{"count", count}, {"material", r.required_string("material")},
               {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}}, {"velocity", to_json(fill.velocity)}};
     j.update(mix.resolved);
@@ -908,6 +911,7 @@ class SceneBuilder {
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),
                [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where(), motion); });
+      if (is_watertight(mesh)) closed_meshes_.push_back({r.where() + " (" + file.filename().string() + ")", std::move(mesh), lo, hi});
       j["file"] = file.string();
       j["position"] = to_json(position);
       j["rotation"] = to_json(rotation);
@@ -918,6 +922,33 @@ class SceneBuilder {
     }
     resolved_["wall"].push_back(j);
   }
+
+  // A generator's bodies split by a closed mesh wall, some inside and some
+  // outside, are mostly a region drawn past a container's side (a box
+  // region in a drum): those outside fall away for the whole run. Said as a
+  // warning, since a closed mesh may also be an obstacle bodies surround.
+  void warn_of_bodies_outside_containers(const std::string& who, const std::vector<std::uint32_t>& placed) {
+    for (const ClosedMesh& m : closed_meshes_) {
+      // Triangles times bodies: beyond this the check would cost seconds, and is skipped.
+      if (static_cast<double>(m.mesh.triangles.size()) * static_cast<double>(placed.size()) > kMaxContainmentWork) continue;
+      std::size_t inside = 0;
+      for (const std::uint32_t b : placed) {
+        const Vec3 p = builder_->position_of(b);
+        const bool in_box = p.x >= m.lo.x && p.y >= m.lo.y && p.z >= m.lo.z && p.x <= m.hi.x && p.y <= m.hi.y && p.z <= m.hi.z;
+        if (in_box && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
+      }
+      if (inside > 0 && inside < placed.size())
+        scene_.warnings.push_back(who + ": " + std::to_string(placed.size() - inside) + " of its " +
+                                  std::to_string(placed.size()) + " bodies lie outside the closed mesh " + m.label +
+                                  " that holds the others, and will fall away from it: keep the region inside");
+    }
+  }
+
+  struct ClosedMesh {
+    std::string label;  // the wall's table and file
+    TriangleMesh mesh;  // where the scene puts it
+    Vec3 lo, hi;        // its box
+  };
 
   std::string source_;
   std::filesystem::path base_;
@@ -930,6 +961,7 @@ class SceneBuilder {
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;
   std::uint64_t inflow_count_ = 0;
+  std::vector<ClosedMesh> closed_meshes_;  // watertight mesh walls, for warn_of_bodies_outside_containers
 };
 
 }  // namespace

@@ -62,6 +62,25 @@ TEST_F(MeshTest, ConvexObjIsKeptWithoutWarning) {
   EXPECT_EQ(m.polytope.data->vertices.size(), 8u);
 }
 
+// The winding number tells inside from outside a closed mesh wherever the
+// point is, on the lines through its edges and vertices too.
+TEST_F(MeshTest, TheWindingNumberIsOneInsideAClosedMeshAndZeroOutside) {
+  TriangleMesh cube = read_mesh(write("cube.obj", kCubeObj));
+  EXPECT_TRUE(is_watertight(cube));
+  for (const Vec3& p : {Vec3{0.5, 0.5, 0.5}, Vec3{0.01, 0.99, 0.02}, Vec3{0.999, 0.5, 0.001}})
+    EXPECT_NEAR(winding_number(cube, p), 1.0, 1e-9) << p.x << " " << p.y << " " << p.z;
+  // Outside, among them points on the lines of an edge, of a face diagonal and of a vertex.
+  for (const Vec3& p : {Vec3{1.5, 0.5, 0.5}, Vec3{2, 0, 0}, Vec3{2, 2, 0}, Vec3{2, 2, 2}, Vec3{-0.001, 0.5, 0.5}})
+    EXPECT_NEAR(winding_number(cube, p), 0.0, 1e-9) << p.x << " " << p.y << " " << p.z;
+  // Faces turned inward wind the other way; an open mesh is not watertight.
+  TriangleMesh inward = cube;
+  for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+  EXPECT_NEAR(winding_number(inward, {0.5, 0.5, 0.5}), -1.0, 1e-9);
+  std::string open = kCubeObj;
+  open.erase(open.rfind("f 4 1 5 8"));
+  EXPECT_FALSE(is_watertight(read_mesh(write("open.obj", open))));
+}
+
 TEST_F(MeshTest, OpenAndNonConvexMeshesBecomeTheirHullWithAWarning) {
   std::string open = kCubeObj;
   open.erase(open.rfind("f 4 1 5 8"));  // drop one face: not watertight

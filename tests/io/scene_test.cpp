@@ -201,6 +201,58 @@ TEST(Scene, MeshScaledBeyondDoublesIsRefused) {
   std::filesystem::remove(obj);
 }
 
+// A generator's region drawn past the side of a closed mesh (a box region in
+// a drum) puts bodies outside it, which fall away for the whole run: the
+// scene says how many. Inside, or around a closed obstacle, it says nothing.
+TEST(Scene, BodiesGeneratedOutsideTheContainerHoldingTheOthersAreWarnedOf) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gjkdem_container_scene";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream obj(dir / "drum.obj");  // a closed 32-sided drum along y, radius 0.1, length 0.1, faces inward
+    const int n = 32;
+    for (const double y : {-0.05, 0.05})
+      for (int k = 0; k < n; ++k)
+        obj << "v " << 0.1 * std::cos(2 * kPi * k / n) << " " << y << " " << 0.1 * std::sin(2 * kPi * k / n) << "\n";
+    obj << "v 0 -0.05 0\nv 0 0.05 0\n";
+    for (int k = 0; k < n; ++k) {
+      const int k2 = (k + 1) % n;
+      obj << "f " << k + 1 << " " << k2 + 1 << " " << n + k2 + 1 << "\nf " << k + 1 << " " << n + k2 + 1 << " " << n + k + 1
+          << "\nf " << 2 * n + 1 << " " << k2 + 1 << " " << k + 1 << "\nf " << 2 * n + 2 << " " << n + k + 1 << " "
+          << n + k2 + 1 << "\n";
+    }
+  }
+  const auto scene_with = [&](const std::string& region) {
+    return load_scene(kHead + R"([[wall]]
+type = "mesh"
+file = "drum.obj"
+material = "rock"
+thickness = 0.004
+
+[[generator]]
+count = 200
+shape = { type = "sphere", radius = 0.004 }
+material = "rock"
+region = )" + region + "\n", "drum.toml", dir);
+  };
+  // A box as wide as the drum: its corners stick out.
+  const Scene wide = scene_with("{ min = [-0.1, -0.04, -0.1], max = [0.1, 0.04, 0.1] }");
+  ASSERT_EQ(wide.warnings.size(), 1u);
+  EXPECT_NE(wide.warnings[0].find("generator[0]: "), std::string::npos) << wide.warnings[0];
+  EXPECT_NE(wide.warnings[0].find("of its 200 bodies lie outside the closed mesh wall[0] (drum.obj)"), std::string::npos)
+      << wide.warnings[0];
+  // Count the bodies outside the drum's round side here, and compare.
+  std::size_t outside = 0;
+  for (const dem::Body& b : wide.world.bodies)
+    if (!b.fixed && std::hypot(b.position.x, b.position.z) > 0.1 * std::cos(kPi / 32)) ++outside;
+  ASSERT_GT(outside, 0u);
+  EXPECT_EQ(wide.warnings[0].substr(wide.warnings[0].find(": ") + 2, std::to_string(outside).size() + 1),
+            std::to_string(outside) + " ");
+  EXPECT_TRUE(scene_with("{ min = [-0.06, -0.04, -0.06], max = [0.06, 0.04, 0.06] }").warnings.empty());
+  // All outside (the drum an obstacle in a bigger region's way): nothing to say.
+  EXPECT_TRUE(scene_with("{ min = [-0.3, -0.04, 0.11], max = [0.3, 0.04, 0.3] }").warnings.empty());
+  std::filesystem::remove_all(dir);
+}
+
 // A stack may start at its resting overlap when the scene says so.
 TEST(Scene, InitialOverlapsCanBeAccepted) {
   const std::string stack = kCube + R"(

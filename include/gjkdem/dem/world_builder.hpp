@@ -152,6 +152,8 @@ class WorldBuilder {
   std::vector<std::uint32_t> fill_region(const RegionFill& fill, std::mt19937_64& rng);
 
   std::size_t body_count() const noexcept { return world_.bodies.size(); }
+  /// Where body `index` (as add_body and fill_region return it) is now: its centre of mass.
+  Vec3 position_of(std::uint32_t index) const { return world_.bodies.at(index).position; }
   std::size_t moving_count() const noexcept;
 
   /// Checks and prepares everything; the builder is empty afterwards.

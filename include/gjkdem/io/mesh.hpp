@@ -31,6 +31,15 @@ struct TriangleMesh {
 /// directory, a FIFO, a device) or a file above 1 GiB.
 TriangleMesh read_mesh(const std::filesystem::path& file);
 
+/// Every edge shared by exactly two triangles, oppositely oriented: the mesh
+/// bounds a solid.
+bool is_watertight(const TriangleMesh& mesh);
+
+/// How many times the mesh winds about p: the triangles' solid angles seen
+/// from p over 4 pi. For a watertight mesh, 1 inside (-1 when its triangles
+/// face inward) and 0 outside; near the surface in between.
+Real winding_number(const TriangleMesh& mesh, const Vec3& p);
+
 struct ConvexMesh {
   Polytope polytope;                  ///< the convex hull of the mesh's vertices
   bool watertight = false;            ///< every edge shared by exactly two triangles, oppositely oriented
