@@ -4,7 +4,7 @@
 # Hertz-Mindlin (Yade's MindlinPhys: E = 2.4 MPa, Poisson 0.37, restitution
 # 0.9), sliding friction MU, no rolling resistance, no numerical damping.
 #
-#   yade -j2 -n -x bench/yade_drum.py examples/scenes/drum_beads.obj OUT.npz [MU] [DURATION] [DT] [THICKNESS]
+#   yade -j2 -n -x bench/yade_drum.py examples/scenes/drum_beads.obj OUT.npz [MU] [DURATION] [DT] [THICKNESS] [SEED]
 #   python3 examples/python/drum_angle.py OUT.npz --radius 0.069 --from 1.5
 #
 # OUT.npz holds the beads' centres every 0.05 s from t = 1 s (times, frames),
@@ -29,6 +29,7 @@ mu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.3
 duration = float(sys.argv[4]) if len(sys.argv) > 4 else 4.0
 dt = float(sys.argv[5]) if len(sys.argv) > 5 else 3e-5  # under gjkdem's Hertz step (5.45e-5 s) and Yade's P-wave step
 margin = (float(sys.argv[6]) if len(sys.argv) > 6 else 0.004) / 2
+seed = int(sys.argv[7]) if len(sys.argv) > 7 else 1  # of the beads' starting places
 radius, omega, count = 0.00595 / 2, 2.198, 6000
 
 mat = FrictMat(density=1768, young=2.4e6, poisson=0.37, frictionAngle=math.atan(mu))
@@ -53,7 +54,7 @@ print("yade drum: %d sides, surface apothem %.6f m, half length %.6f m" % (sides
 drum = O.bodies.append([utils.facet([vertices[i] for i in t], material=mat, wire=True) for t in triangles])
 
 # Beads on a jittered grid inside the drum (they fall and settle as the drum turns, as gjkdem's do).
-rng = np.random.default_rng(1)
+rng = np.random.default_rng(seed)
 half -= margin
 spacing = 0.0062
 sites = [(x, y, z) for y in np.arange(-half + spacing, half - spacing / 2, spacing)
