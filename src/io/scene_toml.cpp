@@ -8,6 +8,7 @@
 #include <limits>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include <toml++/toml.h>
 
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/mesh.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
@@ -911,7 +913,7 @@ class SceneBuilder {
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),
                [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where(), motion); });
-      if (is_watertight(mesh)) closed_meshes_.push_back({r.where() + " (" + file.filename().string() + ")", std::move(mesh), lo, hi});
+      mesh_walls_.push_back({r.where() + " (" + file.filename().string() + ")", std::move(mesh), {lo, hi}, std::nullopt});
       j["file"] = file.string();
       j["position"] = to_json(position);
       j["rotation"] = to_json(rotation);
@@ -928,14 +930,15 @@ class SceneBuilder {
   // region in a drum): those outside fall away for the whole run. Said as a
   // warning, since a closed mesh may also be an obstacle bodies surround.
   void warn_of_bodies_outside_containers(const std::string& who, const std::vector<std::uint32_t>& placed) {
-    for (const ClosedMesh& m : closed_meshes_) {
+    for (MeshWall& m : mesh_walls_) {
       // Triangles times bodies: beyond this the check would cost seconds, and is skipped.
       if (static_cast<double>(m.mesh.triangles.size()) * static_cast<double>(placed.size()) > kMaxContainmentWork) continue;
+      if (!m.closed) m.closed = is_watertight(m.mesh);  // once per wall, and only for scenes with generators
+      if (!*m.closed) continue;
       std::size_t inside = 0;
       for (const std::uint32_t b : placed) {
         const Vec3 p = builder_->position_of(b);
-        const bool in_box = p.x >= m.lo.x && p.y >= m.lo.y && p.z >= m.lo.z && p.x <= m.hi.x && p.y <= m.hi.y && p.z <= m.hi.z;
-        if (in_box && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
+        if (dem::overlaps(m.box, {p, p}) && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
       }
       if (inside > 0 && inside < placed.size())
         scene_.warnings.push_back(who + ": " + std::to_string(placed.size() - inside) + " of its " +
@@ -944,10 +947,11 @@ class SceneBuilder {
     }
   }
 
-  struct ClosedMesh {
-    std::string label;  // the wall's table and file
-    TriangleMesh mesh;  // where the scene puts it
-    Vec3 lo, hi;        // its box
+  struct MeshWall {
+    std::string label;          // the wall's table and file
+    TriangleMesh mesh;          // where the scene puts it
+    dem::Aabb box;              // its box
+    std::optional<bool> closed; // watertight, once asked
   };
 
   std::string source_;
@@ -961,7 +965,7 @@ class SceneBuilder {
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;
   std::uint64_t inflow_count_ = 0;
-  std::vector<ClosedMesh> closed_meshes_;  // watertight mesh walls, for warn_of_bodies_outside_containers
+  std::vector<MeshWall> mesh_walls_;  // for warn_of_bodies_outside_containers
 };
 
 }  // namespace
