@@ -85,8 +85,12 @@ def main(argv=None):
     args = parser.parse_args(argv)
     axis = "xyz".index(args.axis)
     across = [a for a in range(3) if a != axis]  # horizontal, vertical (z) of the section
+    try:
+        frames = grain_frames(args.out, axis)
+    except (OSError, ValueError, KeyError) as e:  # no run folder, a damaged frame, an .npz without its arrays
+        sys.exit(f"drum_angle.py: cannot read {args.out}: {e}")
     surface, centroid, torque, offset = [], [], [], []
-    for time, p, t in grain_frames(args.out, axis):
+    for time, p, t in frames:
         if time < args.start:
             continue
         if t is not None:

@@ -57,6 +57,17 @@ def test_an_npz_of_frames_is_measured_like_a_run(tmp_path, capsys):
         drum_angle.main([str(path), "--radius", str(RADIUS), "--from", "5"])
 
 
+def test_what_cannot_be_read_is_named_in_one_line(tmp_path):
+    not_npz = tmp_path / "garbage.npz"
+    not_npz.write_text("garbage")
+    no_frames = tmp_path / "no_frames.npz"
+    np.savez(no_frames, times=np.array([1.0]))
+    for path in (not_npz, no_frames, tmp_path / "no_run"):
+        with pytest.raises(SystemExit) as e:
+            drum_angle.main([str(path), "--radius", str(RADIUS)])
+        assert str(e.value).startswith(f"drum_angle.py: cannot read {path}: "), e.value
+
+
 def test_the_drum_torque_counts_the_fixed_pieces_forces_on_grains():
     class Frame:  # the fields drum_angle reads of a gjkdem.view Frame
         pass
