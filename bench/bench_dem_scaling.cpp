@@ -189,10 +189,11 @@ struct Footprint {
 
 Footprint footprint(const World& w) {
   const StepWorkspace& k = w.work;
+  const BoxCache& boxes = w.search.boxes;
   double bodies = static_cast<double>(
-      w.bodies.capacity() * sizeof(Body) + k.boxes.boxes.capacity() * sizeof(Aabb) +
-      k.boxes.anchor_position.capacity() * sizeof(Vec3) + k.boxes.anchor_orientation.capacity() * sizeof(Quat) +
-      k.boxes.moved.capacity() * sizeof(Real) + k.moving.capacity() * sizeof(std::uint32_t) + k.moving_boxes.capacity() * sizeof(Aabb) +
+      w.bodies.capacity() * sizeof(Body) + boxes.boxes.capacity() * sizeof(Aabb) +
+      boxes.anchor_position.capacity() * sizeof(Vec3) + boxes.anchor_orientation.capacity() * sizeof(Quat) +
+      boxes.moved.capacity() * sizeof(Real) + k.moving.capacity() * sizeof(std::uint32_t) + k.moving_boxes.capacity() * sizeof(Aabb) +
       (k.sweep.order.capacity() + k.sweep.entries.capacity() + k.sweep.strip_begin.capacity() +
        k.sweep.cursor.capacity()) * sizeof(std::uint32_t));
   double contacts = static_cast<double>(w.pairs.capacity() * sizeof(PairState) +

@@ -21,7 +21,8 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 
 }  // namespace
 
-std::uint64_t insert_inflow_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+std::uint64_t insert_inflow_bodies(World& w, StepContext& ctx, const DomainLayout& layout, DomainTransport& t) {
+  DomainRole& role = *ctx.domain;
   constexpr std::uint64_t kNone = ~std::uint64_t{0};
   if (w.inflows.empty() || !inflows_due(w)) return kNone;  // the same answer on every rank
   std::vector<Body> near;   // this domain's bodies near an inflow
@@ -29,7 +30,7 @@ std::uint64_t insert_inflow_bodies(World& w, const DomainLayout& layout, DomainT
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
     top[0] = std::max(top[0], b.id + 1);
-    if (b.fixed || !owned(w, i)) continue;
+    if (b.fixed || !role.owns(i)) continue;
     for (const Inflow& f : w.inflows)
       if (near_inflow(w, f, b)) {
         near.push_back(b);
@@ -52,18 +53,18 @@ std::uint64_t insert_inflow_bodies(World& w, const DomainLayout& layout, DomainT
   const std::uint64_t first = *std::max_element(tops.begin(), tops.end());
   std::swap(w.bodies, all);
   const std::size_t before = w.bodies.size();
-  w.work.inserted = run_inflows(w, first);
+  ctx.inserted = run_inflows(w, first);
   std::vector<Body> fresh(w.bodies.begin() + static_cast<std::ptrdiff_t>(before), w.bodies.end());
   std::swap(w.bodies, all);
   // All are kept: this domain's own, the others' as ghosts until the exchange.
   for (const Body& b : fresh) {
     w.bodies.push_back(b);
-    w.work.foreign.push_back(layout.owner_of(b.position) == t.rank() ? 0 : 1);
+    role.foreign.push_back(layout.owner_of(b.position) == t.rank() ? 0 : 1);
   }
   return fresh.empty() ? kNone : first;
 }
 
-ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTransport& t) {
+ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& layout, DomainTransport& t) {
   const int me = t.rank(), ranks = t.size();
   ExchangeCounts counts;
   auto sent = [&](const std::vector<std::string>& out) {
@@ -72,9 +73,9 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   };
   StepWorkspace& work = w.work;
   const std::size_t n = w.bodies.size();
-  const bool grew = work.boxes.boxes.size() != n;  // inflows inserted bodies: the broad phase lists them anew
+  const bool grew = w.search.boxes.boxes.size() != n;  // inflows inserted bodies: the broad phase lists them anew
   std::vector<std::uint8_t> ghost(n);  // other domains' moving bodies: replaced below, never boxed here
-  for (std::size_t i = 0; i < n; ++i) ghost[i] = !owned(w, i) && !w.bodies[i].fixed;
+  for (std::size_t i = 0; i < n; ++i) ghost[i] = !role.owns(i) && !w.bodies[i].fixed;
 
   // Boxes are remade as update_boxes remakes them in a whole world, where
   // one body leaving its box has all those half way out remade too: the
@@ -83,18 +84,18 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   // remade or a body wrapped anywhere, or a tilt was taken back.
   const int threads = detail::thread_count(w.settings.threads);
   const bool left =
-      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, cell_drift(w), ghost);
-  const std::vector<std::string> said = all_gather(t, std::string{left ? '1' : '0', work.renew_search_cell ? '1' : '0'});
+      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w), ghost);
+  const std::vector<std::string> said = all_gather(t, std::string{left ? '1' : '0', w.search.renew_cell ? '1' : '0'});
   bool any_left = false, renew = false;
   for (const std::string& s : said) {
     if (s.size() != 2) throw std::runtime_error("a domain's box agreement came damaged");
     any_left |= s[0] == '1', renew |= s[1] == '1';
   }
-  const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads,
+  const std::size_t remade = remake_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads,
                                           any_left ? kBoxBatchFraction : 1, ghost);
-  work.renew_search_cell = false;
+  w.search.renew_cell = false;
   if (any_left || renew) {
-    work.search_cell = w.cell;  // before the ghosts' images below, and the search
+    w.search.cell = w.cell;  // before the ghosts' images below, and the search
     work.candidates_current = false;
   }
 
@@ -147,7 +148,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   Aabb reach{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
   auto grow = [&](const Aabb& box) { reach.lo = min(reach.lo, box.lo), reach.hi = max(reach.hi, box.hi); };
   for (std::size_t i = 0; i < n; ++i)
-    if (staying(i)) grow(work.boxes.boxes[i]);
+    if (staying(i)) grow(w.search.boxes.boxes[i]);
   for (const BodyRecord& r : arrived) grow(r.box);
   std::string reach_bytes(sizeof reach, '\0');
   std::memcpy(reach_bytes.data(), &reach, sizeof reach);
@@ -159,7 +160,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   }
   // In a periodic cell, a box reaches a domain through any of its images
   // in the search cell (the domain's broad phase then finds the image itself).
-  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(work.search_cell) : std::vector<Vec3>{Vec3{}};
+  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(w.search.cell) : std::vector<Vec3>{Vec3{}};
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
   auto send_ghost = [&](const Aabb& box, const auto& record) {  // record() made only for a domain it reaches
     for (int r = 0; r < ranks; ++r) {
@@ -172,7 +173,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
     }
   };
   for (std::size_t i = 0; i < n; ++i)
-    if (staying(i)) send_ghost(work.boxes.boxes[i], [&] { return record_of(w, i); });
+    if (staying(i)) send_ghost(w.search.boxes.boxes[i], [&] { return record_of(w, i); });
   for (const BodyRecord& r : arrived) send_ghost(r.box, [&] { return r; });
   out.assign(ranks, {});
   for (int r = 0; r < ranks; ++r) {
@@ -186,7 +187,6 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   for (const std::string& message : t.exchange(std::move(out))) Reader(message).get(seen);
   std::sort(seen.begin(), seen.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });
   counts.ghosts = seen.size();
-  work.kicked_bodies = n;  // every body took its first half kick where it was owned
 
   // The same bodies as before (the common case in a bed at rest): the
   // ghosts are refreshed where they lie.
@@ -197,7 +197,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   if (same && k == seen.size()) {
     bool boxes_changed = remade > 0;
     k = 0;
-    BoxCache& c = work.boxes;
+    BoxCache& c = w.search.boxes;
     for (std::size_t i = 0; i < n; ++i) {
       if (!ghost[i]) {
         counts.owned += w.bodies[i].fixed ? 0 : 1;
@@ -223,8 +223,7 @@ ExchangeCounts exchange_bodies(World& w, const DomainLayout& layout, DomainTrans
   for (const BodyRecord& r : arrived) records.push_back(r), foreign.push_back(0);
   for (const std::uint8_t f : foreign) counts.owned += f ? 0 : 1;
   for (const BodyRecord& r : seen) records.push_back(r), foreign.push_back(1);
-  set_bodies(w, records, foreign);
-  work.kicked_bodies = w.bodies.size();
+  set_bodies(w, role, records, foreign);
   work.static_ready = false;  // the bodies' indices changed
   work.candidates_current = false;
   return counts;

@@ -72,11 +72,9 @@ class Reader {
 };
 
 inline BodyRecord record_of(const World& w, std::size_t i) {
-  const BoxCache& c = w.work.boxes;
+  const BoxCache& c = w.search.boxes;
   return {w.bodies[i], c.boxes[i], c.anchor_position[i], c.anchor_orientation[i]};
 }
-
-inline bool owned(const World& w, std::size_t i) { return w.work.foreign.empty() || !w.work.foreign[i]; }
 
 // The index of the body with this id (bodies in increasing id order).
 inline std::uint32_t index_of_id(std::span<const Body> bodies, std::uint64_t id) {
@@ -87,7 +85,8 @@ inline std::uint32_t index_of_id(std::span<const Body> bodies, std::uint64_t id)
 
 
 // Replaces the domain's bodies and boxes by `records` (any order).
-inline void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<const std::uint8_t> foreign_of_record) {
+inline void set_bodies(World& w, DomainRole& role, std::vector<BodyRecord>& records,
+                       std::span<const std::uint8_t> foreign_of_record) {
   std::vector<std::uint64_t> driven_ids;  // driven bodies are fixed: every domain holds them
   for (const DrivenBody& d : w.driven) driven_ids.push_back(w.bodies[d.body].id);
   std::vector<std::uint32_t> order(records.size());
@@ -95,15 +94,15 @@ inline void set_bodies(World& w, std::vector<BodyRecord>& records, std::span<con
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t p, std::uint32_t q) { return records[p].body.id < records[q].body.id; });
   const std::size_t n = records.size();
-  BoxCache& c = w.work.boxes;
+  BoxCache& c = w.search.boxes;
   w.bodies.resize(n);
   c.boxes.resize(n), c.anchor_position.resize(n), c.anchor_orientation.resize(n), c.moved.resize(n);
-  w.work.foreign.resize(n);
+  role.foreign.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyRecord& r = records[order[i]];
     w.bodies[i] = r.body;
     c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
-    w.work.foreign[i] = foreign_of_record[order[i]];
+    role.foreign[i] = foreign_of_record[order[i]];
   }
   for (std::size_t k = 0; k < w.driven.size(); ++k) w.driven[k].body = index_of_id(w.bodies, driven_ids[k]);
 }

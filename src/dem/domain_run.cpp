@@ -45,7 +45,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
                        const DomainOptions& options, DomainReport* report) {
   const bool root = t.rank() == 0;
   DomainLayout layout = layout_domains(whole, t.size());
-  World domain = make_domain(whole, layout, t.rank());
+  DomainRole role;
+  World domain = make_domain(whole, layout, t.rank(), role);
+  StepContext ctx{.dt = state.dt, .domain = &role};
   RunOutcome outcome;
   detail::GuardCheck check;
   // This rank's counts, summed over the steps.
@@ -54,7 +56,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   int rebalances = 0;
   auto exchange = [&] {
     const auto t0 = Clock::now();
-    const ExchangeCounts c = exchange_bodies(domain, layout, t);
+    const ExchangeCounts c = exchange_bodies(domain, role, layout, t);
     mine.exchange_seconds += seconds_since(t0);
     mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
     mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
@@ -73,16 +75,16 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     const Real power = whole_wall_power(domain, t);
     if (!root) return;
     domain.stats.wall_power = power;
-    if (step) domain.wall_work = work_before + 0.5 * state.dt * (domain.work.power_before + power);
+    if (step) domain.wall_work = work_before + 0.5 * state.dt * (ctx.power_before + power);
   };
   // The work of a deforming cell's field on the bodies in begin_step (its
   // change, the wraps), summed again on rank 0.
   auto settle_field_work = [&] {
-    if (deforming) add_field_work(domain, t);
+    if (deforming) add_field_work(domain, role, t);
   };
   std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {
-    if (gathered_at != state.step) gather_world(domain, t, whole);
+    if (gathered_at != state.step) gather_world(domain, role, t, whole);
     outcome = {status, std::move(error)};
     if (root)
       for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
@@ -146,7 +148,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   // Rank 0's verdict on the gathered world (`start`: the initial energy is
   // recorded first), agreed by all: "" to go on.
   auto output = [&](bool start) {
-    gather_world(domain, t, whole);
+    gather_world(domain, role, t, whole);
     gathered_at = state.step;
     std::string verdict;
     if (root) {
@@ -170,9 +172,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     return verdict;
   };
 
-  exchange_bodies(domain, layout, t);  // the first ghosts
+  exchange_bodies(domain, role, layout, t);  // the first ghosts
   if (state.step == 0 && state.outputs == 0) {
-    std::string failed = agree(t, failure_of(domain, [&] { return compute_forces_now(domain); }));
+    std::string failed = agree(t, failure_of(domain, [&] { return compute_forces_now(domain, &role); }));
     settle_wall_power(Real(0), false);
     if (failed.empty()) failed = output(true);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
@@ -197,16 +199,18 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     if (const auto done = stop_or_fail(true)) return *done;
     gathered_at = ~std::uint64_t{0};  // the domains move on
     auto t0 = Clock::now();
-    std::string failed = failure_of(domain, [&] { return begin_step(domain, state.dt); });
+    std::string failed = failure_of(domain, [&] { return begin_step(domain, ctx); });
     settle_field_work();
-    const std::uint64_t first_new = insert_inflow_bodies(domain, layout, t);
+    const std::uint64_t first_new = insert_inflow_bodies(domain, ctx, layout, t);
     mine.step_seconds += seconds_since(t0);
     exchange();  // every rank takes part, failed or not
-    if (first_new != ~std::uint64_t{0})  // bodies inserted now start with their velocity: no half kick
-      domain.work.kicked_bodies = detail::index_of_id(domain.bodies, first_new);
+    // Every body took its first half kick where it was owned, but those
+    // inserted now, which start with their velocity.
+    ctx.kicked_bodies =
+        first_new != ~std::uint64_t{0} ? detail::index_of_id(domain.bodies, first_new) : domain.bodies.size();
     t0 = Clock::now();
     const Real work_before = domain.wall_work;
-    if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, state.dt); });
+    if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, ctx); });
     mine.step_seconds += seconds_since(t0);
     settle_wall_power(work_before, true);
     ++steps;

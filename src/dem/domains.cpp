@@ -91,8 +91,9 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
   return {std::move(d.boxes)};
 }
 
-World make_domain(const World& whole, const DomainLayout& layout, int rank) {
+World make_domain(const World& whole, const DomainLayout& layout, int rank, DomainRole& role) {
   World d;
+  role = {};
   d.settings = whole.settings;
   d.templates = whole.templates;
   d.materials = whole.materials;
@@ -101,18 +102,17 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
   d.motions = whole.motions;
   d.inflows = whole.inflows;
   d.inflow_states = whole.inflow_states;
-  d.work.inflows_by_domains = true;
   d.cell = whole.cell;
   d.cell_rate = whole.cell_rate;
   d.cell_stress = whole.cell_stress;
-  d.work.search_cell = whole.work.search_cell;
-  d.work.renew_search_cell = whole.work.renew_search_cell;
-  d.work.whole_reach = largest_reach(whole);
+  d.search.cell = whole.search.cell;
+  d.search.renew_cell = whole.search.renew_cell;
+  role.whole_reach = largest_reach(whole);
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
   d.stats = whole.stats;
-  const BoxCache& boxes = whole.work.boxes;
+  const BoxCache& boxes = whole.search.boxes;
   const bool boxed = boxes.anchor_position.size() == whole.bodies.size() && boxes.boxes.size() == whole.bodies.size();
   std::vector<std::uint64_t> mine;
   for (std::size_t i = 0; i < whole.bodies.size(); ++i) {
@@ -120,15 +120,15 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank) {
     const bool own = !b.fixed && layout.owner_of(b.position) == rank;
     if (!b.fixed && !own) continue;
     d.bodies.push_back(b);
-    d.work.foreign.push_back(own ? 0 : 1);
+    role.foreign.push_back(own ? 0 : 1);
     if (own) mine.push_back(b.id);
     if (boxed) {
-      d.work.boxes.boxes.push_back(boxes.boxes[i]);
-      d.work.boxes.anchor_position.push_back(boxes.anchor_position[i]);
-      d.work.boxes.anchor_orientation.push_back(boxes.anchor_orientation[i]);
+      d.search.boxes.boxes.push_back(boxes.boxes[i]);
+      d.search.boxes.anchor_position.push_back(boxes.anchor_position[i]);
+      d.search.boxes.anchor_orientation.push_back(boxes.anchor_orientation[i]);
     }
   }
-  d.work.boxes.moved.resize(d.work.boxes.boxes.size());
+  d.search.boxes.moved.resize(d.search.boxes.boxes.size());
   for (DrivenBody driven : whole.driven) {
     driven.body = index_of_id(d.bodies, whole.bodies[driven.body].id);
     d.driven.push_back(driven);
@@ -151,11 +151,11 @@ std::vector<Real> body_costs(const World& w) {
   return cost;
 }
 
-void gather_world(const World& d, DomainTransport& t, World& whole) {
+void gather_world(const World& d, const DomainRole& role, DomainTransport& t, World& whole) {
   std::vector<BodyRecord> bodies;
   std::vector<ContactRecord> contacts;
   for (std::size_t i = 0; i < d.bodies.size(); ++i)
-    if (owned(d, i) || (t.rank() == 0 && d.bodies[i].fixed)) bodies.push_back(record_of(d, i));
+    if (role.owns(i) || (t.rank() == 0 && d.bodies[i].fixed)) bodies.push_back(record_of(d, i));
   for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
     const StepContact& c = d.work.contacts[k];
     if (!c.active) continue;
@@ -179,7 +179,7 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   sort_unique(contacts, [](const ContactRecord& c) { return c.key; });
   const std::size_t n = bodies.size();
   whole.bodies.resize(n);
-  BoxCache& boxes = whole.work.boxes;
+  BoxCache& boxes = whole.search.boxes;
   boxes.boxes.resize(n), boxes.anchor_position.resize(n), boxes.anchor_orientation.resize(n), boxes.moved.resize(n);
   std::vector<std::uint64_t> ids(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -226,8 +226,8 @@ void gather_world(const World& d, DomainTransport& t, World& whole) {
   whole.stats = stats;
   whole.cell = d.cell;
   whole.cell_rate = d.cell_rate;
-  whole.work.search_cell = d.work.search_cell;
-  whole.work.renew_search_cell = d.work.renew_search_cell;
+  whole.search.cell = d.search.cell;
+  whole.search.renew_cell = d.search.renew_cell;
   if (periodic)
     for (int k = 0; k < 6; ++k) whole.cell_stress[k] = virial[k] / cell_volume(whole.cell);
   whole.work.candidates_current = false;
@@ -275,11 +275,11 @@ CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
   return virial;
 }
 
-void add_field_work(World& d, DomainTransport& t) {
-  using Term = StepWorkspace::FieldWork;
+void add_field_work(World& d, DomainRole& role, DomainTransport& t) {
+  using Term = FieldWork;
   Writer m;
-  m.put(d.work.field_work), m.put(d.work.wrap_work);
-  d.work.field_work.clear(), d.work.wrap_work.clear();
+  m.put(role.field_work), m.put(role.wrap_work);
+  role.field_work.clear(), role.wrap_work.clear();
   const std::vector<std::string> in = gather_to_root(t, m.take());
   if (t.rank() != 0) return;
   std::vector<Term> changes, wraps;

@@ -73,23 +73,23 @@ namespace {
 
 // A moving body this world moves: a domain moves only its own (their
 // owners move the others).
-bool moves_here(const World& w, std::size_t i) {
-  return !w.bodies[i].fixed && (w.work.foreign.empty() || !w.work.foreign[i]);
+bool moves_here(const World& w, const DomainRole* domain, std::size_t i) {
+  return !w.bodies[i].fixed && (!domain || domain->owns(i));
 }
 
 // The kinetic energy the cell's field gives moving bodies (a change of the
 // field, a wrap) is the cell's work on them: summed in body order into
 // wall_work in a whole world, listed per body (id, joules) in a domain,
 // which owns only some (domains.hpp sums the lists on rank 0 in id order).
-struct FieldWork {
+struct FieldWorkSum {
   World& w;
-  std::vector<StepWorkspace::FieldWork>& listed;
+  std::vector<FieldWork>* listed;  ///< a domain's list; null in a whole world
   Real added = 0;
   bool any = false;
   void give(Body& b, const Vec3& v) {
     const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
-    if (w.work.foreign.empty()) added += gained, any = true;
-    else listed.push_back({b.id, gained});
+    if (!listed) added += gained, any = true;
+    else listed->push_back({b.id, gained});
     b.velocity = v;
   }
   void finish() {
@@ -99,15 +99,15 @@ struct FieldWork {
 
 }  // namespace
 
-std::size_t wrap_bodies(World& w) {
+std::size_t wrap_bodies(World& w, DomainRole* domain) {
   const PeriodicCell& cell = w.cell;
-  BoxCache& cache = w.work.boxes;
+  BoxCache& cache = w.search.boxes;
   const bool boxed = cache.boxes.size() == w.bodies.size();
   std::size_t crossed = 0;
-  FieldWork work{w, w.work.wrap_work};
+  FieldWorkSum work{w, domain ? &domain->wrap_work : nullptr};
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     Body& b = w.bodies[i];
-    if (!moves_here(w, i)) continue;
+    if (!moves_here(w, domain, i)) continue;
     const Vec3 move = into_cell(cell, b.position);
     if (move == Vec3{}) continue;
     ++crossed;
@@ -127,7 +127,7 @@ std::size_t wrap_bodies(World& w) {
   return crossed;
 }
 
-void control_cell(World& w) {
+void control_cell(World& w, DomainRole* domain) {
   const CellControl& control = w.settings.cell_control;
   Real scale = 0;  // of the servo's errors: the largest target
   for (int k = 0; k < 6; ++k)
@@ -147,9 +147,9 @@ void control_cell(World& w) {
   w.cell_rate = rate;
   if (!changed) return;
   const Vec3 centre = cell_centre(w.cell);
-  FieldWork work{w, w.work.field_work};
+  FieldWorkSum work{w, domain ? &domain->field_work : nullptr};
   for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    if (moves_here(w, i)) work.give(w.bodies[i], w.bodies[i].velocity + affine_velocity(change, w.bodies[i].position - centre));
+    if (moves_here(w, domain, i)) work.give(w.bodies[i], w.bodies[i].velocity + affine_velocity(change, w.bodies[i].position - centre));
   work.finish();
 }
 
@@ -189,7 +189,7 @@ bool deform_cell(World& w, Real dt) {
 }
 
 Real cell_drift(const World& w) noexcept {
-  const PeriodicCell& searched = w.work.search_cell;
+  const PeriodicCell& searched = w.search.cell;
   if (!searched.active()) return 0;
   // An image is at most one edge vector away on each axis: its drift is at
   // most the sum of the edges' changes.
@@ -199,8 +199,8 @@ Real cell_drift(const World& w) noexcept {
   return drift;
 }
 
-Real largest_reach(const World& w) noexcept {
-  Real reach = w.work.whole_reach;  // of moving bodies, and of those inflows will insert
+Real largest_reach(const World& w, const DomainRole* domain) noexcept {
+  Real reach = domain ? domain->whole_reach : 0;  // of moving bodies, and of those inflows will insert
   for (const Body& b : w.bodies)
     if (!b.fixed) reach = std::fmax(reach, w.templates[b.shape].reach);
   for (const Inflow& f : w.inflows)
@@ -208,12 +208,14 @@ Real largest_reach(const World& w) noexcept {
   return reach;
 }
 
-Real shortest_period(const World& w) noexcept { return 4 * largest_reach(w) * (1 + w.settings.box_skin); }
+Real shortest_period(const World& w, const DomainRole* domain) noexcept {
+  return 4 * largest_reach(w, domain) * (1 + w.settings.box_skin);
+}
 
 void find_periodic_candidates(World& w, int threads) {
   StepWorkspace& work = w.work;
-  const PeriodicCell& cell = work.search_cell;
-  const std::vector<Aabb>& boxes = work.boxes.boxes;
+  const PeriodicCell& cell = w.search.cell;
+  const std::vector<Aabb>& boxes = w.search.boxes.boxes;
   Vec3 widest{};
   for (const std::uint32_t i : work.moving) widest = max(widest, boxes[i].hi - boxes[i].lo);
   // Every moving and driven box, and its images where it comes within the

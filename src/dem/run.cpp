@@ -120,7 +120,7 @@ std::string describe_failure(const World& w, const StepReport& r) {
       const int a = static_cast<int>(r.id_a);
       return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +
              number_text(cell_width(w.cell, a)) + " m at t = " + number_text(w.time) +
-             " s, no longer above four times the largest body's reach (" + number_text(shortest_period(w)) +
+             " s, no longer above four times the largest body's reach (" + number_text(r.shortest) +
              " m): start from a larger cell, or compress it less";
     }
   }

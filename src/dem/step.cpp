@@ -26,7 +26,7 @@ using detail::thread_id;
 // tree (built again when the boxes were all made anew).
 void find_candidates(World& w, int threads) {
   StepWorkspace& work = w.work;
-  const std::vector<Aabb>& boxes = work.boxes.boxes;
+  const std::vector<Aabb>& boxes = w.search.boxes.boxes;
   if (!work.static_ready) {
     work.moving.clear();
     std::vector<std::uint32_t> fixed;
@@ -45,7 +45,7 @@ void find_candidates(World& w, int threads) {
   work.moving_boxes.resize(work.moving.size());
   for (std::size_t k = 0; k < work.moving.size(); ++k) work.moving_boxes[k] = boxes[work.moving[k]];
   if (w.cell.active()) {
-    if (work.renew_search_cell) work.search_cell = w.cell, work.renew_search_cell = false;
+    if (w.search.renew_cell) w.search.cell = w.cell, w.search.renew_cell = false;
     find_periodic_candidates(w, threads);
     work.candidates_current = true;
     return;
@@ -90,7 +90,7 @@ void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>
 // plane ids lie above every body's): for each body, its candidates with
 // larger indices, then the plane walls its box reaches; for compounds, each
 // pair of parts whose bounding spheres meet, in part order.
-void list_contacts(World& w) {
+void list_contacts(World& w, const DomainRole* domain) {
   StepWorkspace& work = w.work;
   std::vector<StepContact>& contacts = work.contacts;
   contacts.clear();
@@ -100,7 +100,6 @@ void list_contacts(World& w) {
   // Worlds without compounds never look at templates here.
   const bool any_compound =
       std::any_of(w.templates.begin(), w.templates.end(), [](const ShapeTemplate& t) { return !t.parts.empty(); });
-  const bool domain = !work.foreign.empty();
   std::size_t k = 0;
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& body = w.bodies[i];
@@ -108,7 +107,7 @@ void list_contacts(World& w) {
     const bool compound = any_compound && !t.parts.empty();
     if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
-      if (domain && work.foreign[i] && work.foreign[pairs[k].second]) continue;  // another domain's pair
+      if (domain && !domain->owns(i) && !domain->owns(pairs[k].second)) continue;  // another domain's pair
       StepContact c;
       c.a = i;
       c.b = pairs[k].second;
@@ -129,8 +128,8 @@ void list_contacts(World& w) {
           work.keys.push_back(pair_key(body.id, other.id, pa, pb));
         }
     }
-    if (body.fixed || (domain && work.foreign[i])) continue;
-    const Aabb& box = work.boxes.boxes[i];
+    if (body.fixed || (domain && !domain->owns(i))) continue;
+    const Aabb& box = w.search.boxes.boxes[i];
     for (std::uint32_t p = 0; p < w.planes.size(); ++p) {
       const PlaneWall& wall = w.planes[p];
       Real lowest = -dot(wall.normal, wall.point);  // of the box's corners above the plane
@@ -196,7 +195,7 @@ ContactSide side_of(const World& w, const Body& b, std::uint32_t part, const Vec
 }
 
 // dt: time since the last evaluation, for the springs (0 at the start).
-StepReport compute_forces(World& w, Real dt) {
+StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   const int threads = thread_count(w.settings.threads);
   StepWorkspace& work = w.work;
   if (static_cast<int>(work.overlap.size()) < threads) work.overlap.resize(threads);
@@ -207,7 +206,7 @@ StepReport compute_forces(World& w, Real dt) {
     b.force = b.fixed ? Vec3{} : w.settings.gravity * mass_of(w, b);
     b.torque = {};
   }
-  const std::size_t boxed = work.boxes.boxes.size();
+  const std::size_t boxed = w.search.boxes.boxes.size();
   if (boxed == 0 || boxed > w.bodies.size()) {
     work.static_ready = false;  // every box is made anew
   } else {
@@ -217,10 +216,10 @@ StepReport compute_forces(World& w, Real dt) {
     }
   }
   const std::size_t updated =
-      update_boxes(w.bodies, w.templates, w.settings.box_skin, work.boxes, threads, cell_drift(w));
-  if (updated > 0) work.renew_search_cell = true;
+      update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w));
+  if (updated > 0) w.search.renew_cell = true;
   if (updated > 0 || !work.static_ready || !work.candidates_current) find_candidates(w, threads);
-  list_contacts(w);
+  list_contacts(w, domain);
   align_pair_states(work.keys, w.pairs);
 
   std::vector<StepContact>& contacts = work.contacts;
@@ -302,58 +301,63 @@ StepReport compute_forces(World& w, Real dt) {
 
 }  // namespace
 
-StepReport compute_forces_now(World& w) {
+StepReport compute_forces_now(World& w, const DomainRole* domain) {
   if (w.forces_current) return {};
   place_driven(w);
-  return compute_forces(w, 0);
+  return compute_forces(w, 0, domain);
 }
 
-StepReport begin_step(World& w, Real dt) {
+StepReport begin_step(World& w, StepContext& ctx) {
   if (!w.forces_current) {
-    const StepReport r = compute_forces_now(w);
+    const StepReport r = compute_forces_now(w, ctx.domain);
     if (r.status != StepStatus::Ok) return r;
   }
+  const Real dt = ctx.dt;
   const int threads = thread_count(w.settings.threads);
   kick(w.bodies, w.templates, w.materials, dt / 2, threads);
   const bool deforming = w.settings.cell_control.deforms();
-  if (deforming) control_cell(w);
+  if (deforming) control_cell(w, ctx.domain);
   drift(w.bodies, w.templates, w.materials, dt, threads);
   if (deforming) {
-    if (deform_cell(w, dt)) w.work.candidates_current = false, w.work.renew_search_cell = true;  // images renamed
-    const Real shortest = shortest_period(w);
+    if (deform_cell(w, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
+    const Real shortest = shortest_period(w, ctx.domain);
     for (int a = 0; a < 3; ++a)
       if (w.cell.axes[a] && !(cell_width(w.cell, a) > shortest)) {
         w.forces_current = false;
-        return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0};
+        return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0, shortest};
       }
   }
-  if (w.cell.active() && wrap_bodies(w) > 0) w.work.candidates_current = false, w.work.renew_search_cell = true;
-  w.work.power_before = w.stats.wall_power;
+  if (w.cell.active() && wrap_bodies(w, ctx.domain) > 0) w.work.candidates_current = false, w.search.renew_cell = true;
+  ctx.power_before = w.stats.wall_power;
   w.time += dt;
-  w.work.kicked_bodies = w.bodies.size();
-  w.work.inserted = w.inflows.empty() || w.work.inflows_by_domains ? 0 : run_inflows(w);
+  ctx.kicked_bodies = w.bodies.size();
+  // A domain run inserts the inflows' bodies itself, before its exchange
+  // (insert_inflow_bodies, domains.hpp).
+  ctx.inserted = w.inflows.empty() || ctx.domain ? 0 : run_inflows(w);
   if (!w.motions.empty()) place_driven(w);
   w.forces_current = false;
   return {};
 }
 
-StepReport finish_step(World& w, Real dt) {
-  const StepReport r = compute_forces(w, dt);
-  w.stats.inserted = static_cast<int>(w.work.inserted);
+StepReport finish_step(World& w, StepContext& ctx) {
+  const Real dt = ctx.dt;
+  const StepReport r = compute_forces(w, dt, ctx.domain);
+  w.stats.inserted = static_cast<int>(ctx.inserted);
   if (r.status != StepStatus::Ok) {
     w.forces_current = false;
     return r;
   }
   // Bodies inserted now start at this time with their velocity: no half kick.
-  const std::size_t kicked = std::min(w.work.kicked_bodies, w.bodies.size());
+  const std::size_t kicked = std::min(ctx.kicked_bodies, w.bodies.size());
   kick(std::span(w.bodies).first(kicked), w.templates, w.materials, dt / 2, thread_count(w.settings.threads));
-  w.wall_work += 0.5 * dt * (w.work.power_before + w.stats.wall_power);  // trapezoid rule
+  w.wall_work += 0.5 * dt * (ctx.power_before + w.stats.wall_power);  // trapezoid rule
   return r;
 }
 
 StepReport step(World& w, Real dt) {
-  const StepReport r = begin_step(w, dt);
-  return r.status == StepStatus::Ok ? finish_step(w, dt) : r;
+  StepContext ctx{.dt = dt};
+  const StepReport r = begin_step(w, ctx);
+  return r.status == StepStatus::Ok ? finish_step(w, ctx) : r;
 }
 
 }  // namespace gjkdem::dem

@@ -154,7 +154,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   o.vec(w.cell.lo), o.vec(w.cell.hi), o.vec(w.cell.tilt);
   for (const Real v : w.cell_rate) o.real(v);
   for (const Real v : w.cell_stress) o.real(v);
-  o.vec(w.work.search_cell.lo), o.vec(w.work.search_cell.hi), o.vec(w.work.search_cell.tilt);
+  o.vec(w.search.cell.lo), o.vec(w.search.cell.hi), o.vec(w.search.cell.tilt);
   o.end(s);
   s = o.begin("BODY");
   o.u64(w.bodies.size());
@@ -169,7 +169,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   for (const dem::InflowState& f : w.inflow_states) o.u64(f.inserted), o.u64(f.attempts), o.real(f.mass), o.real(f.energy), o.u64(f.behind);
   o.end(s);
   s = o.begin("BOXS");
-  const dem::BoxCache& boxes = w.work.boxes;
+  const dem::BoxCache& boxes = w.search.boxes;
   const bool has_boxes = boxes.anchor_position.size() == w.bodies.size();
   o.u64(has_boxes ? w.bodies.size() : 0);
   if (has_boxes)
@@ -339,10 +339,10 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.work = {};
   dem::place_driven(w);  // planes and motion frames (driven bodies come back as saved)
   if (anchors > 0) {
-    w.work.boxes = std::move(boxes);
-    w.work.search_cell = searched;
-    w.work.renew_search_cell = !searched.active();
-    dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.work.boxes);
+    w.search.boxes = std::move(boxes);
+    w.search.cell = searched;
+    w.search.renew_cell = !searched.active();
+    dem::rebuild_boxes_at_anchors(w.bodies, w.templates, w.settings.box_skin, w.search.boxes);
   }
   return c;
 }

@@ -338,9 +338,9 @@ TEST(DeformingCell, ARunContinuedJustBeforeAGrainWrapsGivesTheSameBits) {
     SCOPED_TRACE(testing::Message() << "continued before step " << wrap);
     for (std::size_t i = 0; i < straight.bodies.size(); ++i)
       ASSERT_EQ(std::memcmp(&straight.bodies[i], &resumed.bodies[i], sizeof(Body)), 0) << "body " << i;
-    const BoxCache &s = straight.work.boxes, &r = resumed.work.boxes;
+    const BoxCache &s = straight.search.boxes, &r = resumed.search.boxes;
     EXPECT_EQ(std::memcmp(s.anchor_position.data(), r.anchor_position.data(), s.anchor_position.size() * sizeof(Vec3)), 0);
-    EXPECT_EQ(std::memcmp(&straight.work.search_cell, &resumed.work.search_cell, sizeof(PeriodicCell)), 0);
+    EXPECT_EQ(std::memcmp(&straight.search.cell, &resumed.search.cell, sizeof(PeriodicCell)), 0);
     EXPECT_EQ(straight.wall_work, resumed.wall_work);
   }
 }

@@ -72,8 +72,8 @@ struct Recorder : RunObserver {
     std::vector<StepContact> touching;
     for (const StepContact& c : w.work.contacts)
       if (c.active) touching.push_back(c);
-    outputs.push_back({w.time, bytes_of(w.bodies), bytes_of(w.work.boxes.anchor_position),
-                       bytes_of(w.work.boxes.anchor_orientation), bytes_of(w.pairs), bytes_of(touching),
+    outputs.push_back({w.time, bytes_of(w.bodies), bytes_of(w.search.boxes.anchor_position),
+                       bytes_of(w.search.boxes.anchor_orientation), bytes_of(w.pairs), bytes_of(touching),
                        bytes_of(w.planes), w.stats, w.wall_work});
   }
 };

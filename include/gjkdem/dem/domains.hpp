@@ -52,9 +52,9 @@ struct DomainLayout {
 DomainLayout layout_domains(const World& whole, int ranks, std::span<const Real> weights = {});
 
 /// The domain of `rank` cut from the whole world: the moving bodies of its
-/// region, every fixed body, the pairs of its bodies. Ghosts come with the
-/// first exchange_bodies().
-World make_domain(const World& whole, const DomainLayout& layout, int rank);
+/// region, every fixed body, the pairs of its bodies; `role` is set to its
+/// part (step_context.hpp). Ghosts come with the first exchange_bodies().
+World make_domain(const World& whole, const DomainLayout& layout, int rank, DomainRole& role);
 
 /// What one exchange moved, on one rank.
 struct ExchangeCounts {
@@ -68,21 +68,25 @@ struct ExchangeCounts {
 /// region to their owners (with the state of their pairs) and refreshes the
 /// ghosts. All ranks call it together, between begin_step and finish_step
 /// (world.hpp) and before a first force evaluation.
-ExchangeCounts exchange_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
+ExchangeCounts exchange_bodies(World& domain, DomainRole& role, const DomainLayout& layout,
+                               DomainTransport& transport);
 
 /// The whole world on rank 0, written into `whole` (which keeps what never
 /// changes: settings, templates, materials, walls): bodies, box anchors,
 /// the pair store, the touching contacts and the stats, with the same bits
 /// as a run of the whole world. All ranks call it together; the others
 /// leave `whole` as it is.
-void gather_world(const World& domain, DomainTransport& transport, World& whole);
+void gather_world(const World& domain, const DomainRole& role, DomainTransport& transport, World& whole);
 
 /// Inserts the bodies the inflows owe, as a whole world would: every rank
 /// places them among the bodies near the inflows' regions, gathered from
 /// every domain, and keeps them all (its own, the others' as ghosts until
-/// the exchange). All ranks call it together, after begin_step. Returns the
-/// first new id, or all ones when none was inserted.
-std::uint64_t insert_inflow_bodies(World& domain, const DomainLayout& layout, DomainTransport& transport);
+/// the exchange). All ranks call it together, after begin_step, with its
+/// context (whose domain role it extends and whose count of inserted
+/// bodies it sets). Returns the first new id, or all ones when none was
+/// inserted.
+std::uint64_t insert_inflow_bodies(World& domain, StepContext& context, const DomainLayout& layout,
+                                   DomainTransport& transport);
 
 /// The power of the driven walls and bodies, and of a deforming cell
 /// through the images, on the moving bodies at the last force evaluation,
@@ -99,10 +103,10 @@ CellTensor whole_cell_stress(const World& domain, DomainTransport& transport);
 
 /// Adds to rank 0's World::wall_work the kinetic energy a deforming cell's
 /// field gave the whole world's bodies this step: by its change, then by
-/// the wraps (every domain's StepWorkspace::field_work and wrap_work, each
+/// the wraps (every domain's DomainRole::field_work and wrap_work, each
 /// summed in id order as control_cell and wrap_bodies sum them). Clears
 /// both lists. All ranks call it together, after begin_step.
-void add_field_work(World& domain, DomainTransport& transport);
+void add_field_work(World& domain, DomainRole& role, DomainTransport& transport);
 
 /// How a domain run balances its domains.
 struct DomainOptions {

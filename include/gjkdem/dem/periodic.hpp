@@ -33,6 +33,7 @@
 namespace gjkdem::dem {
 
 struct World;
+struct DomainRole;
 
 struct PeriodicCell {
   bool axes[3] = {false, false, false};  ///< periodic on x, y, z
@@ -134,17 +135,17 @@ inline void add_virial(CellTensor& sum, const Vec3& force, const Vec3& branch) n
 /// Puts the moving bodies back into the cell, moving their box anchors and
 /// boxes with them (and their velocities by the affine velocity of the
 /// move in a deforming cell, whose kinetic energy is counted as the cell's
-/// work: a domain lists it in StepWorkspace::wrap_work). Returns how many
-/// crossed. A domain moves only its own bodies (their owners move the
-/// others).
-std::size_t wrap_bodies(World& world);
+/// work: a domain lists it in DomainRole::wrap_work). Returns how many
+/// crossed. A domain (`domain` not null) moves only its own bodies (their
+/// owners move the others).
+std::size_t wrap_bodies(World& world, DomainRole* domain = nullptr);
 
 /// A deforming cell, before the drift of a step: sets the velocity
 /// gradient (the servo's from the stress of the last force evaluation),
 /// changes the moving bodies' velocities by the change of the affine field,
 /// and counts the kinetic energy that adds as work done on the bodies (a
-/// domain lists it per body in StepWorkspace::field_work instead).
-void control_cell(World& world);
+/// domain lists it per body in DomainRole::field_work instead).
+void control_cell(World& world, DomainRole* domain = nullptr);
 
 /// Moves the cell's edges by the velocity gradient over dt (with the
 /// drift), taking back a tilt beyond half its edge. Returns true when the
@@ -156,12 +157,12 @@ bool deform_cell(World& world, Real dt);
 Real cell_drift(const World& world) noexcept;
 
 /// The largest reach of the moving bodies (those the inflows insert
-/// included; in a domain, of the whole world's: StepWorkspace::whole_reach).
-Real largest_reach(const World& world) noexcept;
+/// included; in a domain, of the whole world's: DomainRole::whole_reach).
+Real largest_reach(const World& world, const DomainRole* domain = nullptr) noexcept;
 
 /// The shortest width the cell may have across each periodic axis: four
 /// times the largest reach with its box skin.
-Real shortest_period(const World& world) noexcept;
+Real shortest_period(const World& world, const DomainRole* domain = nullptr) noexcept;
 
 /// The cell's width across axis a: the distance between its two faces
 /// crossing that axis (the length on the axis for an unsheared cell).

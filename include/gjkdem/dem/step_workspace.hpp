@@ -2,12 +2,14 @@
 // The scratch of a step: everything a step computes and throws away, kept in
 // the world only so that its memory is reused. Nothing here survives into a
 // checkpoint; a world restored without it rebuilds it on its first step.
+// (What the broad phase keeps that a bit-exact resume needs is state:
+// World::search. What passes between the halves of a step, and a domain's
+// role in a domain run, is the step's context: step_context.hpp.)
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "gjkdem/contact/overlap.hpp"
-#include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
 #include "gjkdem/dem/motion.hpp"
@@ -56,24 +58,13 @@ inline void push_a(Body& a, const StepContact& c) noexcept {
 }
 
 struct StepWorkspace {
-  BoxCache boxes;
   StaticTree fixed_tree;             ///< of the fixed bodies' boxes
   bool static_ready = false;         ///< fixed_tree and moving are built
   SweepWorkspace sweep;
   std::vector<BodyPair> candidates;  ///< body index pairs (i < j) whose boxes overlap, sorted
   std::vector<std::uint8_t> candidate_images;  ///< periodic worlds: the image of each pair's second body
   bool candidates_current = false;   ///< no box changed since the candidates were found
-  /// Periodic worlds: the cell the candidates were found in (images lie one
-  /// of its periods away); a checkpoint restores it, with the box anchors,
-  /// so that a continued run finds the same candidates.
-  PeriodicCell search_cell;
-  /// The next candidate search takes the cell as it is now: set when a box
-  /// was remade, a body wrapped or a tilt was taken back (and in a fresh
-  /// world). A search for any other reason (a restored checkpoint, a
-  /// domain's new ghosts) keeps the search cell, as the run that did not
-  /// stop, or the whole world, has it.
-  bool renew_search_cell = true;
-  std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs
+  std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs (outputs read the last evaluation's)
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
   std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies
@@ -81,29 +72,6 @@ struct StepWorkspace {
   std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box
   std::vector<std::uint8_t> image_code;   ///< and its image
   std::vector<MotionFrame> motion_frames; ///< per motion, at world.time (place_driven)
-  /// Domain runs (domains.hpp): 1 for each body this domain does not own
-  /// (other domains' bodies seen here, the fixed bodies every domain holds);
-  /// pairs of two such bodies are not listed. Empty: the world owns all.
-  std::vector<std::uint8_t> foreign;
-  /// Domain runs insert the inflows' bodies themselves, between begin_step
-  /// and the exchange (insert_inflow_bodies): begin_step leaves them.
-  bool inflows_by_domains = false;
-  /// Domain runs: the largest reach of the whole world's moving bodies (a
-  /// domain holds only some; shortest_period takes it). 0 elsewhere.
-  Real whole_reach = 0;
-  /// Domain runs: the kinetic energy a deforming cell's field gave each
-  /// body this domain owns this step (id, joules), by a change of the field
-  /// (control_cell) and by a wrap (wrap_bodies); rank 0 sums each in id
-  /// order, as those functions do in a whole world.
-  struct FieldWork {
-    std::uint64_t id;
-    Real joules;
-  };
-  std::vector<FieldWork> field_work, wrap_work;
-  // Between begin_step and finish_step (world.hpp).
-  std::size_t kicked_bodies = 0;  ///< bodies that took the first half kick (inflows insert after them)
-  std::size_t inserted = 0;       ///< bodies the inflows inserted
-  Real power_before = 0;          ///< driven walls' power at the step's start
 };
 
 }  // namespace gjkdem::dem

@@ -32,6 +32,8 @@
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/pair_state.hpp"
+#include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/step_context.hpp"
 #include "gjkdem/dem/step_workspace.hpp"
 #include "gjkdem/dem/world_settings.hpp"
 
@@ -53,10 +55,28 @@ enum class StepStatus {
   CellTooShort,     ///< a deforming periodic cell became shorter than shortest_period (periodic.hpp)
 };
 
-/// The outcome of a step; on failure the pair at fault (ids).
+/// The outcome of a step; on failure the pair at fault (ids), or for
+/// CellTooShort the axis (id_a) and the shortest width allowed (m).
 struct StepReport {
   StepStatus status = StepStatus::Ok;
   std::uint64_t id_a = 0, id_b = 0;
+  Real shortest = 0;
+};
+
+/// What the broad phase keeps from step to step that a continued run needs
+/// to find the same candidates (a checkpoint saves it): the box anchors
+/// (each box is remade from its anchor with the same bits) and, in a
+/// periodic world, the cell the candidates were found in (images lie one of
+/// its periods away).
+struct SearchCache {
+  BoxCache boxes;
+  PeriodicCell cell;
+  /// The next candidate search takes the cell as it is now: set when a box
+  /// was remade, a body wrapped or a tilt was taken back (and in a fresh
+  /// world). A search for any other reason (a restored checkpoint, a
+  /// domain's new ghosts) keeps the search cell, as the run that did not
+  /// stop, or the whole world, has it.
+  bool renew_cell = true;
 };
 
 struct World {
@@ -65,14 +85,16 @@ struct World {
   std::vector<ShapeTemplate> templates;
   std::vector<Material> materials;
   MaterialTable material_pairs;   ///< from materials and settings.model
-  std::vector<PlaneWall> planes;
   std::vector<PrescribedMotion> motions;  ///< of driven walls and bodies (motion.hpp)
   std::vector<DrivenBody> driven;         ///< the bodies with a motion, as given
   std::vector<Inflow> inflows;            ///< regions inserting bodies during a run (inflow.hpp)
-  // State.
+  // State: what a checkpoint holds.
   std::vector<Body> bodies;       ///< in increasing id order
   std::vector<PairState> pairs;   ///< sorted by key: every pair whose boxes overlap
   Real time = 0;                  ///< s
+  /// The plane walls as given and, for the driven ones, placed where their
+  /// motion has them at `time` (place_driven; not saved: placed again).
+  std::vector<PlaneWall> planes;
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
   std::vector<InflowState> inflow_states;  ///< one per inflow
@@ -85,23 +107,27 @@ struct World {
   CellTensor cell_rate{};
   CellTensor cell_stress{};
   StepStats stats;
+  SearchCache search;  ///< the broad phase's cache a bit-exact resume needs
   // Scratch of a step, kept between steps to reuse its memory.
   StepWorkspace work;
 };
 
-/// Advances the world by dt (s). Stops at the first failure and reports it
-/// (the world is then left mid-step).
+/// Advances the (whole) world by dt (s). Stops at the first failure and
+/// reports it (the world is then left mid-step).
 StepReport step(World& world, Real dt);
 
 /// The two halves of step(), between which a domain run moves bodies
 /// between domains (domains.hpp): begin_step kicks by half a step, drifts,
-/// wraps periodic bodies, advances the clock, runs the inflows and places the
-/// driven bodies; finish_step evaluates the forces and kicks the second half.
-StepReport begin_step(World& world, Real dt);
-StepReport finish_step(World& world, Real dt);
+/// wraps periodic bodies, advances the clock, runs the inflows (a whole
+/// world's) and places the driven bodies; finish_step evaluates the forces
+/// and kicks the second half. `context` carries dt, the domain's role (null
+/// for a whole world) and what begin_step leaves for finish_step.
+StepReport begin_step(World& world, StepContext& context);
+StepReport finish_step(World& world, StepContext& context);
 
-/// Evaluates the forces of the current state if they are not current.
-StepReport compute_forces_now(World& world);
+/// Evaluates the forces of the current state if they are not current
+/// (`domain`: the world's role in a domain run; null for a whole world).
+StepReport compute_forces_now(World& world, const DomainRole* domain = nullptr);
 
 /// Puts the driven walls and bodies where their motions have them at
 /// world.time, with their velocities (motion.hpp).
