@@ -68,6 +68,15 @@ inline constexpr Real kManifoldReferenceBias = 1e-3;
 /// support function on the sphere. Smaller is more round-off, larger more bias.
 inline constexpr Real kPolishStep = 1e-5;
 
+/// The polish's step along a kinked valley (polish_impl.hpp) samples the
+/// gradients on either side at spreads from the trust radius down to
+/// kPolishMinSpread (radians), and its line search tries lengths down to
+/// kPolishShortestStep times the spread; the trust radius never falls below
+/// kPolishMinRadius (radians), so that a polish stuck at a point can still move.
+inline constexpr Real kPolishMinSpread = 1e-12;
+inline constexpr Real kPolishShortestStep = 1e-3;
+inline constexpr Real kPolishMinRadius = 1e-12;
+
 /// Penetration witnesses of cores with flat or straight parts
 /// (polish_impl.hpp): support sets are sampled at directions tilted by this
 /// angle (radians; a curved side moves the sample by about angle x radius),
@@ -87,6 +96,11 @@ inline constexpr Real kUnitQuaternionTol = 1e-6;
 /// Restitution calibration of the damped laws: bisection stops when the
 /// damping parameter is bracketed to this (dimensionless).
 inline constexpr Real kDampingCalibrationTol = 1e-9;
+
+/// The calibration integrates the dimensionless impact (RK4) in steps of
+/// this (the undamped contact lasts about 3.1 time units: some 15,000 steps
+/// of a smooth force).
+inline constexpr Real kCalibrationTimeStep = 2e-4;
 
 /// Overlap clipping: a vertex within kOverlapRelTol * size of a clipping plane
 /// counts as on it (relative). Keeps slivers of round-off from becoming faces.
@@ -118,6 +132,29 @@ inline constexpr Real kWallMergeCos = 0.9;
 /// (stacks do), but not overlapping it by more than this times its bounding
 /// radius (relative): WorldBuilder refuses that start, naming the two.
 inline constexpr Real kStartOverlapRelTol = 1e-9;
+
+/// The energy guard (run.cpp) lets unexplained energy below the energy of
+/// lifting every moving body by this fraction of its reach pass as round-off
+/// (relative): a bed at rest gains nothing larger.
+inline constexpr Real kEnergyGuardFloorRel = 1e-9;
+
+/// A domain layout's regions are half-open: their top is raised this far
+/// (relative) above the highest centre, so that its body lies inside.
+inline constexpr Real kLayoutTopRelPad = 1e-12;
+
+/// Random rotations and polyhedra draw directions from a normal
+/// distribution; a draw shorter than this is drawn again (its direction
+/// would be round-off).
+inline constexpr Real kRandomDirectionMinNorm = 1e-6;
+
+/// A size distribution's mass fractions must add up to 1 within this
+/// (printed fractions such as 0.333 three times are refused).
+inline constexpr Real kMassFractionSumTol = 1e-6;
+
+/// Input limit: coordinates, positions and scaled meshes beyond this
+/// magnitude (m) are refused by every reader (queries, scenes): squares of
+/// such numbers, and their differences, stay finite and resolvable.
+inline constexpr Real kMaxCoordinate = 1e100;
 
 /// A run of duration T in steps of dt takes ceil(T / dt - kStepCountRelTol)
 /// steps (relative, in steps): a duration that is a whole number of steps up

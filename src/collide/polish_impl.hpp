@@ -101,7 +101,7 @@ bool valley_step(MD& md, const PolishPoint& from, Real radius, Real size, Polish
   Vec3 e1, e2;
   orthonormal_basis(from.u, e1, e2);
   const Vec3 tilt[4] = {e1, -e1, e2, -e2};
-  for (Real spread = radius; spread > 1e-12; spread *= 0.1) {
+  for (Real spread = radius; spread > kPolishMinSpread; spread *= 0.1) {
     Vec2 g[5];
     g[0] = {dot(from.gradient, e1), dot(from.gradient, e2)};
     for (int m = 0; m < 4; ++m) {
@@ -114,7 +114,7 @@ bool valley_step(MD& md, const PolishPoint& from, Real radius, Real size, Polish
     // The valley's floor can be nearly level (coaxial cylinders a hair off
     // axis: a slope of 5e-3 against walls of 35, the minimum 1.6 rad away),
     // so the search starts long whatever the spread.
-    for (Real t = std::fmax(Real(0.5), 4 * spread); t > 1e-3 * spread; t *= 0.25) {
+    for (Real t = std::fmax(Real(0.5), 4 * spread); t > kPolishShortestStep * spread; t *= 0.25) {
       if (try_direction(md, normalized(from.u - (e1 * d.x + e2 * d.y) * (t / dn)), best)) {
         length = t;
         return true;
@@ -188,7 +188,7 @@ bool polish_direction(MD& md, Vec3& u, Real& f, SupportPoint& sp, Real size, int
     }
     if (!improved) break;
     at = next;
-    radius = std::fmin(0.5, 2 * length + 1e-12);
+    radius = std::fmin(0.5, 2 * length + kPolishMinRadius);
   }
   u = at.u;
   f = at.f;

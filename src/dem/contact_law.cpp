@@ -18,7 +18,7 @@ namespace {
 template <class Force>
 Real dimensionless_restitution(Force force) {
   Real x = 0, v = 1, t = 0;
-  const Real dt = 2e-4;  // the undamped contacts last about 3.1 time units
+  const Real dt = kCalibrationTimeStep;
   auto accel = [&](Real xx, Real vv) { return -std::fmax(force(std::fmax(xx, Real(0)), vv), Real(0)); };
   do {  // RK4 until the overlap closes again
     const Real k1x = v, k1v = accel(x, v);

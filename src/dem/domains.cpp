@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "domain_records.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -81,7 +82,7 @@ DomainLayout layout_domains(const World& w, int ranks, std::span<const Real> wei
   }
   if (centres.empty()) lo = hi = {};
   // bisect's domain is half-open: nudge its top above the highest centre.
-  for (int a = 0; a < 3; ++a) hi[a] = std::nextafter(hi[a] + std::fabs(hi[a]) * 1e-12, kInf);
+  for (int a = 0; a < 3; ++a) hi[a] = std::nextafter(hi[a] + std::fabs(hi[a]) * kLayoutTopRelPad, kInf);
   Decomposition d = bisect(centres, costs, ids, ranks, lo, hi);
   for (DomainBox& box : d.boxes)  // the outer faces to infinity
     for (int a = 0; a < 3; ++a) {

@@ -55,12 +55,12 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
     // Kinetic + elastic energy can come only from the start and from falling:
     // at most `available`. Round-off and the integrator's O(dt^2) wobble stay
     // far below max_energy_gain of that, and below `floor`, the energy of
-    // lifting every body by 1e-9 of its size.
+    // lifting every body by kEnergyGuardFloorRel of its size.
     const EnergyBalance e = energy_balance(w, state.initial_energy);
     const Real moving = e.kinetic + e.elastic, available = moving + e.dissipated, excess = -e.dissipated;
     Real floor = 0;
     for (const Body& b : w.bodies)
-      if (!b.fixed) floor += 1e-9 * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
+      if (!b.fixed) floor += kEnergyGuardFloorRel * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
     if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
       return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start, "
              "gravity, driven walls and inflows supply " + number_text(available) + " J, at t = " + number_text(w.time) +
@@ -136,55 +136,6 @@ std::string detail::GuardCheck::operator()(const World& w, const RunState& state
     for (RunObserver* o : observers) o->on_warning(w, state, trouble);
   last_warning_ = kind;
   return "";
-}
-
-RunOutcome run(World& w, RunState& state, std::span<RunObserver* const> observers,
-               const std::function<bool()>& stop_requested, const RunGuards& guards) {
-  RunOutcome outcome;
-  detail::GuardCheck check;
-  auto finish = [&](RunStatus status, std::string error = {}) {
-    outcome = {status, std::move(error)};
-    for (RunObserver* o : observers) o->on_stop(w, state, outcome);
-    return outcome;
-  };
-  // False when a guard stops the run; a warning is told once until it changes kind.
-  auto guard = [&]() -> bool {
-    std::string trouble = check(w, state, guards, observers);
-    if (trouble.empty()) return true;
-    finish(RunStatus::Failed, std::move(trouble));
-    return false;
-  };
-  auto output = [&]() -> bool {
-    if (std::string trouble = check_finite(w); !trouble.empty()) {
-      finish(RunStatus::Failed, std::move(trouble));
-      return false;
-    }
-    ++state.outputs;
-    for (RunObserver* o : observers) o->on_output(w, state);
-    return guard();
-  };
-  try {
-    if (state.step == 0 && state.outputs == 0) {
-      const StepReport r = compute_forces_now(w);
-      if (r.status != StepStatus::Ok) return finish(RunStatus::Failed, describe_failure(w, r));
-      state.initial_energy = kinetic_energy(w) + potential_energy(w) + w.stats.elastic_energy;
-      if (!guard() || !output()) return outcome;
-    } else if (!guard()) {
-      return outcome;
-    }
-    while (state.step < state.steps_total) {
-      if (stop_requested && stop_requested()) return finish(RunStatus::Stopped);
-      const StepReport r = step(w, state.dt);
-      if (r.status != StepStatus::Ok) return finish(RunStatus::Failed, describe_failure(w, r));
-      ++state.step;
-      for (RunObserver* o : observers) o->on_step(w, state);
-      if (state.step % state.steps_per_output == 0 || state.step == state.steps_total)
-        if (!output()) return outcome;
-    }
-  } catch (const std::exception& e) {
-    return finish(RunStatus::Failed, e.what());
-  }
-  return finish(RunStatus::Completed);
 }
 
 }  // namespace gjkdem::dem

@@ -1,5 +1,5 @@
 #pragma once
-// The guards as both run loops apply them (run.cpp, domain_run.cpp).
+// The guards as the run loop applies them (run_loop.cpp).
 #include <span>
 #include <string>
 

@@ -19,7 +19,6 @@ using Json = nlohmann::json;
 
 // Lengths and coordinates beyond this cannot be answered in double precision
 // (squared distances overflow near 1e154): such lines are refused.
-constexpr Real kMaxCoordinate = 1e100;
 // Deeper JSON is refused before parsing (the parser recurses per level).
 constexpr int kMaxJsonDepth = 64;
 

@@ -206,9 +206,9 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
     info.stopped_by = stop();
     return !info.stopped_by.empty();
   };
-  if (domains)
-    return dem::run_domains(scene.world, state, observers, *transport, stop_and_say, scene.guards, {}, &domain_report);
-  return dem::run(scene.world, state, observers, stop_and_say, scene.guards);
+  dem::OneRank alone;
+  return dem::run_domains(scene.world, state, observers, transport ? *transport : alone, stop_and_say, scene.guards,
+                          {}, &domain_report);
 }
 
 }  // namespace gjkdem::io

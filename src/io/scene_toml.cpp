@@ -17,10 +17,10 @@
 #include <toml++/toml.h>
 
 #include "gjkdem/collide/query.hpp"
-#include "gjkdem/dem/broad_phase.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/mesh.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
+#include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/tolerances.hpp"
@@ -42,7 +42,6 @@ Real as_real(const toml::node& n) {
 // about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
 constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
 // Coordinates beyond this cannot be squared in double precision.
-constexpr Real kMaxSceneCoordinate = 1e100;
 constexpr std::int64_t kMaxVariants = 100'000;
 constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
 // Triangle-body pairs a generator's containment check may visit (about a second).
@@ -690,7 +689,7 @@ class SceneBuilder {
         classes.push_back({v[0], v[1], v[2]});
         total += v[2];
       }
-      if (!(std::fabs(total - 1) <= 1e-6))
+      if (!(std::fabs(total - 1) <= kMassFractionSumTol))
         r.fail("sizes", "the mass fractions add up to " + std::to_string(total) + ", not 1");
     }
     const bool sized = !classes.empty();
@@ -908,7 +907,7 @@ class SceneBuilder {
         v = apply(Transform::from(position, rotation), v * scale);
         lo = min(lo, v);
         hi = max(hi, v);
-        if (!(max_abs(v) <= kMaxSceneCoordinate)) r.fail("scale", "puts the mesh beyond 1e100 m (not resolvable)");
+        if (!(max_abs(v) <= kMaxCoordinate)) r.fail("scale", "puts the mesh beyond 1e100 m (not resolvable)");
       }
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),
@@ -938,7 +937,7 @@ class SceneBuilder {
       std::size_t inside = 0;
       for (const std::uint32_t b : placed) {
         const Vec3 p = builder_->position_of(b);
-        if (dem::overlaps(m.box, {p, p}) && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
+        if (overlaps(m.box, {p, p}) && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
       }
       if (inside > 0 && inside < placed.size())
         scene_.warnings.push_back(who + ": " + std::to_string(placed.size() - inside) + " of its " +
@@ -950,7 +949,7 @@ class SceneBuilder {
   struct MeshWall {
     std::string label;          // the wall's table and file
     TriangleMesh mesh;          // where the scene puts it
-    dem::Aabb box;              // its box
+    Aabb box;              // its box
     std::optional<bool> closed; // watertight, once asked
   };
 

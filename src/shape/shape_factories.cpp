@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "gjkdem/shape/polytope.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 
@@ -14,7 +15,7 @@ Quat random_rotation(std::mt19937_64& rng) {
   for (;;) {
     const Quat q{g(rng), g(rng), g(rng), g(rng)};
     const Real n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (n > 1e-6) return normalized(q);
+    if (n > kRandomDirectionMinNorm) return normalized(q);
   }
 }
 
@@ -37,7 +38,7 @@ Shape random_polyhedron(int vertices, Real diameter, std::mt19937_64& rng) {
   std::vector<Vec3> points;
   while (static_cast<int>(points.size()) < vertices) {
     const Vec3 d{g(rng), g(rng), g(rng)};
-    if (length(d) < 1e-6) continue;
+    if (length(d) < kRandomDirectionMinNorm) continue;
     const Vec3 p = normalized(d);
     points.push_back({p.x * axis_scale.x, p.y * axis_scale.y, p.z * axis_scale.z});
   }

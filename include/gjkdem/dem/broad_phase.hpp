@@ -19,17 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "gjkdem/shape/shape.hpp"
+#include "gjkdem/shape/aabb.hpp"
 
 namespace gjkdem::dem {
-
-struct Aabb {
-  Vec3 lo, hi;
-};
-
-/// The smallest axis-aligned box holding the placed shape (six support calls),
-/// grown by `pad` (m) on every side (the contact margin, or a skin for reuse).
-Aabb aabb(const Shape& shape, const Transform& pose, Real pad = 0) noexcept;
 
 using BodyPair = std::pair<std::uint32_t, std::uint32_t>;
 
@@ -42,12 +34,6 @@ struct SweepWorkspace {
   std::vector<std::uint32_t> entries;      ///< box indices, strip after strip, each strip in sweep order
   std::vector<std::vector<BodyPair>> found;  ///< per thread
 };
-
-/// True when the boxes overlap (touching counts).
-inline bool overlaps(const Aabb& a, const Aabb& b) noexcept {
-  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
-         b.lo.z <= a.hi.z;
-}
 
 /// A bounding-volume tree over boxes that never move (median splits on the
 /// longest axis, two children per node).

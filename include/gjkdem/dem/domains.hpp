@@ -35,6 +35,14 @@ class DomainTransport {
   virtual std::vector<std::string> exchange(std::vector<std::string> outgoing) = 0;
 };
 
+/// The transport of a run on one rank: a whole world (dem::run).
+class OneRank : public DomainTransport {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  std::vector<std::string> exchange(std::vector<std::string> outgoing) override { return outgoing; }
+};
+
 /// Every rank's `mine`, by rank, on every rank.
 std::vector<std::string> all_gather(DomainTransport& transport, const std::string& mine);
 
@@ -138,7 +146,9 @@ struct DomainReport {
 std::vector<Real> body_costs(const World& whole);
 
 /// dem::run (run.hpp) on domains: every rank calls it together with the same
-/// whole world (as built, or restored from a checkpoint) and run state.
+/// whole world (as built, or restored from a checkpoint) and run state. It
+/// is the one run loop: dem::run is run_domains on one rank (OneRank), which
+/// steps the whole world itself.
 /// Observers, the stop request and the guards act on rank 0, which sees
 /// the gathered whole world at each output (on_step sees rank 0's domain);
 /// the other ranks pass no observers. A failure on any rank fails the run

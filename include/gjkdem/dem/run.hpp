@@ -74,7 +74,8 @@ struct RunOutcome {
 };
 
 /// Sees a run. Observers are called in the order given; an exception thrown
-/// by one fails the run with its message.
+/// by one fails the run with its message (thrown by on_step: before the
+/// next step).
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
@@ -93,7 +94,8 @@ class RunObserver {
 /// Advances `world` until state.steps_total, calling the observers.
 /// `stop_requested` (optional) is asked before every step. On a new run
 /// (state.step == 0 and no output yet) the forces are evaluated, the initial
-/// energy recorded and the first output made before the first step.
+/// energy recorded and the first output made before the first step. The
+/// loop is run_domains's (domains.hpp) on one rank: one loop for every run.
 RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
                const std::function<bool()>& stop_requested = {}, const RunGuards& guards = {});
 

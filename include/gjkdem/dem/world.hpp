@@ -1,23 +1,33 @@
 #pragma once
 // The DEM world: what it is made of (settings, shape templates, materials and
-// their pair table, plane walls), its state (bodies, the pair store, the
-// clock), and the scratch of a step. Plain data and free functions, no global
-// state: a domain of an MPI decomposition is a World holding its own bodies.
-// Worlds are made by WorldBuilder (world_builder.hpp), which checks what it is
-// given; a World assembled by hand must keep the invariants the builder
-// documents.
+// their pair table, motions, inflows), its state (bodies, the pair store, the
+// clock, the plane walls where they are, the periodic cell, the broad
+// phase's resume cache: what a checkpoint holds), and the scratch of a step
+// (step_workspace.hpp). Plain data and free functions, no global state: a
+// domain of an MPI decomposition is a World holding its own bodies, with
+// its role passed beside it (step_context.hpp). Worlds are made by
+// WorldBuilder (world_builder.hpp), which checks what it is given; a World
+// assembled by hand must keep the invariants the builder documents.
 //
-// One step (dt), each stage in its own file:
-//   boxes        boxes.cpp         enlarged boxes, recomputed when a body may leave its own
-//   broad phase  broad_phase.cpp   moving boxes by sweep and prune, fixed ones in a static tree
-//   inflows      inflow.cpp        bodies inserted where and when inflows owe them
-//   motions      motion.cpp        driven walls and bodies placed at the step's end time
-//   narrow phase narrow_phase.cpp  contact geometry per candidate pair (GJK/EPA or the overlap region)
-//   laws         contact_force.cpp forces from geometry, material pair, motion and the pair's springs
-//   integration  integrator.cpp    kick-drift-kick: half a step of force and torque on velocities
-//                                  and angular momenta, a drift of positions and the symplectic free
-//                                  rotation (rigid_rotation.hpp), new forces, the second half kick
-// step.cpp runs them in order.
+// One step (dt), in the order step.cpp runs it, each stage in its own file:
+//   begin_step
+//     first kick    integrator.cpp    half a step of force and torque on velocities and angular momenta
+//     cell control  periodic.cpp      a deforming cell's velocity gradient (its servo), and its field's change
+//     drift         integrator.cpp    positions, and the symplectic free rotation (rigid_rotation.hpp)
+//     cell          periodic.cpp      a deforming cell's edges moved; bodies wrapped back into the cell
+//     inflows       inflow.cpp        bodies inserted where and when inflows owe them
+//     motions       motion.cpp        driven walls and bodies placed at the step's end time
+//   (a domain run exchanges bodies here: domain_exchange.cpp)
+//   finish_step: a force evaluation, then the second half kick
+//     boxes         boxes.cpp         enlarged boxes, recomputed when a body may leave its own
+//     candidates    candidates.cpp    moving boxes by sweep and prune (broad_phase.cpp), fixed ones in a
+//                                     static tree, periodic images (periodic.cpp)
+//     contact list  contact_list.cpp  the candidates and plane walls in pair-key order, compound parts
+//     pair store    pair_state.cpp    springs and warm starts aligned with the contact list
+//     narrow phase  narrow_phase.cpp  contact geometry per contact (GJK/EPA or the overlap region)
+//     laws          contact_force.cpp forces from geometry, material pair, the sides (contact_sides.cpp)
+//                                     and the pair's springs
+//     sums          force_sums.cpp    forces on bodies, springs kept, stats, wall power, the cell's stress
 //
 // Threads: boxes, the sweep's strips, narrow phase and laws run in parallel
 // (OpenMP), each contact writing only its own slot; forces are then summed in

@@ -1,7 +1,10 @@
-// dem::run on domains (domains.hpp): the same sequence as run.cpp's loop,
-// with the bodies exchanged in the middle of each step, the whole world
-// gathered on rank 0 for every output, and every decision (stop, failure,
-// a guard's verdict) agreed by all ranks before it is acted on.
+// The run loop, once for every run: a whole world is a domain run on one
+// rank. Start-up, outputs, guards, the stop request and the end exist
+// here only. On more ranks each rank steps its domain (domains.hpp): the
+// bodies are exchanged in the middle of each step, the whole world is
+// gathered on rank 0 for every output, and every decision (stop, failure, a
+// guard's verdict) is agreed by all ranks before it is acted on. On one
+// rank the world steps itself: nothing is cut, exchanged or gathered.
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -22,6 +25,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 // The first non-empty message of any rank (lowest rank first), on every rank.
 std::string agree(DomainTransport& t, const std::string& mine) {
+  if (t.size() == 1) return mine;
   for (std::string& m : all_gather(t, mine))
     if (!m.empty()) return std::move(m);
   return "";
@@ -29,14 +33,59 @@ std::string agree(DomainTransport& t, const std::string& mine) {
 
 // Runs `f` (a stage of one rank), its exception as a message.
 template <class F>
-std::string failure_of(World& domain, F f) {
+std::string failure_of(const World& stepped, F f) {
   try {
     const StepReport r = f();
-    return r.status == StepStatus::Ok ? "" : describe_failure(domain, r);
+    return r.status == StepStatus::Ok ? "" : describe_failure(stepped, r);
   } catch (const std::exception& e) {
     return e.what();
   }
 }
+
+// One rank: the world it steps (the whole world when it is the only rank,
+// else its domain) and what it measured, summed over the steps.
+class Rank {
+ public:
+  Rank(World& whole, DomainTransport& t) : t_(t), whole_(whole), split_(t.size() > 1) {
+    if (!split_) return;
+    layout_ = layout_domains(whole, t.size());
+    domain_ = make_domain(whole, layout_, t.rank(), role_);
+  }
+  bool split() const { return split_; }
+  World& stepped() { return split_ ? domain_ : whole_; }
+  DomainRole* role() { return split_ ? &role_ : nullptr; }
+  DomainLayout& layout() { return layout_; }
+
+  // Boxes, bodies that change domain, ghosts (every rank, failed or not).
+  void exchange() {
+    if (!split_) return;
+    const auto t0 = Clock::now();
+    const ExchangeCounts c = exchange_bodies(domain_, role_, layout_, t_);
+    measured.exchange_seconds += seconds_since(t0);
+    measured.owned += static_cast<double>(c.owned), measured.ghosts += static_cast<double>(c.ghosts);
+    measured.moved_out += static_cast<double>(c.moved_out), measured.bytes_sent += static_cast<double>(c.bytes_sent);
+  }
+  // The whole world on rank 0, for outputs (at most once per step).
+  void gather(std::uint64_t step) {
+    if (gathered_at_ == step) return;
+    if (split_) gather_world(domain_, role_, t_, whole_);
+    gathered_at_ = step;
+  }
+  void moved_on() { gathered_at_ = ~std::uint64_t{0}; }
+
+  DomainReport::Rank measured;
+  std::uint64_t steps = 0;
+  int rebalances = 0;
+
+ private:
+  DomainTransport& t_;
+  World& whole_;
+  bool split_;
+  DomainLayout layout_;
+  DomainRole role_;
+  World domain_;
+  std::uint64_t gathered_at_ = ~std::uint64_t{0};
+};
 
 }  // namespace
 
@@ -44,76 +93,64 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
   const bool root = t.rank() == 0;
-  DomainLayout layout = layout_domains(whole, t.size());
-  DomainRole role;
-  World domain = make_domain(whole, layout, t.rank(), role);
-  StepContext ctx{.dt = state.dt, .domain = &role};
+  Rank rank(whole, t);
+  World& stepped = rank.stepped();
+  StepContext ctx{.dt = state.dt, .domain = rank.role()};
   RunOutcome outcome;
   detail::GuardCheck check;
-  // This rank's counts, summed over the steps.
-  DomainReport::Rank mine;
-  std::uint64_t steps = 0;
-  int rebalances = 0;
-  auto exchange = [&] {
-    const auto t0 = Clock::now();
-    const ExchangeCounts c = exchange_bodies(domain, role, layout, t);
-    mine.exchange_seconds += seconds_since(t0);
-    mine.owned += static_cast<double>(c.owned), mine.ghosts += static_cast<double>(c.ghosts);
-    mine.moved_out += static_cast<double>(c.moved_out), mine.bytes_sent += static_cast<double>(c.bytes_sent);
-  };
-  // Driven walls and bodies, a deforming cell: rank 0 makes the whole
-  // world's power and work of a step again from every domain's contacts
-  // (each domain's own sums are partial), and every rank takes the whole
-  // stress a servo reads. `step`: after a step from `work_before` (else the
-  // first force evaluation).
+  DomainReport::Rank& mine = rank.measured;
+  // Driven walls and bodies, a deforming cell on domains: rank 0 makes the
+  // whole world's power and work of a step again from every domain's
+  // contacts (each domain's own sums are partial), and every rank takes the
+  // whole stress a servo reads. `step`: after a step from `work_before`
+  // (else the first force evaluation).
   const bool deforming = whole.settings.cell_control.deforms();
   const bool driven = !whole.motions.empty() || deforming;
   const bool servo = whole.settings.cell_control.servo();
   auto settle_wall_power = [&](Real work_before, bool step) {
-    if (servo) domain.cell_stress = whole_cell_stress(domain, t);
+    if (!rank.split()) return;
+    if (servo) stepped.cell_stress = whole_cell_stress(stepped, t);
     if (!driven) return;
-    const Real power = whole_wall_power(domain, t);
+    const Real power = whole_wall_power(stepped, t);
     if (!root) return;
-    domain.stats.wall_power = power;
-    if (step) domain.wall_work = work_before + 0.5 * state.dt * (ctx.power_before + power);
+    stepped.stats.wall_power = power;
+    if (step) stepped.wall_work = work_before + 0.5 * state.dt * (ctx.power_before + power);
   };
-  // The work of a deforming cell's field on the bodies in begin_step (its
-  // change, the wraps), summed again on rank 0.
-  auto settle_field_work = [&] {
-    if (deforming) add_field_work(domain, role, t);
-  };
-  std::uint64_t gathered_at = ~std::uint64_t{0};  // the step the whole world was last gathered at
   auto finish = [&](RunStatus status, std::string error = {}) {
-    if (gathered_at != state.step) gather_world(domain, role, t, whole);
+    rank.gather(state.step);
     outcome = {status, std::move(error)};
     if (root)
       for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
+    // Every rank takes part (the others pass no report).
     const std::string bytes(reinterpret_cast<const char*>(&mine), sizeof mine);
-    const std::vector<std::string> all = all_gather(t, bytes);
+    const std::vector<std::string> all = t.size() == 1 ? std::vector{bytes} : all_gather(t, bytes);
     if (report && root) {
       report->ranks.assign(all.size(), {});
-      const double n = static_cast<double>(std::max<std::uint64_t>(steps, 1));
+      const double n = static_cast<double>(std::max<std::uint64_t>(rank.steps, 1));
       for (std::size_t r = 0; r < all.size(); ++r) {
         if (all[r].size() != sizeof mine) continue;
         std::memcpy(&report->ranks[r], all[r].data(), sizeof mine);
         DomainReport::Rank& k = report->ranks[r];
         k.owned /= n, k.ghosts /= n, k.moved_out /= n, k.bytes_sent /= n, k.step_seconds /= n, k.exchange_seconds /= n, k.loop_seconds /= n;
       }
-      report->steps = steps;
-      report->rebalances = rebalances;
-      report->layout = layout;
+      report->steps = rank.steps;
+      report->rebalances = rank.rebalances;
+      report->layout = rank.layout();
     }
     return outcome;
   };
-  // At an output: when the slowest domain's stages took more than the mean
-  // by options.imbalance since the last output (a hopper empties into one
-  // corner), rank 0 draws the regions again, each body weighted by its cost
-  // (1 + its pairs) at the speed its domain measured; every rank takes them.
+  // At an output on domains: when the slowest domain's stages took more
+  // than the mean by options.imbalance since the last output (a hopper
+  // empties into one corner), rank 0 draws the regions again, each body
+  // weighted by its cost (1 + its pairs) at the speed its domain measured;
+  // every rank takes them.
   double seconds_at_output = 0;
   auto rebalance = [&] {
+    if (!rank.split()) return;
     const double took = mine.step_seconds - seconds_at_output;
     seconds_at_output = mine.step_seconds;
     const std::vector<std::string> times = all_gather(t, std::string(reinterpret_cast<const char*>(&took), sizeof took));
+    DomainLayout& layout = rank.layout();
     std::string regions;
     if (root) {
       const std::size_t ranks = times.size();
@@ -143,13 +180,12 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     const std::string said = all_gather(t, regions)[0];
     if (said.size() != layout.regions.size() * sizeof(DomainBox)) return;
     std::memcpy(layout.regions.data(), said.data(), said.size());
-    ++rebalances;
+    ++rank.rebalances;
   };
-  // Rank 0's verdict on the gathered world (`start`: the initial energy is
+  // Rank 0's verdict on the whole world (`start`: the initial energy is
   // recorded first), agreed by all: "" to go on.
   auto output = [&](bool start) {
-    gather_world(domain, role, t, whole);
-    gathered_at = state.step;
+    rank.gather(state.step);
     std::string verdict;
     if (root) {
       try {
@@ -172,14 +208,19 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     return verdict;
   };
 
-  exchange_bodies(domain, role, layout, t);  // the first ghosts
+  rank.exchange();  // the first ghosts
   if (state.step == 0 && state.outputs == 0) {
-    std::string failed = agree(t, failure_of(domain, [&] { return compute_forces_now(domain, &role); }));
+    std::string failed = agree(t, failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); }));
     settle_wall_power(Real(0), false);
     if (failed.empty()) failed = output(true);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
   } else {
-    std::string verdict = root ? check(whole, state, guards, observers) : "";
+    std::string verdict;
+    if (root) try {
+        verdict = check(whole, state, guards, observers);
+      } catch (const std::exception& e) {
+        verdict = e.what();
+      }
     verdict = agree(t, verdict);
     if (!verdict.empty()) return finish(RunStatus::Failed, std::move(verdict));
   }
@@ -188,7 +229,11 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   std::string observer_failure;
   auto stop_or_fail = [&](bool ask) -> std::optional<RunOutcome> {
     std::string here = observer_failure;
-    if (root && here.empty() && ask && stop_requested && stop_requested()) here = kStop;
+    if (root && here.empty() && ask && stop_requested) try {
+        if (stop_requested()) here = kStop;
+      } catch (const std::exception& e) {
+        here = e.what();
+      }
     std::string said = agree(t, here);
     if (said.empty()) return std::nullopt;
     if (said == kStop) return finish(RunStatus::Stopped);
@@ -197,28 +242,36 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   while (state.step < state.steps_total) {
     const auto start = Clock::now();
     if (const auto done = stop_or_fail(true)) return *done;
-    gathered_at = ~std::uint64_t{0};  // the domains move on
+    rank.moved_on();
     auto t0 = Clock::now();
-    std::string failed = failure_of(domain, [&] { return begin_step(domain, ctx); });
-    settle_field_work();
-    const std::uint64_t first_new = insert_inflow_bodies(domain, ctx, layout, t);
+    std::string failed = failure_of(stepped, [&] { return begin_step(stepped, ctx); });
+    std::uint64_t first_new = ~std::uint64_t{0};
+    if (rank.split()) {
+      // The work of a deforming cell's field on the bodies in begin_step
+      // (its change, the wraps), summed again on rank 0; the inflows'
+      // bodies, placed as a whole world places them.
+      if (deforming) add_field_work(stepped, *ctx.domain, t);
+      first_new = insert_inflow_bodies(stepped, ctx, rank.layout(), t);
+    }
     mine.step_seconds += seconds_since(t0);
-    exchange();  // every rank takes part, failed or not
-    // Every body took its first half kick where it was owned, but those
-    // inserted now, which start with their velocity.
-    ctx.kicked_bodies =
-        first_new != ~std::uint64_t{0} ? detail::index_of_id(domain.bodies, first_new) : domain.bodies.size();
+    if (rank.split()) {
+      rank.exchange();  // every rank takes part, failed or not
+      // Every body took its first half kick where it was owned, but those
+      // inserted now, which start with their velocity.
+      ctx.kicked_bodies =
+          first_new != ~std::uint64_t{0} ? detail::index_of_id(stepped.bodies, first_new) : stepped.bodies.size();
+    }
     t0 = Clock::now();
-    const Real work_before = domain.wall_work;
-    if (failed.empty()) failed = failure_of(domain, [&] { return finish_step(domain, ctx); });
+    const Real work_before = stepped.wall_work;
+    if (failed.empty()) failed = failure_of(stepped, [&] { return finish_step(stepped, ctx); });
     mine.step_seconds += seconds_since(t0);
     settle_wall_power(work_before, true);
-    ++steps;
+    ++rank.steps;
     failed = agree(t, failed);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
     ++state.step;
     if (root) try {
-        for (RunObserver* o : observers) o->on_step(domain, state);
+        for (RunObserver* o : observers) o->on_step(stepped, state);
       } catch (const std::exception& e) {
         observer_failure = e.what();
       }
@@ -228,6 +281,12 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   }
   if (const auto done = stop_or_fail(false)) return *done;
   return finish(RunStatus::Completed);
+}
+
+RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
+               const std::function<bool()>& stop_requested, const RunGuards& guards) {
+  OneRank alone;
+  return run_domains(world, state, observers, alone, stop_requested, guards);
 }
 
 }  // namespace gjkdem::dem
