@@ -44,9 +44,9 @@ Json to_json(const py::handle& v, const std::string& what) {
   fail(what, std::string("cannot be a ") + py::str(v.get_type().attr("__name__")).cast<std::string>());
 }
 
-PyShape make_shape(const Json& fields) {
+PyShape make_shape(const Json& fields, io::ShapeFrame frame = io::ShapeFrame::World) {
   try {
-    const io::PlacedInput placed = io::parse_shape(fields.dump());
+    const io::PlacedInput placed = io::parse_shape(fields.dump(), frame);
     return {placed.shape, placed.pose, fields.value("type", ""), {}};
   } catch (const io::QueryFormatError& e) {
     throw py::value_error(e.what());
@@ -74,9 +74,7 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
       .def(py::init([](const std::string& type, const py::kwargs& fields) {
              Json j = to_json(fields, "shape");
              j["type"] = type;
-             const bool placed = type == "polytope" || type == "triangle" || type == "capsule";
-             if (!placed && !j.contains("center")) j["center"] = {0.0, 0.0, 0.0};
-             return make_shape(j);
+             return make_shape(j, io::ShapeFrame::Own);
            }),
            py::arg("type"))
       .def_static(

@@ -45,20 +45,25 @@ std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
 using dem::Body;
 using dem::World;
 
-const char* model_name(dem::ContactModel m) {
-  switch (m) {
-    case dem::ContactModel::Hertz: return "hertz";
-    case dem::ContactModel::Linear: return "linear";
-    case dem::ContactModel::Volume: return "volume";
-  }
-  return "?";
+dem::ContactModel model_from(const std::string& name) {
+  if (const auto m = dem::contact_model_named(name)) return *m;
+  fail("model", std::string("must be ") + dem::kContactModelNames + ", not \"" + name + "\"");
 }
 
-dem::ContactModel model_from(const std::string& name) {
-  if (name == "hertz") return dem::ContactModel::Hertz;
-  if (name == "linear") return dem::ContactModel::Linear;
-  if (name == "volume") return dem::ContactModel::Volume;
-  fail("model", "must be \"volume\", \"hertz\" or \"linear\", not \"" + name + "\"");
+// A setter of one of the settings that applies the builder's rules at once
+// (dem::check_settings): what a scene refuses, Python refuses.
+template <class T>
+auto checked(T dem::WorldSettings::*field) {
+  return [field](dem::WorldSettings& s, T value) {
+    dem::WorldSettings next = s;
+    next.*field = value;
+    dem::check_settings(next);
+    s = next;
+  };
+}
+template <class T>
+auto getter(T dem::WorldSettings::*field) {
+  return [field](const dem::WorldSettings& s) { return s.*field; };
 }
 
 // A view of one field of every body: rows of `cols` values of T, `offset`
@@ -152,27 +157,30 @@ void bind_world(py::module_& m) {
   py::class_<dem::WorldSettings>(m, "Settings", "The settings of a world (docs/scenes.md, [contact] and [simulation]).")
       .def(py::init<>())
       .def_property(
-          "model", [](const dem::WorldSettings& s) { return model_name(s.model); },
+          "model", [](const dem::WorldSettings& s) { return dem::name_of(s.model); },
           [](dem::WorldSettings& s, const std::string& v) { s.model = model_from(v); },
           "\"volume\" (default), \"hertz\" or \"linear\"")
       .def_property(
           "gravity", [](const dem::WorldSettings& s) { return from_vec3(s.gravity); },
           [](dem::WorldSettings& s, const py::object& v) { s.gravity = to_vec3(v, "gravity"); }, "m/s^2")
-      .def_readwrite("linear_stiffness", &dem::WorldSettings::linear_stiffness, "N/m; 0: from the materials")
-      .def_readwrite("volume_stiffness", &dem::WorldSettings::volume_stiffness, "N/m^3; 0: from the materials")
+      .def_property("linear_stiffness", getter(&dem::WorldSettings::linear_stiffness),
+                    checked(&dem::WorldSettings::linear_stiffness), "N/m; 0: from the materials")
+      .def_property("volume_stiffness", getter(&dem::WorldSettings::volume_stiffness),
+                    checked(&dem::WorldSettings::volume_stiffness), "N/m^3; 0: from the materials")
       .def_property(
           "volume_form",
-          [](const dem::WorldSettings& s) {
-            return s.volume_form == dem::VolumeForm::Potential ? "potential" : "normalized";
-          },
+          [](const dem::WorldSettings& s) { return dem::name_of(s.volume_form); },
           [](dem::WorldSettings& s, const std::string& v) {
-            if (v != "normalized" && v != "potential") fail("volume_form", "must be \"normalized\" or \"potential\"");
-            s.volume_form = v == "potential" ? dem::VolumeForm::Potential : dem::VolumeForm::Normalized;
+            const auto form = dem::volume_form_named(v);
+            if (!form) fail("volume_form", std::string("must be ") + dem::kVolumeFormNames + ", not \"" + v + "\"");
+            s.volume_form = *form;
           })
       .def_readwrite("rocking_resistance", &dem::WorldSettings::rocking_resistance)
-      .def_readwrite("tessellation", &dem::WorldSettings::tessellation)
-      .def_readwrite("box_skin", &dem::WorldSettings::box_skin)
-      .def_readwrite("threads", &dem::WorldSettings::threads, "OpenMP threads of a step (0: every core)")
+      .def_property("tessellation", getter(&dem::WorldSettings::tessellation),
+                    checked(&dem::WorldSettings::tessellation), "support directions of curved shapes (8 to 100000)")
+      .def_property("box_skin", getter(&dem::WorldSettings::box_skin), checked(&dem::WorldSettings::box_skin))
+      .def_property("threads", getter(&dem::WorldSettings::threads), checked(&dem::WorldSettings::threads),
+                    "OpenMP threads of a step (0: every core; up to 4096)")
       .def_property(
           "periodic",
           [](const dem::WorldSettings& s) {
@@ -188,8 +196,7 @@ void bind_world(py::module_& m) {
               const std::string name = key.cast<std::string>();
               const int a = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
               if (a < 0) fail("periodic", "keys are \"x\", \"y\" and \"z\", not \"" + name + "\"");
-              const auto range = value.cast<std::array<double, 2>>();
-              if (!(range[1] > range[0])) fail("periodic", name + " must be (min, max) with max > min");
+              const auto range = value.cast<std::array<double, 2>>();  // its rules: WorldBuilder's
               cell.axes[a] = true, cell.lo[a] = range[0], cell.hi[a] = range[1];
             }
             s.periodic = cell;
@@ -251,9 +258,11 @@ void bind_world(py::module_& m) {
             return b.add_material({name, density, youngs_modulus, poisson_ratio, restitution, friction,
                                    rolling_friction, rolling_damping});
           },
-          py::arg("name"), py::arg("density"), py::arg("youngs_modulus"), py::arg("poisson_ratio") = 0.25,
-          py::arg("restitution") = 0.5, py::arg("friction") = 0.5, py::arg("rolling_friction") = 0.0,
-          py::arg("rolling_damping") = 0.3, "Returns the material's index.")
+          py::arg("name"), py::arg("density"), py::arg("youngs_modulus"),
+          py::arg("poisson_ratio") = dem::Material{}.poisson_ratio, py::arg("restitution") = dem::Material{}.restitution,
+          py::arg("friction") = dem::Material{}.friction, py::arg("rolling_friction") = dem::Material{}.rolling_friction,
+          py::arg("rolling_damping") = dem::Material{}.rolling_damping,
+          "Returns the material's index (the defaults are a scene's: dem::Material).")
       .def(
           "add_body",
           [](dem::WorldBuilder& b, const PyShape& shape, const py::object& material, const py::object& position,

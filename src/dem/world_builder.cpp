@@ -28,9 +28,91 @@ bool solid_polytope(const Shape& s) {
 
 }  // namespace
 
+namespace {
+
+// A field's rule: throws BuildError(subject, key, rule) unless `ok`.
+void need(bool ok, const std::string& subject, const std::string& key, const char* rule) {
+  if (!ok) throw BuildError(subject, key, rule);
+}
+
+}  // namespace
+
+void check_material(const Material& m) {
+  const std::string who = "material '" + m.name + "'";
+  for (const auto& [key, v] : {std::pair{"density", m.density}, {"youngs_modulus", m.youngs_modulus},
+                               {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution},
+                               {"friction", m.friction}, {"rolling_friction", m.rolling_friction},
+                               {"rolling_damping", m.rolling_damping}})
+    need(std::isfinite(v), who, key, "must be finite");
+  need(m.density > 0, who, "density", "must be > 0");
+  need(m.youngs_modulus > 0, who, "youngs_modulus", "must be > 0");
+  need(m.poisson_ratio > -1 && m.poisson_ratio < 0.5, who, "poisson_ratio", "must lie in (-1, 0.5)");
+  need(m.restitution > 0 && m.restitution <= 1, who, "restitution", "must lie in (0, 1]");
+  need(m.friction >= 0, who, "friction", "must be >= 0");
+  need(m.rolling_friction >= 0, who, "rolling_friction", "must be >= 0");
+  need(m.rolling_damping >= 0 && m.rolling_damping <= 1, who, "rolling_damping", "must lie in [0, 1]");
+}
+
+void check_contact_settings(const WorldSettings& s) {
+  const std::string who = "settings";
+  need(std::isfinite(s.linear_stiffness) && s.linear_stiffness >= 0, who, "linear_stiffness",
+       "must be finite and >= 0 (N/m; 0: from the materials)");
+  need(std::isfinite(s.volume_stiffness) && s.volume_stiffness >= 0, who, "volume_stiffness",
+       "must be finite and >= 0 (N/m^3; 0: from the materials)");
+  need(s.tessellation >= kMinTessellation && s.tessellation <= kMaxTessellation, who, "tessellation",
+       "must be between 8 and 100000 directions");
+  need(std::isfinite(s.box_skin) && s.box_skin >= 0, who, "box_skin", "must be finite and >= 0");
+}
+
+void check_cell(const PeriodicCell& cell, const CellControl& control) {
+  const std::string who = "periodic cell";
+  const char* names[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a)
+    if (cell.axes[a])
+      need(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a], who, names[a],
+           "must be [min, max] with max > min (finite)");
+  need(cell.tilt == Vec3{}, who, "tilt", "must be zero: a periodic cell starts unsheared");
+  for (int k = 0; k < 6; ++k) {
+    if (control.mode[k] == CellMode::Fixed) continue;
+    const std::string key =
+        std::string(control.mode[k] == CellMode::Stress ? "stress." : "strain_rate.") + kCellComponents[k];
+    // A component deforms the cell along its first axis with the position on its second.
+    const int along = k < 3 ? k : k == kYZ ? 1 : 0, across = k < 3 ? k : k == kXY ? 1 : 2;
+    if (!cell.axes[along] || !cell.axes[across])
+      throw BuildError(who, key, std::string("the cell is not periodic on ") + names[cell.axes[along] ? across : along]);
+    need(std::isfinite(control.value[k]), who, key, "must be finite");
+    if (control.mode[k] == CellMode::Stress && k < 3)
+      need(control.value[k] > 0, who, key, "must be > 0 (Pa, compression positive)");
+  }
+  if (!control.servo()) {
+    need(control.max_strain_rate == 0, who, "max_strain_rate",
+         "bounds the servo of a cell driven to a stress: give stress too");
+    return;
+  }
+  need(cell.axes[0] && cell.axes[1] && cell.axes[2], who, "stress",
+       "needs a cell periodic on x, y and z (the stress is the contacts' over the cell's volume)");
+  need(control.max_strain_rate != 0, who, "stress", "needs max_strain_rate too (1/s): the servo's largest strain rate");
+  need(control.max_strain_rate > 0 && std::isfinite(control.max_strain_rate), who, "max_strain_rate",
+       "must be finite and > 0 (1/s)");
+  bool normal = false;
+  for (int a = 0; a < 3; ++a) normal = normal || control.mode[a] == CellMode::Stress;
+  need(normal, who, "stress", "needs a normal stress (x, y or z) besides shear ones: its size scales the servo");
+}
+
+void check_settings(const WorldSettings& s) {
+  const std::string who = "settings";
+  need(is_finite(s.gravity), who, "gravity", "must be finite");
+  need(s.threads >= 0 && s.threads <= kMaxThreads, who, "threads", "must be 0 (all cores) or a thread count up to 4096");
+  check_contact_settings(s);
+  try {
+    check_cell(s.periodic, s.cell_control);
+  } catch (const BuildError& e) {  // named as the scene nests it: [simulation.periodic]
+    throw BuildError(who, "periodic." + e.key, e.rule);
+  }
+}
+
 WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) {
-  if (!(settings.tessellation >= 8)) throw BuildError("settings: tessellation must be at least 8 directions");
-  if (!(settings.box_skin >= 0)) throw BuildError("settings: box_skin must be >= 0");
+  check_settings(settings);
   world_.settings = settings;
 }
 
@@ -46,16 +128,8 @@ WorldBuilder::WorldBuilder(World world) : settings_(world.settings), world_(std:
 }
 
 std::uint32_t WorldBuilder::add_material(const Material& m) {
-  const std::string what = "material '" + m.name + "': ";
-  if (find_material(m.name)) throw BuildError(what + "defined twice");
-  if (!(m.density > 0)) throw BuildError(what + "density must be > 0");
-  if (!(m.youngs_modulus > 0)) throw BuildError(what + "youngs_modulus must be > 0");
-  if (!(m.poisson_ratio > -1 && m.poisson_ratio < 0.5)) throw BuildError(what + "poisson_ratio must lie in (-1, 0.5)");
-  if (!(m.restitution > 0 && m.restitution <= 1)) throw BuildError(what + "restitution must lie in (0, 1]");
-  if (!(m.friction >= 0)) throw BuildError(what + "friction must be >= 0");
-  if (!(m.rolling_friction >= 0 && std::isfinite(m.rolling_friction)))
-    throw BuildError(what + "rolling_friction must be finite and >= 0");
-  if (!(m.rolling_damping >= 0 && m.rolling_damping <= 1)) throw BuildError(what + "rolling_damping must lie in [0, 1]");
+  if (find_material(m.name)) throw BuildError("material '" + m.name + "'", "name", "is defined twice");
+  dem::check_material(m);
   world_.materials.push_back(m);
   return static_cast<std::uint32_t>(world_.materials.size() - 1);
 }
@@ -524,44 +598,16 @@ void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std:
 }
 
 // A periodic cell must hold every body with room to spare: a pair may meet
-// through one image only. Moving bodies start inside it. A deforming cell
-// deforms on periodic axes; a servo needs the cell's volume, so all three.
+// through one image only. Moving bodies start inside it. (What the cell and
+// its control must be alone: check_cell, in the constructor.)
 void WorldBuilder::check_periodic_cell() {
   const PeriodicCell& cell = settings_.periodic;
   const CellControl& control = settings_.cell_control;
   const char* names[3] = {"x", "y", "z"};
-  for (int k = 0; k < 6; ++k) {
-    if (control.mode[k] == CellMode::Fixed) continue;
-    // A component deforms the cell along its first axis with the position on its second.
-    const int along = k < 3 ? k : k == kYZ ? 1 : 0, across = k < 3 ? k : k == kXY ? 1 : 2;
-    if (!cell.axes[along] || !cell.axes[across])
-      throw BuildError(std::string("the periodic cell's control names ") + kCellComponents[k] +
-                       ", but the cell is not periodic on " + names[cell.axes[along] ? across : along]);
-    if (!std::isfinite(control.value[k]))
-      throw BuildError(std::string("the periodic cell's control on ") + kCellComponents[k] + " must be finite");
-    if (control.mode[k] == CellMode::Stress && k < 3 && !(control.value[k] > 0))
-      throw BuildError(std::string("the periodic cell's target stress on ") + kCellComponents[k] +
-                       " must be > 0 (Pa, compression positive)");
-  }
-  if (cell.tilt != Vec3{}) throw BuildError("a periodic cell starts unsheared (tilts zero)");
-  if (control.servo()) {
-    if (!(cell.axes[0] && cell.axes[1] && cell.axes[2]))
-      throw BuildError("a periodic cell driven to a stress must be periodic on x, y and z (the stress is the "
-                       "contacts' over the cell's volume)");
-    if (!(control.max_strain_rate > 0) || !std::isfinite(control.max_strain_rate))
-      throw BuildError("a periodic cell driven to a stress needs max_strain_rate > 0 (1/s)");
-    bool normal = false;
-    for (int a = 0; a < 3; ++a) normal = normal || control.mode[a] == CellMode::Stress;
-    if (!normal)
-      throw BuildError("a periodic cell driven to a shear stress needs a normal stress target too (its size "
-                       "scales the servo)");
-  }
   if (!continued_) world_.cell = cell, world_.cell_rate = {}, world_.cell_stress = {};
   if (!cell.active()) return;
   for (int a = 0; a < 3; ++a) {
     if (!cell.axes[a]) continue;
-    if (!(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a]))
-      throw BuildError(std::string("the periodic cell's ") + names[a] + " range must be finite with max > min");
     const Real need = shortest_period(world_), length = cell_width(world_.cell, a);
     if (!(length > need))
       throw BuildError(std::string("the periodic cell is ") + number_text(length) + " m wide across " +

@@ -1,4 +1,4 @@
-// The only translation unit that includes nlohmann/json (a heavy header).
+// The query format (JSON Lines) read and written with nlohmann/json.
 #include "gjkdem/io/query_jsonl.hpp"
 
 #include <algorithm>
@@ -217,10 +217,16 @@ bool is_skipped_line(std::string_view line) {
   return first == std::string_view::npos || line[first] == '#';
 }
 
-PlacedInput parse_shape(std::string_view json_text) {
+PlacedInput parse_shape(std::string_view json_text, ShapeFrame frame) {
   check_depth(json_text);
   Json j = Json::parse(json_text, nullptr, false);
   if (j.is_discarded()) fail("shape is not valid JSON");
+  if (frame == ShapeFrame::Own && j.is_object() && !j.contains("center")) {
+    const Json* type = j.contains("type") ? &j["type"] : nullptr;
+    const bool by_points = type && type->is_string() &&
+                           (*type == "polytope" || *type == "triangle" || *type == "capsule");
+    if (!by_points) j["center"] = Json::array({0.0, 0.0, 0.0});
+  }
   return shape_from_json(j, "shape");
 }
 

@@ -4,6 +4,7 @@
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/io/run_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <fstream>
@@ -24,158 +25,37 @@
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/tolerances.hpp"
+#include "container_check.hpp"
+#include "size_mix.hpp"
+#include "toml_reader.hpp"
 
 namespace gjkdem::io {
 namespace {
 
 using Json = nlohmann::ordered_json;
+using detail::as_real;
+using detail::line_of;
+using detail::TableReader;
+using detail::ContainerWall;
+using detail::bodies_outside_containers;
+using detail::MixPart;
+using detail::PolyhedronSpec;
+using detail::SampledMix;
+using detail::SizeClass;
+using detail::sample_mix;
 
-
-// A TOML number as a double: integers of any size convert (rounded to the
-// nearest double), so 9007199254740993 is read, not refused obscurely.
-Real as_real(const toml::node& n) {
-  if (const auto i = n.value_exact<std::int64_t>()) return static_cast<Real>(*i);
-  return n.value_exact<double>().value_or(std::numeric_limits<Real>::quiet_NaN());
-}
 
 // Limits of generators, checked before anything is drawn: each body costs
 // about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
 constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
-// Coordinates beyond this cannot be squared in double precision.
 constexpr std::int64_t kMaxVariants = 100'000;
 constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
-// Triangle-body pairs a generator's containment check may visit (about a second).
-constexpr double kMaxContainmentWork = 2e7;
 
-std::string line_of(const toml::node& n) {
-  const auto line = n.source().begin.line;
-  return line > 0 ? " (line " + std::to_string(line) + ")" : "";
+// An integer of the scene as an int for a builder's rule: beyond int's range
+// it becomes the nearest end, which every such rule refuses.
+int clamped_int(std::int64_t v) {
+  return static_cast<int>(std::clamp<std::int64_t>(v, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
 }
-
-// Reads one table: typed getters, then finish() refuses the keys nobody asked for.
-class TableReader {
- public:
-  TableReader(const toml::table& t, std::string where) : table_(t), where_(std::move(where)) {}
-
-  const std::string& where() const { return where_; }
-  const toml::node* find(const std::string& key) {
-    used_.insert(key);
-    return table_.get(key);
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    const toml::node* n = table_.get(key);
-    throw SceneError(where_ + "." + key + ": " + what + (n ? line_of(*n) : line_of(table_)));
-  }
-  bool has(const std::string& key) const { return table_.contains(key); }
-
-  std::optional<Real> number(const std::string& key) {
-    const toml::node* n = find(key);
-    if (!n) return std::nullopt;
-    if (!n->is_number()) fail(key, "must be a number");
-    const Real v = as_real(*n);
-    if (!std::isfinite(v)) fail(key, "must be finite");
-    return v;
-  }
-  Real required_number(const std::string& key) {
-    const auto v = number(key);
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
-    return *v;
-  }
-  Real positive(const std::string& key, std::optional<Real> fallback = std::nullopt) {
-    const auto v = number(key);
-    if (!v && fallback) return *fallback;
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
-    if (!(*v > 0)) fail(key, "must be > 0");
-    return *v;
-  }
-  std::optional<std::int64_t> integer(const std::string& key) {
-    const toml::node* n = find(key);
-    if (!n) return std::nullopt;
-    if (!n->is_integer()) fail(key, "must be an integer");
-    return n->value<std::int64_t>().value();
-  }
-  std::optional<std::string> string(const std::string& key) {
-    const toml::node* n = find(key);
-    if (!n) return std::nullopt;
-    if (!n->is_string()) fail(key, "must be a string");
-    return n->value<std::string>().value();
-  }
-  std::string required_string(const std::string& key) {
-    const auto v = string(key);
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
-    return *v;
-  }
-  bool boolean(const std::string& key, bool fallback) {
-    const toml::node* n = find(key);
-    if (!n) return fallback;
-    if (!n->is_boolean()) fail(key, "must be true or false");
-    return n->value<bool>().value();
-  }
-  std::vector<Real> numbers(const std::string& key, std::size_t count) {
-    const toml::node* n = find(key);
-    const toml::array* a = n ? n->as_array() : nullptr;
-    if (n && !a) fail(key, "must be an array of " + std::to_string(count) + " numbers");
-    if (!a) return {};
-    if (a->size() != count) fail(key, "must have " + std::to_string(count) + " numbers");
-    std::vector<Real> out;
-    for (const toml::node& e : *a) {
-      if (!e.is_number()) fail(key, "must hold numbers only");
-      out.push_back(as_real(e));
-      if (!std::isfinite(out.back())) fail(key, "must be finite");
-    }
-    return out;
-  }
-  // An array of rows of `width` finite numbers, e.g. [time, x, y, z] (empty
-  // when absent); `row` says what a row holds, for messages.
-  std::vector<std::vector<Real>> rows(const std::string& key, std::size_t width, const std::string& row) {
-    const toml::node* n = find(key);
-    if (!n) return {};
-    const toml::array* rows = n->as_array();
-    if (!rows || rows->empty()) fail(key, "must be an array of rows " + row);
-    std::vector<std::vector<Real>> out;
-    for (const toml::node& r : *rows) {
-      const toml::array* a = r.as_array();
-      if (!a || a->size() != width) fail(key, "must be an array of rows " + row);
-      out.emplace_back();
-      for (const toml::node& e : *a) {
-        if (!e.is_number()) fail(key, "rows must hold numbers only");
-        out.back().push_back(as_real(e));
-        if (!std::isfinite(out.back().back())) fail(key, "must be finite");
-      }
-    }
-    return out;
-  }
-  std::optional<Vec3> vec3(const std::string& key) {
-    const auto v = numbers(key, 3);
-    if (v.empty()) return std::nullopt;
-    return Vec3{v[0], v[1], v[2]};
-  }
-  std::optional<Quat> rotation(const std::string& key) {
-    const auto v = numbers(key, 4);
-    if (v.empty()) return std::nullopt;
-    const Quat q{v[0], v[1], v[2], v[3]};
-    const Real norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (std::fabs(norm - 1) > kUnitQuaternionTol) fail(key, "must be a unit quaternion [w, x, y, z]");
-    return normalized(q);
-  }
-  const toml::table& table_node() const { return table_; }
-  const toml::table* table(const std::string& key) {
-    const toml::node* n = find(key);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table, e.g. { type = \"box\", ... }");
-    return n->as_table();
-  }
-  void finish() const {
-    for (const auto& [k, v] : table_)
-      if (!used_.count(std::string(k.str())))
-        throw SceneError(where_ + ": unknown key '" + std::string(k.str()) + "'" + line_of(v));
-  }
-
- private:
-  const toml::table& table_;
-  std::string where_;
-  std::set<std::string> used_;
-};
 
 Json to_json(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
 Json to_json(const Quat& q) { return Json::array({q.w, q.x, q.y, q.z}); }
@@ -242,6 +122,17 @@ class SceneBuilder {
       throw SceneError(std::string(e.what()) + line_of(where));
     }
   }
+  // The same for a builder's rule of a field this table holds (BuildError's
+  // key): named at the field's line, as the table's own checks name it.
+  template <class F>
+  auto building(TableReader& r, F&& call) {
+    try {
+      return call();
+    } catch (const dem::BuildError& e) {
+      if (!e.key.empty()) r.fail(e.key, e.rule);
+      throw SceneError(std::string(e.what()) + line_of(r.table_node()));
+    }
+  }
 
   const toml::table* sub_table(TableReader& top, const std::string& key) {
     const toml::node* n = top.find(key);
@@ -264,9 +155,8 @@ class SceneBuilder {
       }
     }
     settings_.gravity = r.vec3("gravity").value_or(Vec3{0, 0, -9.81});
-    const std::int64_t threads = r.integer("threads").value_or(0);
-    if (threads < 0 || threads > 4096) r.fail("threads", "must be 0 (all cores) or a thread count");
-    settings_.threads = static_cast<int>(threads);
+    const std::int64_t threads = r.integer("threads").value_or(0);  // a scene's default: every core
+    settings_.threads = clamped_int(threads);
     const std::string overlaps = r.string("initial_overlaps").value_or("refuse");
     if (overlaps != "refuse" && overlaps != "accept")
       r.fail("initial_overlaps", "must be \"refuse\" or \"accept\", not \"" + overlaps + "\"");
@@ -286,7 +176,6 @@ class SceneBuilder {
       for (int a = 0; a < 3; ++a) {
         const std::vector<Real> range = p.numbers(names[a], 2);
         if (range.empty()) continue;
-        if (!(range[1] > range[0])) p.fail(names[a], "must be [min, max] with max > min");
         settings_.periodic.axes[a] = true;
         settings_.periodic.lo[a] = range[0];
         settings_.periodic.hi[a] = range[1];
@@ -304,11 +193,8 @@ class SceneBuilder {
           const char* name = dem::kCellComponents[k];
           const std::optional<Real> v = q.number(name);
           if (!v) continue;
-          for (const char axis : std::string_view(name))
-            if (!settings_.periodic.axes[axis - 'x']) q.fail(name, std::string("the cell is not periodic on ") + axis);
           if (control.mode[k] != dem::CellMode::Fixed)
             q.fail(name, "a component takes either a strain rate or a stress, not both");
-          if (mode == dem::CellMode::Stress && k < 3 && !(*v > 0)) q.fail(name, "must be > 0 (Pa, compression positive)");
           control.mode[k] = mode;
           control.value[k] = *v;
           given[name] = *v;
@@ -320,23 +206,13 @@ class SceneBuilder {
       components("strain_rate", dem::CellMode::StrainRate, "{ z = -0.1 } or { xz = 1.0 }");
       components("stress", dem::CellMode::Stress, "{ x = 1.0e4, y = 1.0e4, z = 1.0e4 }");
       if (const std::optional<Real> rate = p.number("max_strain_rate")) {
-        if (!control.servo()) p.fail("max_strain_rate", "bounds the servo of a cell driven to a stress: give stress too");
-        if (!(*rate > 0)) p.fail("max_strain_rate", "must be > 0 (1/s)");
         control.max_strain_rate = *rate;
         periodic["max_strain_rate"] = *rate;
-      } else if (control.servo()) {
-        p.fail("stress", "needs max_strain_rate too (1/s): the servo's largest strain rate");
-      }
-      if (control.servo()) {
-        if (!(settings_.periodic.axes[0] && settings_.periodic.axes[1] && settings_.periodic.axes[2]))
-          p.fail("stress", "needs a cell periodic on x, y and z (the stress is the contacts' over the cell's volume)");
-        if (control.mode[0] != dem::CellMode::Stress && control.mode[1] != dem::CellMode::Stress &&
-            control.mode[2] != dem::CellMode::Stress)
-          p.fail("stress", "needs a normal stress (x, y or z) besides shear ones: its size scales the servo");
       }
       p.finish();
     }
     r.finish();
+    building(r, [&] { dem::check_settings(settings_); });
     resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
                                {"threads", threads}, {"seed", seed}, {"guards", guards},
                                {"initial_overlaps", overlaps}};
@@ -364,26 +240,21 @@ class SceneBuilder {
   }
 
   void read_contact(TableReader& top) {
-    std::string model = "volume", form = "normalized";
     dem::WorldSettings& w = settings_;
-    w.model = dem::ContactModel::Volume;
+    std::string model = dem::name_of(w.model), form = dem::name_of(w.volume_form);
     if (const toml::table* t = sub_table(top, "contact")) {
       TableReader r(*t, "contact");
-      model = r.string("model").value_or("volume");
-      if (model == "volume") w.model = dem::ContactModel::Volume;
-      else if (model == "hertz") w.model = dem::ContactModel::Hertz;
-      else if (model == "linear") w.model = dem::ContactModel::Linear;
-      else r.fail("model", "must be \"volume\", \"hertz\" or \"linear\", not \"" + model + "\"");
-      w.volume_stiffness = r.positive("volume_stiffness", 0.0);
-      form = r.string("volume_form").value_or("normalized");
-      if (form == "normalized") w.volume_form = dem::VolumeForm::Normalized;
-      else if (form == "potential") w.volume_form = dem::VolumeForm::Potential;
-      else r.fail("volume_form", "must be \"normalized\" or \"potential\", not \"" + form + "\"");
-      w.linear_stiffness = r.positive("linear_stiffness", 0.0);
-      w.rocking_resistance = r.boolean("rocking_resistance", true);
-      const std::int64_t dirs = r.integer("tessellation").value_or(w.tessellation);
-      if (dirs < 8 || dirs > 100000) r.fail("tessellation", "must be between 8 and 100000 directions");
-      w.tessellation = static_cast<int>(dirs);
+      model = r.string("model").value_or(model);
+      if (const auto m = dem::contact_model_named(model)) w.model = *m;
+      else r.fail("model", std::string("must be ") + dem::kContactModelNames + ", not \"" + model + "\"");
+      w.volume_stiffness = r.number("volume_stiffness").value_or(w.volume_stiffness);
+      form = r.string("volume_form").value_or(form);
+      if (const auto f = dem::volume_form_named(form)) w.volume_form = *f;
+      else r.fail("volume_form", std::string("must be ") + dem::kVolumeFormNames + ", not \"" + form + "\"");
+      w.linear_stiffness = r.number("linear_stiffness").value_or(w.linear_stiffness);
+      w.rocking_resistance = r.boolean("rocking_resistance", w.rocking_resistance);
+      w.tessellation = clamped_int(r.integer("tessellation").value_or(w.tessellation));
+      building(r, [&] { dem::check_contact_settings(w); });
       r.finish();
     }
     resolved_["contact"] = {{"model", model}, {"volume_form", form},
@@ -393,22 +264,15 @@ class SceneBuilder {
   }
 
   void read_material(TableReader& r) {
-    dem::Material m;
+    dem::Material m;  // its defaults are the scene's
     m.name = r.required_string("name");
-    if (builder_->find_material(m.name)) r.fail("name", "material '" + m.name + "' is defined twice");
-    m.density = r.positive("density");
-    m.youngs_modulus = r.positive("youngs_modulus");
-    m.poisson_ratio = r.number("poisson_ratio").value_or(0.25);
-    if (!(m.poisson_ratio > -1 && m.poisson_ratio < 0.5)) r.fail("poisson_ratio", "must lie in (-1, 0.5)");
-    m.restitution = r.number("restitution").value_or(0.5);
-    if (!(m.restitution > 0 && m.restitution <= 1)) r.fail("restitution", "must lie in (0, 1]");
-    m.friction = r.number("friction").value_or(0.5);
-    if (!(m.friction >= 0)) r.fail("friction", "must be >= 0");
-    m.rolling_friction = r.number("rolling_friction").value_or(0);
-    if (!(m.rolling_friction >= 0)) r.fail("rolling_friction", "must be >= 0");  // numbers are finite
-    m.rolling_damping = r.number("rolling_damping").value_or(0.3);
-    if (!(m.rolling_damping >= 0 && m.rolling_damping <= 1)) r.fail("rolling_damping", "must lie in [0, 1]");
-    building(r.table_node(), [&] { return builder_->add_material(m); });
+    m.density = r.required_number("density");
+    m.youngs_modulus = r.required_number("youngs_modulus");
+    for (auto [key, value] : {std::pair{"poisson_ratio", &m.poisson_ratio}, {"restitution", &m.restitution},
+                              {"friction", &m.friction}, {"rolling_friction", &m.rolling_friction},
+                              {"rolling_damping", &m.rolling_damping}})
+      *value = r.number(key).value_or(*value);
+    building(r, [&] { return builder_->add_material(m); });
     resolved_["material"].push_back({{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
                                      {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution},
                                      {"friction", m.friction}, {"rolling_friction", m.rolling_friction},
@@ -518,11 +382,8 @@ class SceneBuilder {
       json << toml::json_formatter{*t};
       // In a scene a shape is given in its body's frame: centred on the
       // body's origin and unrotated unless it says otherwise.
-      Json shape_json = Json::parse(json.str());
-      if (type != "polytope" && type != "triangle" && type != "capsule" && !shape_json.contains("center"))
-        shape_json["center"] = Json::array({0.0, 0.0, 0.0});
       try {
-        const PlacedInput p = parse_shape(shape_json.dump());
+        const PlacedInput p = parse_shape(json.str(), ShapeFrame::Own);
         s.shape = p.shape;
         s.pose = p.pose;
       } catch (const std::exception& e) {
@@ -591,10 +452,6 @@ class SceneBuilder {
 
   // `size` of a random polyhedron: a number or [min, max]; absent when a
   // sieve table gives the sizes.
-  struct PolyhedronSpec {
-    std::int64_t vertices = 12;
-    Real size_lo = 0, size_hi = 0;
-  };
   PolyhedronSpec read_polyhedron_spec(TableReader& s, const toml::table& t, bool sized_by_table) {
     s.required_string("type");
     PolyhedronSpec p;
@@ -676,9 +533,6 @@ class SceneBuilder {
     }
     const std::string fractions = r.string("fractions").value_or("number");
     if (fractions != "number" && fractions != "mass") r.fail("fractions", "must be \"number\" or \"mass\"");
-    struct SizeClass {
-      Real lo, hi, mass_fraction;
-    };
     std::vector<SizeClass> classes;
     const std::string sieve_row = "[min_size, max_size, mass_fraction] (a sieve table)";
     if (r.has("sizes")) {
@@ -693,70 +547,36 @@ class SceneBuilder {
         r.fail("sizes", "the mass fractions add up to " + std::to_string(total) + ", not 1");
     }
     const bool sized = !classes.empty();
-    if (!sized) classes.push_back({0, 0, 1});
+    const std::size_t class_count = sized ? classes.size() : 1;
     const std::int64_t per_group = r.integer("variants").value_or(sized ? 10 : 1);
-    if (per_group <= 0 || per_group * static_cast<std::int64_t>(parts.size() * classes.size()) > kMaxVariants)
+    if (per_group <= 0 || per_group * static_cast<std::int64_t>(parts.size() * class_count) > kMaxVariants)
       r.fail("variants", "must be a positive integer (variants per shape and size class), all of them up to " +
                              std::to_string(kMaxVariants));
-    Real part_total = 0;
-    for (const Part& p : parts) part_total += p.fraction;
+    std::vector<MixPart> mix_parts;
     Json resolved_parts = Json::array();
     for (const Part& part : parts) {
       TableReader s(*part.table, part.where);
-      std::optional<PolyhedronSpec> poly;
-      dem::BodyShape base;
-      Real base_size = 0;
+      MixPart m;
+      m.where = part.where, m.fraction = part.fraction;
       if (is_random_polyhedron(*part.table)) {
-        poly = read_polyhedron_spec(s, *part.table, sized);
-        if (poly->vertices * per_group * static_cast<std::int64_t>(classes.size()) > kMaxGeneratorVertices)
+        m.polyhedron = read_polyhedron_spec(s, *part.table, sized);
+        if (m.polyhedron->vertices * per_group * static_cast<std::int64_t>(class_count) > kMaxGeneratorVertices)
           s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices));
       } else {
-        base = read_shape_table(*part.table, part.where);
-        base_size = 2 * bounding_radius(base.shape);
-        for (const PlacedShape& p : base.parts)  // a compound: of the sphere about its frame holding its parts
-          base_size = std::fmax(base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));
-        if (!(base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
+        m.base = read_shape_table(*part.table, part.where);
+        m.base_size = 2 * bounding_radius(m.base.shape);
+        for (const PlacedShape& p : m.base.parts)  // a compound: of the sphere about its frame holding its parts
+          m.base_size = std::fmax(m.base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));
+        if (!(m.base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
       }
-      // Number weight of each variant: the part's fraction spread over its
-      // size classes by their mass fractions (mass per body from its volume).
-      std::vector<std::vector<Real>> volumes(classes.size());
-      for (std::size_t c = 0; c < classes.size(); ++c) {
-        std::uniform_real_distribution<double> draw(sized ? classes[c].lo : poly ? poly->size_lo : 0,
-                                                    sized ? classes[c].hi : poly ? poly->size_hi : 0);
-        for (std::int64_t v = 0; v < per_group; ++v) {
-          dem::BodyShape shape;
-          if (poly) {
-            shape.shape = random_polyhedron(static_cast<int>(poly->vertices), draw(rng), rng);
-          } else {
-            const Real k = sized ? draw(rng) / base_size : 1;
-            shape = {scaled(base.shape, k), base.pose, base.parts};
-            shape.pose.translation *= k;
-            for (PlacedShape& p : shape.parts) p.shape = scaled(p.shape, k), p.pose.translation *= k;
-          }
-          volumes[c].push_back(shape.parts.empty() ? mass_properties(shape.shape).volume
-                                                   : mass_properties(shape.parts).volume);
-          mix.variants.push_back(std::move(shape));
-        }
-      }
-      std::vector<Real> class_weight(classes.size());  // bodies per unit of the part's fraction
-      Real per_body_total = 0;
-      for (std::size_t c = 0; c < classes.size(); ++c) {
-        Real mean = 0;
-        for (const Real v : volumes[c]) mean += v / static_cast<Real>(volumes[c].size());
-        if (!(mean > 0)) throw SceneError(part.where + ": a shape without volume cannot take a mass fraction");
-        class_weight[c] = classes[c].mass_fraction / mean;  // number in class c per unit mass of the part
-        per_body_total += class_weight[c];
-      }
-      for (std::size_t c = 0; c < classes.size(); ++c) {
-        // fractions by mass: the part's mass fraction; by number: its number fraction.
-        const Real w = fractions == "mass" ? part.fraction / part_total * class_weight[c]
-                                           : part.fraction / part_total * class_weight[c] / per_body_total;
-        for (std::int64_t v = 0; v < per_group; ++v) mix.weights.push_back(w / static_cast<Real>(per_group));
-      }
+      mix_parts.push_back(std::move(m));
       std::ostringstream json;
       json << toml::json_formatter{*part.table};
       resolved_parts.push_back({{"shape", Json::parse(json.str())}, {"fraction", part.fraction}});
     }
+    SampledMix sampled = sample_mix(mix_parts, classes, per_group, fractions == "mass", rng);
+    mix.variants = std::move(sampled.variants);
+    mix.weights = std::move(sampled.weights);
     mix.resolved = {{"shapes", resolved_parts}, {"fractions", fractions}, {"variants", per_group}};
     if (sized) {
       Json table = Json::array();
@@ -924,34 +744,11 @@ class SceneBuilder {
     resolved_["wall"].push_back(j);
   }
 
-  // A generator's bodies split by a closed mesh wall, some inside and some
-  // outside, are mostly a region drawn past a container's side (a box
-  // region in a drum): those outside fall away for the whole run. Said as a
-  // warning, since a closed mesh may also be an obstacle bodies surround.
   void warn_of_bodies_outside_containers(const std::string& who, const std::vector<std::uint32_t>& placed) {
-    for (MeshWall& m : mesh_walls_) {
-      // Triangles times bodies: beyond this the check would cost seconds, and is skipped.
-      if (static_cast<double>(m.mesh.triangles.size()) * static_cast<double>(placed.size()) > kMaxContainmentWork) continue;
-      if (!m.closed) m.closed = is_watertight(m.mesh);  // once per wall, and only for scenes with generators
-      if (!*m.closed) continue;
-      std::size_t inside = 0;
-      for (const std::uint32_t b : placed) {
-        const Vec3 p = builder_->position_of(b);
-        if (overlaps(m.box, {p, p}) && std::fabs(winding_number(m.mesh, p)) > 0.5) ++inside;
-      }
-      if (inside > 0 && inside < placed.size())
-        scene_.warnings.push_back(who + ": " + std::to_string(placed.size() - inside) + " of its " +
-                                  std::to_string(placed.size()) + " bodies lie outside the closed mesh " + m.label +
-                                  " that holds the others, and will fall away from it: keep the region inside");
-    }
+    std::vector<Vec3> positions;
+    for (const std::uint32_t b : placed) positions.push_back(builder_->position_of(b));
+    for (std::string& w : bodies_outside_containers(mesh_walls_, who, positions)) scene_.warnings.push_back(std::move(w));
   }
-
-  struct MeshWall {
-    std::string label;          // the wall's table and file
-    TriangleMesh mesh;          // where the scene puts it
-    Aabb box;              // its box
-    std::optional<bool> closed; // watertight, once asked
-  };
 
   std::string source_;
   std::filesystem::path base_;
@@ -964,7 +761,7 @@ class SceneBuilder {
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;
   std::uint64_t inflow_count_ = 0;
-  std::vector<MeshWall> mesh_walls_;  // for warn_of_bodies_outside_containers
+  std::vector<ContainerWall> mesh_walls_;  // for warn_of_bodies_outside_containers
 };
 
 }  // namespace

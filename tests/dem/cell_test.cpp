@@ -357,11 +357,13 @@ TEST(DeformingCell, ACellCompressedBelowFourReachesStopsTheRun) {
 }
 
 TEST(DeformingCell, TheBuilderRefusesControlsItCannotHonour) {
+  // Refused by the builder's constructor (dem::check_settings) or, for
+  // what depends on the bodies, by build().
   const auto refuses = [](WorldSettings s, const std::string& message) {
-    WorldBuilder b(s);
-    const std::uint32_t m = b.add_material({"glass", 2500, 1e7});
-    b.add_body({.shape = {make_sphere(0.005), {}}, .material = m, .position = {0.05, 0.05, 0.05}});
     try {
+      WorldBuilder b(s);
+      const std::uint32_t m = b.add_material({"glass", 2500, 1e7});
+      b.add_body({.shape = {make_sphere(0.005), {}}, .material = m, .position = {0.05, 0.05, 0.05}});
       b.build();
       ADD_FAILURE() << "accepted: " << message;
     } catch (const BuildError& e) {
@@ -379,10 +381,12 @@ TEST(DeformingCell, TheBuilderRefusesControlsItCannotHonour) {
   s.periodic.axes[1] = s.periodic.axes[2] = true;
   s.periodic.hi = {0.1, 0.1, 0.1};
   s.cell_control.max_strain_rate = 0;
-  refuses(s, "max_strain_rate > 0");
+  refuses(s, "stress needs max_strain_rate too");
+  s.cell_control.max_strain_rate = -1;
+  refuses(s, "max_strain_rate must be finite and > 0");
   s.cell_control = {};
   s.cell_control.mode[kXY] = CellMode::Stress, s.cell_control.max_strain_rate = 1;
-  refuses(s, "needs a normal stress target too");
+  refuses(s, "stress needs a normal stress");
   // A wall piece as long as the period: a body would touch it directly and
   // through its image at once (a drum slice periodic along its axis).
   WorldSettings slice;

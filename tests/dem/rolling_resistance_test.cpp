@@ -71,8 +71,8 @@ TEST(RollingResistance, WithoutItABallRollsOn) {
 
 TEST(RollingResistance, MaterialsOutOfRangeAreRefused) {
   for (const auto& [mu_r, eta, message] :
-       {std::tuple{-0.1, 0.3, "rolling_friction must be finite and >= 0"},
-        std::tuple{std::numeric_limits<Real>::infinity(), 0.3, "rolling_friction must be finite and >= 0"},
+       {std::tuple{-0.1, 0.3, "rolling_friction must be >= 0"},
+        std::tuple{std::numeric_limits<Real>::infinity(), 0.3, "rolling_friction must be finite"},
         std::tuple{0.1, 1.5, "rolling_damping must lie in [0, 1]"}}) {
     WorldBuilder b;
     Material m{"sand", 2600, 1e7};

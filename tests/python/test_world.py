@@ -127,7 +127,7 @@ def test_an_unsupported_pair_or_a_blown_run_raises_run_error():
     "build, message",
     [
         (lambda b: b.add_material("bad", -1, 1e7), "material 'bad': density must be > 0"),
-        (lambda b: b.add_material("m", 1, 1e7), "material 'm': defined twice"),
+        (lambda b: b.add_material("m", 1, 1e7), "material 'm': name is defined twice"),
         (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "nope"), "material: no material is named 'nope'"),
         (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), 7), "body 0: material 7 was never added"),
         (lambda b: b.add_body(gjkdem.Shape("sphere", radius=1.0), "m", rotation=[1, 1, 0, 0]),

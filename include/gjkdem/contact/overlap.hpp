@@ -8,7 +8,7 @@
 // respect to B's position.
 //
 // Polytope-like cores without margins (polytope, box, triangle) are clipped
-// exactly (overlap_polyhedron.cpp). For other shapes the closed forms that
+// exactly (overlap.cpp). For other shapes the closed forms that
 // exist are used: empty overlaps, sphere-sphere lenses, and one shape inside
 // the other. Everything else reports OverlapStatus::Unsupported (curved
 // overlaps need the tessellation of the contact-generation issue).

@@ -1,8 +1,8 @@
 #pragma once
 // What a DEM world is made of: shape templates shared by many bodies, bodies,
 // and plane walls. Bodies are plain, fixed-size data (no pointers, no
-// containers), so that an array of them can be viewed from NumPy, sent as an
-// MPI datatype or copied to a GPU as it is. What a contact remembers between
+// containers), so that an array of them can be viewed from NumPy or sent
+// between MPI ranks as it is. What a contact remembers between
 // steps lives in the world's pair store (pair_state.hpp), not in the bodies.
 #include <cstdint>
 #include <span>

@@ -25,7 +25,7 @@ struct BoxCache {
   std::vector<Aabb> boxes;          ///< per body, world
   std::vector<Vec3> anchor_position;     ///< centre of mass when the box was made
   std::vector<Quat> anchor_orientation;  ///< orientation then
-  std::vector<Real> moved;               ///< per body: how far it may have moved, in skins (scratch)
+  std::vector<Real> moved;               ///< per body: how far it may have moved, in skins (scratch, not saved)
 };
 
 /// Brings the boxes of `bodies` up to date: every box when the cache is

@@ -1,6 +1,6 @@
 #pragma once
-// Broad phase: tight axis-aligned boxes from support functions, and the pairs
-// of overlapping boxes by sweep and prune (Baraff 1992; Cohen et al. 1995) on
+// Broad phase: the pairs of overlapping boxes (shape/aabb.hpp; enlarged and
+// kept by boxes.hpp) by sweep and prune (Baraff 1992; Cohen et al. 1995) on
 // the axis along which the boxes' centres spread most, within strips across
 // the axis of second spread.
 //

@@ -7,7 +7,7 @@
 //
 // Laws:
 // - linear spring-dashpot: F = k delta + c v, c = 2 zeta sqrt(k m*);
-// - Hertz (Mindlin for the tangential part, later): F = k_n delta + gamma v with
+// - Hertz (Mindlin for the tangential part, contact_force.cpp): F = k_n delta + gamma v with
 //   k_n = 4/3 E* sqrt(R* delta), gamma = 2 beta sqrt(S_n m*), S_n = 2 E*
 //   sqrt(R* delta) (the damped Hertz model of Tsuji et al. 1992 as written by
 //   Antypov and Elliott 2011).

@@ -3,7 +3,7 @@
 // pair of global ids: the GJK warm start while the pair's boxes overlap, and
 // the tangential, twisting and rolling springs while it touches. Keyed by
 // ids, not indices, so the state follows the bodies through a checkpoint, a
-// reordering or (later) a move between MPI domains. Compounds keep one entry
+// reordering or a move between MPI domains. Compounds keep one entry
 // per pair of parts.
 #include <compare>
 #include <cstdint>

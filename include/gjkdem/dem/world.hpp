@@ -98,7 +98,8 @@ struct World {
   std::vector<PrescribedMotion> motions;  ///< of driven walls and bodies (motion.hpp)
   std::vector<DrivenBody> driven;         ///< the bodies with a motion, as given
   std::vector<Inflow> inflows;            ///< regions inserting bodies during a run (inflow.hpp)
-  // State: what a checkpoint holds.
+  // State: what a checkpoint holds, or what is remade from it (the planes'
+  // placement, forces_current).
   std::vector<Body> bodies;       ///< in increasing id order
   std::vector<PairState> pairs;   ///< sorted by key: every pair whose boxes overlap
   Real time = 0;                  ///< s

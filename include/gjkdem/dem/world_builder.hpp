@@ -26,8 +26,39 @@ namespace gjkdem::dem {
 struct BuildError : std::runtime_error {
   explicit BuildError(const std::string& what, std::vector<std::uint32_t> at = {})
       : std::runtime_error(what), bodies(std::move(at)) {}
+  /// A field's rule broken: what() reads "<subject>: <key> <rule>"; a reader
+  /// that knows where the field was written (a scene's line) names it by
+  /// `key` and `rule` instead.
+  BuildError(const std::string& subject, const std::string& field, const std::string& broken)
+      : std::runtime_error(subject + ": " + field + " " + broken), key(field), rule(broken) {}
   std::vector<std::uint32_t> bodies;  ///< indices of the bodies at fault, when there are
+  std::string key;   ///< the field at fault, as a scene names it in its table ("" when none)
+  std::string rule;  ///< what the field must be ("must lie in (-1, 0.5)")
 };
+
+/// The range of WorldSettings::tessellation (support directions).
+inline constexpr int kMinTessellation = 8;
+inline constexpr int kMaxTessellation = 100000;
+/// The most threads a world's step may ask for (0: every core).
+inline constexpr int kMaxThreads = 4096;
+
+/// The rules of what a world is made of, each written once: the builder
+/// applies them, and the scene reader and the Python module call them to
+/// refuse a field where it was written. Each throws BuildError naming the
+/// field by its key in the scene's table.
+/// A material's values (keys: density, youngs_modulus, poisson_ratio,
+/// restitution, friction, rolling_friction, rolling_damping).
+void check_material(const Material& material);
+/// The contact law's settings (keys of [contact]: linear_stiffness,
+/// volume_stiffness, tessellation, box_skin).
+void check_contact_settings(const WorldSettings& settings);
+/// A periodic cell and how it deforms (keys of [simulation.periodic]: x, y,
+/// z, strain_rate.C, stress.C, max_strain_rate, tilt). The widths against
+/// the bodies' reach are checked when the world is built.
+void check_cell(const PeriodicCell& cell, const CellControl& control);
+/// Every setting: the contact settings, the cell, gravity (finite) and
+/// threads (keys of [simulation]).
+void check_settings(const WorldSettings& settings);
 
 /// Plane walls get ids from here up, above every body's.
 inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
@@ -95,6 +126,7 @@ struct InflowDef {
 
 class WorldBuilder {
  public:
+  /// Checks the settings (check_settings).
   explicit WorldBuilder(const WorldSettings& settings = {});
 
   /// Continues a world already built (and maybe run): bodies added now join
@@ -105,8 +137,7 @@ class WorldBuilder {
 
   const WorldSettings& settings() const noexcept { return settings_; }
 
-  /// Checks the values (density and modulus > 0, Poisson ratio in (-1, 0.5),
-  /// restitution in (0, 1], friction >= 0) and that the name is new.
+  /// Checks the values (check_material) and that the name is new.
   std::uint32_t add_material(const Material& material);
   std::optional<std::uint32_t> find_material(std::string_view name) const;
 

@@ -1,6 +1,11 @@
 #pragma once
-// The settings of a world: fixed when it is built (WorldBuilder), read by
-// every step. Plain data with the defaults of a scene file.
+// The settings of a world: fixed when it is built (WorldBuilder, whose
+// check_settings holds their rules), read by every step. Plain data with the
+// defaults of a scene file, but threads: a scene's default is 0 (every
+// core), a world's 1.
+#include <optional>
+#include <string_view>
+
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/math/vec3.hpp"
@@ -16,6 +21,28 @@ namespace gjkdem::dem {
 ///   the smaller moving body's volume to the power 2/3 (a cube's face: a cube
 ///   lying flat on a larger body feels k V under both forms).
 enum class VolumeForm { Normalized, Potential };
+
+/// The names scenes and Python give the laws and the volume forms.
+inline constexpr const char* name_of(ContactModel m) noexcept {
+  return m == ContactModel::Hertz ? "hertz" : m == ContactModel::Linear ? "linear" : "volume";
+}
+inline constexpr const char* name_of(VolumeForm f) noexcept {
+  return f == VolumeForm::Potential ? "potential" : "normalized";
+}
+/// The law or form of that name; none for another name.
+inline std::optional<ContactModel> contact_model_named(std::string_view name) noexcept {
+  for (const ContactModel m : {ContactModel::Volume, ContactModel::Hertz, ContactModel::Linear})
+    if (name == name_of(m)) return m;
+  return std::nullopt;
+}
+inline std::optional<VolumeForm> volume_form_named(std::string_view name) noexcept {
+  for (const VolumeForm f : {VolumeForm::Normalized, VolumeForm::Potential})
+    if (name == name_of(f)) return f;
+  return std::nullopt;
+}
+/// What a message says the names are.
+inline constexpr const char* kContactModelNames = "\"volume\", \"hertz\" or \"linear\"";
+inline constexpr const char* kVolumeFormNames = "\"normalized\" or \"potential\"";
 
 struct WorldSettings {
   ContactModel model = ContactModel::Volume;

@@ -10,7 +10,7 @@
 // field by field, never as a struct (no padding, no machine byte order). The
 // payload is a list of sections, each a four-letter tag and a u64 length:
 // INFO (text naming the format and its sections), RUN, STAT, BODY, BOXS,
-// PAIR and LOGS. A reader refuses another format version, a checksum that
+// PAIR, CELL, FLOW and LOGS (docs/checkpoints.md). A reader refuses another format version, a checksum that
 // does not match, a checkpoint of another scene (its fingerprint), and any
 // count or length that does not fit in the file, each with a message saying so.
 #include <cstdint>

@@ -32,8 +32,15 @@ struct PairInput {
 /// On failure throws QueryFormatError; `id_json` receives the id when readable.
 PairInput parse_pair(std::string_view line, std::string& id_json);
 
+/// Where a SHAPE object's coordinates are: in the world (the query format:
+/// every shape placed by its fields), or in its own frame (scenes and
+/// Python), where a shape placed by a "center" is centred on the origin
+/// when it gives none (polytopes, triangles and capsules are placed by
+/// their points).
+enum class ShapeFrame { World, Own };
+
 /// Parses one SHAPE object given as JSON text.
-PlacedInput parse_shape(std::string_view json_text);
+PlacedInput parse_shape(std::string_view json_text, ShapeFrame frame = ShapeFrame::World);
 
 /// Optional volume-based fields; absent ones are written as null.
 struct OverlapFields {

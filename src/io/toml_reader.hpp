@@ -1,0 +1,162 @@
+#pragma once
+// Typed reading of one TOML table for the scene reader (scene_toml.cpp):
+// getters that refuse a wrong type or a non-finite number with the key's
+// line, and finish(), which refuses the keys nobody asked for. Internal to
+// src/io; the only other includer of toml++ is scene_toml.cpp.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "gjkdem/io/scene.hpp"
+#include "gjkdem/math/quat.hpp"
+#include "gjkdem/math/vec3.hpp"
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem::io::detail {
+
+// A TOML number as a double: integers of any size convert (rounded to the
+// nearest double), so 9007199254740993 is read, not refused obscurely.
+inline Real as_real(const toml::node& n) {
+  if (const auto i = n.value_exact<std::int64_t>()) return static_cast<Real>(*i);
+  return n.value_exact<double>().value_or(std::numeric_limits<Real>::quiet_NaN());
+}
+
+inline std::string line_of(const toml::node& n) {
+  const auto line = n.source().begin.line;
+  return line > 0 ? " (line " + std::to_string(line) + ")" : "";
+}
+
+// Reads one table: typed getters, then finish() refuses the keys nobody asked for.
+class TableReader {
+ public:
+  TableReader(const toml::table& t, std::string where) : table_(t), where_(std::move(where)) {}
+
+  const std::string& where() const { return where_; }
+  const toml::node* find(const std::string& key) {
+    used_.insert(key);
+    return table_.get(key);
+  }
+  /// `key` may be a dotted path into sub-tables ("stress.x"); the line is
+  /// the key's where it is written, else the table's.
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    const toml::node* n = table_.at_path(key).node();
+    throw SceneError(where_ + "." + key + ": " + what + (n ? line_of(*n) : line_of(table_)));
+  }
+  bool has(const std::string& key) const { return table_.contains(key); }
+
+  std::optional<Real> number(const std::string& key) {
+    const toml::node* n = find(key);
+    if (!n) return std::nullopt;
+    if (!n->is_number()) fail(key, "must be a number");
+    const Real v = as_real(*n);
+    if (!std::isfinite(v)) fail(key, "must be finite");
+    return v;
+  }
+  Real required_number(const std::string& key) {
+    const auto v = number(key);
+    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    return *v;
+  }
+  Real positive(const std::string& key, std::optional<Real> fallback = std::nullopt) {
+    const auto v = number(key);
+    if (!v && fallback) return *fallback;
+    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    if (!(*v > 0)) fail(key, "must be > 0");
+    return *v;
+  }
+  std::optional<std::int64_t> integer(const std::string& key) {
+    const toml::node* n = find(key);
+    if (!n) return std::nullopt;
+    if (!n->is_integer()) fail(key, "must be an integer");
+    return n->value<std::int64_t>().value();
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* n = find(key);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) fail(key, "must be a string");
+    return n->value<std::string>().value();
+  }
+  std::string required_string(const std::string& key) {
+    const auto v = string(key);
+    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    return *v;
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    const toml::node* n = find(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return n->value<bool>().value();
+  }
+  std::vector<Real> numbers(const std::string& key, std::size_t count) {
+    const toml::node* n = find(key);
+    const toml::array* a = n ? n->as_array() : nullptr;
+    if (n && !a) fail(key, "must be an array of " + std::to_string(count) + " numbers");
+    if (!a) return {};
+    if (a->size() != count) fail(key, "must have " + std::to_string(count) + " numbers");
+    std::vector<Real> out;
+    for (const toml::node& e : *a) {
+      if (!e.is_number()) fail(key, "must hold numbers only");
+      out.push_back(as_real(e));
+      if (!std::isfinite(out.back())) fail(key, "must be finite");
+    }
+    return out;
+  }
+  // An array of rows of `width` finite numbers, e.g. [time, x, y, z] (empty
+  // when absent); `row` says what a row holds, for messages.
+  std::vector<std::vector<Real>> rows(const std::string& key, std::size_t width, const std::string& row) {
+    const toml::node* n = find(key);
+    if (!n) return {};
+    const toml::array* rows = n->as_array();
+    if (!rows || rows->empty()) fail(key, "must be an array of rows " + row);
+    std::vector<std::vector<Real>> out;
+    for (const toml::node& r : *rows) {
+      const toml::array* a = r.as_array();
+      if (!a || a->size() != width) fail(key, "must be an array of rows " + row);
+      out.emplace_back();
+      for (const toml::node& e : *a) {
+        if (!e.is_number()) fail(key, "rows must hold numbers only");
+        out.back().push_back(as_real(e));
+        if (!std::isfinite(out.back().back())) fail(key, "must be finite");
+      }
+    }
+    return out;
+  }
+  std::optional<Vec3> vec3(const std::string& key) {
+    const auto v = numbers(key, 3);
+    if (v.empty()) return std::nullopt;
+    return Vec3{v[0], v[1], v[2]};
+  }
+  std::optional<Quat> rotation(const std::string& key) {
+    const auto v = numbers(key, 4);
+    if (v.empty()) return std::nullopt;
+    const Quat q{v[0], v[1], v[2], v[3]};
+    const Real norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (std::fabs(norm - 1) > kUnitQuaternionTol) fail(key, "must be a unit quaternion [w, x, y, z]");
+    return normalized(q);
+  }
+  const toml::table& table_node() const { return table_; }
+  const toml::table* table(const std::string& key) {
+    const toml::node* n = find(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table, e.g. { type = \"box\", ... }");
+    return n->as_table();
+  }
+  void finish() const {
+    for (const auto& [k, v] : table_)
+      if (!used_.count(std::string(k.str())))
+        throw SceneError(where_ + ": unknown key '" + std::string(k.str()) + "'" + line_of(v));
+  }
+
+ private:
+  const toml::table& table_;
+  std::string where_;
+  std::set<std::string> used_;
+};
+
+}  // namespace gjkdem::io::detail

@@ -1,0 +1,169 @@
+// WorldBuilder's rules (world_builder.hpp), written once: each refuses the
+// field it names, with the key a scene reader maps to its line; what passes
+// them builds. The scene reader's use of them is in tests/io/scene_test.cpp.
+#include "gjkdem/dem/world_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "gjkdem/io/scene.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
+constexpr Real kInf = std::numeric_limits<Real>::infinity();
+
+using KeyRule = std::pair<std::string, std::string>;
+
+// The key and rule of the BuildError `call` throws ("" when it throws none).
+KeyRule broken(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const BuildError& e) {
+    EXPECT_EQ(std::string(e.what()).find(e.key + " " + e.rule) != std::string::npos, true) << e.what();
+    return {e.key, e.rule};
+  }
+  return {"", ""};
+}
+
+TEST(WorldBuilderRules, EachMaterialValueOutOfRangeIsRefusedByItsKey) {
+  const Material good{"rock", 2600, 1e7};
+  EXPECT_EQ(broken([&] { check_material(good); }).first, "");
+  struct Bad {
+    Real Material::*field;
+    Real value;
+    const char* key;
+    const char* rule;
+  };
+  for (const Bad& b : {Bad{&Material::density, 0, "density", "must be > 0"},
+                       Bad{&Material::density, kInf, "density", "must be finite"},
+                       Bad{&Material::youngs_modulus, -1, "youngs_modulus", "must be > 0"},
+                       Bad{&Material::poisson_ratio, 0.5, "poisson_ratio", "must lie in (-1, 0.5)"},
+                       Bad{&Material::poisson_ratio, -1, "poisson_ratio", "must lie in (-1, 0.5)"},
+                       Bad{&Material::restitution, 0, "restitution", "must lie in (0, 1]"},
+                       Bad{&Material::restitution, 1.0000001, "restitution", "must lie in (0, 1]"},
+                       Bad{&Material::friction, -0.1, "friction", "must be >= 0"},
+                       Bad{&Material::friction, kNaN, "friction", "must be finite"},
+                       Bad{&Material::rolling_friction, -1e-9, "rolling_friction", "must be >= 0"},
+                       Bad{&Material::rolling_damping, 1.5, "rolling_damping", "must lie in [0, 1]"}}) {
+    Material m = good;
+    m.*b.field = b.value;
+    const auto [key, rule] = broken([&] { check_material(m); });
+    EXPECT_EQ(key, b.key) << b.key << " = " << b.value;
+    EXPECT_EQ(rule, b.rule) << b.key << " = " << b.value;
+    // The builder applies the same rule, naming the material.
+    WorldBuilder builder;
+    try {
+      builder.add_material(m);
+      ADD_FAILURE() << b.key << " = " << b.value << " was accepted";
+    } catch (const BuildError& e) {
+      EXPECT_EQ(std::string(e.what()), "material 'rock': " + std::string(b.key) + " " + b.rule);
+    }
+  }
+}
+
+TEST(WorldBuilderRules, TheDefaultMaterialAndSettingsPassTheirRules) {
+  Material m;
+  m.name = "default";
+  EXPECT_EQ(broken([&] { check_material(m); }).first, "");
+  EXPECT_EQ(broken([] { check_settings(WorldSettings{}); }).first, "");
+}
+
+TEST(WorldBuilderRules, SettingsOutOfRangeAreRefusedByTheirKeyWhenTheBuilderIsMade) {
+  struct Bad {
+    std::function<void(WorldSettings&)> set;
+    const char* key;
+  };
+  for (const Bad& b : {Bad{[](WorldSettings& s) { s.tessellation = kMinTessellation - 1; }, "tessellation"},
+                       Bad{[](WorldSettings& s) { s.tessellation = kMaxTessellation + 1; }, "tessellation"},
+                       Bad{[](WorldSettings& s) { s.volume_stiffness = kNaN; }, "volume_stiffness"},
+                       Bad{[](WorldSettings& s) { s.volume_stiffness = -1; }, "volume_stiffness"},
+                       Bad{[](WorldSettings& s) { s.linear_stiffness = -1; }, "linear_stiffness"},
+                       Bad{[](WorldSettings& s) { s.box_skin = -0.01; }, "box_skin"},
+                       Bad{[](WorldSettings& s) { s.threads = -7; }, "threads"},
+                       Bad{[](WorldSettings& s) { s.threads = kMaxThreads + 1; }, "threads"},
+                       Bad{[](WorldSettings& s) { s.gravity.z = kInf; }, "gravity"},
+                       Bad{[](WorldSettings& s) { s.periodic.axes[0] = true, s.periodic.hi.x = -1; }, "periodic.x"}}) {
+    WorldSettings s;
+    b.set(s);
+    EXPECT_EQ(broken([&] { WorldBuilder builder(s); }).first, b.key);
+  }
+  // The edges of the ranges pass.
+  WorldSettings edges;
+  edges.tessellation = kMaxTessellation;
+  edges.threads = kMaxThreads;
+  edges.box_skin = 0;
+  EXPECT_EQ(broken([&] { WorldBuilder builder(edges); }).first, "");
+}
+
+TEST(WorldBuilderRules, ACellAndItsControlAreRefusedByTheFieldAtFault) {
+  PeriodicCell cube;
+  cube.axes[0] = cube.axes[1] = cube.axes[2] = true;
+  cube.lo = {0, 0, 0}, cube.hi = {0.1, 0.1, 0.1};
+  const auto servo = [] {
+    CellControl c;
+    c.mode[0] = CellMode::Stress, c.value[0] = 1e4, c.max_strain_rate = 1;
+    return c;
+  };
+  EXPECT_EQ(broken([&] { check_cell(cube, servo()); }).first, "");
+  CellControl tension = servo();
+  tension.value[0] = -1e4;
+  EXPECT_EQ(broken([&] { check_cell(cube, tension); }).first, "stress.x");
+  CellControl unbounded = servo();
+  unbounded.max_strain_rate = 0;
+  EXPECT_EQ(broken([&] { check_cell(cube, unbounded); }),
+            KeyRule("stress", "needs max_strain_rate too (1/s): the servo's largest strain rate"));
+  CellControl shear_only;
+  shear_only.mode[kXY] = CellMode::Stress, shear_only.max_strain_rate = 1;
+  EXPECT_EQ(broken([&] { check_cell(cube, shear_only); }).first, "stress");
+  CellControl rate_alone;
+  rate_alone.max_strain_rate = 1;
+  EXPECT_EQ(broken([&] { check_cell(cube, rate_alone); }).first, "max_strain_rate");
+  PeriodicCell slab = cube;
+  slab.axes[2] = false;
+  CellControl shear;
+  shear.mode[kXZ] = CellMode::StrainRate, shear.value[kXZ] = 1;
+  EXPECT_EQ(broken([&] { check_cell(slab, shear); }), KeyRule("strain_rate.xz", "the cell is not periodic on z"));
+  EXPECT_EQ(broken([&] { check_cell(slab, servo()); }).first, "stress");  // a servo needs x, y and z
+  PeriodicCell tilted = cube;
+  tilted.tilt.x = 0.01;
+  EXPECT_EQ(broken([&] { check_cell(tilted, {}); }).first, "tilt");
+  // Through check_settings, the keys are those of the scene's [simulation] table.
+  WorldSettings s;
+  s.periodic = cube, s.cell_control = tension;
+  EXPECT_EQ(broken([&] { check_settings(s); }).first, "periodic.stress.x");
+}
+
+TEST(WorldBuilderRules, ASceneNamesTheBuildersRuleAtTheLineOfTheField) {
+  // The scene reader has no rule of its own for these: the builder's, at the key's line.
+  const std::string head = "[simulation]\nduration = 0.01\n[[material]]\nname = \"m\"\ndensity = 2500.0\n"
+                           "youngs_modulus = 1.0e7\n";
+  const std::string body = "[[body]]\nmaterial = \"m\"\nshape = { type = \"sphere\", radius = 0.01 }\n";
+  struct Case {
+    std::string text;
+    std::string message;
+  };
+  for (const Case& c : {Case{head + "poisson_ratio = 0.7\n" + body, "material[0].poisson_ratio: must lie in (-1, 0.5) (line 7)"},
+                        Case{"[contact]\ntessellation = 4\n" + head + body,
+                             "contact.tessellation: must be between 8 and 100000 directions (line 2)"},
+                        Case{"[contact]\ntessellation = 99999999999\n" + head + body,
+                             "contact.tessellation: must be between 8 and 100000 directions (line 2)"},
+                        Case{"[contact]\nvolume_stiffness = -5.0\n" + head + body, "contact.volume_stiffness: must be finite and >= 0"},
+                        Case{head + body + "[simulation.periodic]\nx = [0.1, 0.0]\n", "simulation.periodic.x: must be [min, max]"}}) {
+    try {
+      io::load_scene(c.text, "scene.toml", ".");
+      ADD_FAILURE() << "accepted: " << c.message;
+    } catch (const io::SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
