@@ -84,7 +84,7 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
   // remade or a body wrapped anywhere, or a tilt was taken back.
   const int threads = detail::thread_count(w.settings.threads);
   const bool left =
-      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w), ghost);
+      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w.cell, w.search.cell), ghost);
   const std::vector<std::string> said = all_gather(t, std::string{left ? '1' : '0', w.search.renew_cell ? '1' : '0'});
   bool any_left = false, renew = false;
   for (const std::string& s : said) {

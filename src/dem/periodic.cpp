@@ -153,9 +153,7 @@ void control_cell(World& w, DomainRole* domain) {
   work.finish();
 }
 
-bool deform_cell(World& w, Real dt) {
-  PeriodicCell& cell = w.cell;
-  const CellTensor& l = w.cell_rate;
+bool deform_cell(PeriodicCell& cell, const CellTensor& l, Real dt) {
   const Vec3 centre = cell_centre(cell);
   // H += dt L H, H upper triangular with diagonal Lx, Ly, Lz and tilts
   // xy, xz, yz; about the centre, which stays.
@@ -188,14 +186,13 @@ bool deform_cell(World& w, Real dt) {
   return flipped;
 }
 
-Real cell_drift(const World& w) noexcept {
-  const PeriodicCell& searched = w.search.cell;
+Real cell_drift(const PeriodicCell& now, const PeriodicCell& searched) noexcept {
   if (!searched.active()) return 0;
   // An image is at most one edge vector away on each axis: its drift is at
   // most the sum of the edges' changes.
   Real drift = 0;
   for (int a = 0; a < 3; ++a)
-    if (w.cell.axes[a]) drift += length(cell_edge(w.cell, a) - cell_edge(searched, a));
+    if (now.axes[a]) drift += length(cell_edge(now, a) - cell_edge(searched, a));
   return drift;
 }
 

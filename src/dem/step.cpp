@@ -46,7 +46,7 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
     }
   }
   const std::size_t updated =
-      update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w));
+      update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w.cell, w.search.cell));
   if (updated > 0) w.search.renew_cell = true;
   if (updated > 0 || !work.static_ready || !work.candidates_current) detail::find_candidates(w, threads);
   detail::list_contacts(w, domain);
@@ -115,7 +115,7 @@ StepReport begin_step(World& w, StepContext& ctx) {
   if (deforming) control_cell(w, ctx.domain);
   drift(w.bodies, w.templates, w.materials, dt, threads);
   if (deforming) {
-    if (deform_cell(w, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
+    if (deform_cell(w.cell, w.cell_rate, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
     const Real shortest = shortest_period(w, ctx.domain);
     for (int a = 0; a < 3; ++a)
       if (w.cell.axes[a] && !(cell_width(w.cell, a) > shortest)) {

@@ -150,11 +150,11 @@ void control_cell(World& world, DomainRole* domain = nullptr);
 /// Moves the cell's edges by the velocity gradient over dt (with the
 /// drift), taking back a tilt beyond half its edge. Returns true when the
 /// lattice was taken back (images change: candidates must be found again).
-bool deform_cell(World& world, Real dt);
+bool deform_cell(PeriodicCell& cell, const CellTensor& rate, Real dt);
 
 /// How far any image may have moved since the last candidate search (m):
 /// the broad phase counts it as motion.
-Real cell_drift(const World& world) noexcept;
+Real cell_drift(const PeriodicCell& now, const PeriodicCell& searched) noexcept;
 
 /// The largest reach of the moving bodies (those the inflows insert
 /// included; in a domain, of the whole world's: DomainRole::whole_reach).
