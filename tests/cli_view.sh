@@ -61,6 +61,31 @@ r = c.getresponse()
 assert r.status in (400, 404) and b"root:" not in r.read(), ("traversal", r.status)
 PY
 
+# Symbolic links inside a run folder are not followed: a link to a file or a
+# folder outside it (/etc/passwd, /) is not served, the folder's own files are.
+cp -r "$run" "$work/linked"
+ln -s /etc/passwd "$work/linked/passwd"
+ln -s / "$work/linked/root"
+ln -s "$work/linked/view" "$work/linked/view_again"
+"$gjkdem" view "$work/linked" --port 0 --web "$web" > "$work/said2.txt" &
+pid2=$!
+for _ in $(seq 1 100); do grep -q "http://127.0.0.1:" "$work/said2.txt" && break; sleep 0.1; done
+url2="$(grep -o 'http://127.0.0.1:[0-9]*/' "$work/said2.txt")" || fail "no address printed: $(cat "$work/said2.txt")"
+/usr/bin/python3 - "$url2" <<'PY' || { kill "$pid2"; fail "symbolic links"; }
+import sys, urllib.request, urllib.error
+url = sys.argv[1]
+def status(path):
+    try:
+        with urllib.request.urlopen(url + path.lstrip("/")) as r:
+            return r.status
+    except urllib.error.HTTPError as e:
+        return e.code
+assert status("/run/view/index.csv") == 200, "the run's own file"
+for linked in ("/run/passwd", "/run/root/etc/passwd", "/run/view_again/index.csv"):
+    assert status(linked) == 404, linked
+PY
+kill "$pid2"
+
 # Refusals: exit 2 with a message.
 refused() {  # refused EXPECTED ARGS...
   local expected="$1"; shift

@@ -24,6 +24,20 @@ bool page_complete(const fs::path& web) {
 /// The viewer's page: --web, $GJKDEM_WEB_DIR, the copy installed beside this
 /// program (PREFIX/share/gjkdem/web), the one installed where it was
 /// configured to go, the source tree's.
+// True when `relative` names a path inside `root` reached without a symbolic
+// link: a link in a run folder may lead anywhere (/etc/passwd, /).
+bool reached_without_links(const fs::path& root, const std::string& relative) {
+  fs::path at = root;
+  for (const fs::path& part : fs::path(relative)) {
+    if (part.empty() || part == "/" || part == ".") continue;
+    if (part == "..") return false;
+    at /= part;
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(at, ec))) return false;
+  }
+  return true;
+}
+
 fs::path find_page(const std::string& given) {
   std::vector<fs::path> tried;
   if (!given.empty()) tried.push_back(given);
@@ -64,10 +78,12 @@ int view_run(const ViewOptions& opt) {
   const httplib::Headers no_cache = {{"Cache-Control", "no-store"}};
   // Only three.js's files are served from node_modules, never the rest of it.
   int port = 0;
-  server.set_pre_routing_handler([&port](const httplib::Request& req, httplib::Response& res) {
+  server.set_pre_routing_handler([&port, &run](const httplib::Request& req, httplib::Response& res) {
     // Only three.js of node_modules, under /vendor/ (any spelling of a path
-    // through node_modules: /./node_modules, //node_modules, ...).
-    if (req.path.find("node_modules") != std::string::npos) {
+    // through node_modules: /./node_modules, //node_modules, ...), and only
+    // the run folder's own files: never through a symbolic link in it.
+    if (req.path.find("node_modules") != std::string::npos ||
+        (req.path.rfind("/run/", 0) == 0 && !reached_without_links(run, req.path.substr(5)))) {
       res.status = 404;
       return httplib::Server::HandlerResponse::Handled;
     }

@@ -63,6 +63,9 @@ struct Side {
   std::vector<const PyShape*> shapes;  // one, or one per pair (a list)
   const ShapeSet* set = nullptr;       // or these
   std::vector<Transform> poses;        // empty (identity), or one per pair
+  // The Python objects behind `shapes` and `set`, held: a batch runs with
+  // the GIL released, while another thread may empty the list it came from.
+  std::vector<py::object> held;
   std::size_t size() const { return set ? set->shapes.size() : shapes.size(); }
   const Shape& shape(std::size_t k) const {
     const std::size_t i = size() == 1 ? 0 : k;
@@ -90,19 +93,23 @@ Side read_side(const py::handle& shapes, const py::handle& poses, const std::str
   Side s;
   if (py::isinstance<ShapeSet>(shapes)) {
     s.set = &shapes.cast<const ShapeSet&>();
+    s.held.push_back(py::reinterpret_borrow<py::object>(shapes));
   } else if (const PyShape* one = shape_of(shapes)) {
     convex_of(*one, name.c_str());
     s.shapes.push_back(one);
+    s.held.push_back(py::reinterpret_borrow<py::object>(shapes));
   } else {
     if (!PyList_Check(shapes.ptr()) && !PyTuple_Check(shapes.ptr()))
       fail(name, "expected a gjkdem.Shape, a list of them or a ShapeSet");
     const py::sequence items = py::reinterpret_borrow<py::sequence>(shapes);
     s.shapes.reserve(items.size());
+    s.held.reserve(items.size());
     for (const auto& item : items) {
       const PyShape* shape = shape_of(item);
       if (!shape) fail(name, "expected a gjkdem.Shape or a list of them");
       convex_of(*shape, name.c_str());
       s.shapes.push_back(shape);
+      s.held.push_back(py::object(item));
     }
     if (s.shapes.empty()) fail(name, "the list of shapes is empty");
   }

@@ -15,23 +15,40 @@ namespace {
 
 using Json = nlohmann::json;
 
-// Python numbers, strings, sequences, arrays and dicts as JSON.
-Json to_json(const py::handle& v, const std::string& what) {
+// Python numbers, strings, sequences, arrays and dicts as JSON, nested at
+// most as deep as the query format reads (io::kMaxJsonDepth): a list that
+// holds itself, or one nested tens of thousands deep, is refused, not
+// followed until the stack runs out.
+Json to_json(const py::handle& v, const std::string& what, int depth = 0) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
-  if (py::isinstance<py::int_>(v)) return v.cast<long long>();
+  if (py::isinstance<py::int_>(v)) {
+    int overflow = 0;
+    const long long i = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+    if (i == -1 && PyErr_Occurred()) throw py::error_already_set();
+    if (!overflow) return i;
+    const double x = PyLong_AsDouble(v.ptr());  // beyond 64 bits: as the nearest double
+    if (x == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      fail(what, "integer too large for a double");
+    }
+    return x;
+  }
   if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  const bool nests = py::isinstance<py::dict>(v) || py::isinstance<py::array>(v) || py::isinstance<py::sequence>(v);
+  if (nests && depth >= io::kMaxJsonDepth)
+    fail(what, "nested deeper than " + std::to_string(io::kMaxJsonDepth) + " levels (or holds itself)");
   if (py::isinstance<py::dict>(v)) {
     Json o = Json::object();
     for (const auto& [key, value] : v.cast<py::dict>()) {
       const std::string k = py::str(key);
-      o[k] = to_json(value, k);
+      o[k] = to_json(value, k, depth + 1);
     }
     return o;
   }
-  if (py::isinstance<py::array>(v)) return to_json(v.attr("tolist")(), what);
+  if (py::isinstance<py::array>(v)) return to_json(v.attr("tolist")(), what, depth);
   if (py::isinstance<py::sequence>(v)) {
     Json a = Json::array();
-    for (const auto& item : v.cast<py::sequence>()) a.push_back(to_json(item, what));
+    for (const auto& item : v.cast<py::sequence>()) a.push_back(to_json(item, what, depth + 1));
     return a;
   }
   // Python floats, and NumPy's scalars (float32 is no float subclass).
@@ -44,10 +61,15 @@ Json to_json(const py::handle& v, const std::string& what) {
   fail(what, std::string("cannot be a ") + py::str(v.get_type().attr("__name__")).cast<std::string>());
 }
 
-PyShape make_shape(const Json& fields, io::ShapeFrame frame = io::ShapeFrame::World) {
+// A shape from its JSON text, read as the query reader reads it (its depth
+// checked before anything is parsed).
+PyShape make_shape(const std::string& text, io::ShapeFrame frame = io::ShapeFrame::World) {
   try {
-    const io::PlacedInput placed = io::parse_shape(fields.dump(), frame);
-    return {placed.shape, placed.pose, fields.value("type", ""), {}};
+    const io::PlacedInput placed = io::parse_shape(text, frame);
+    const Json j = Json::parse(text, nullptr, false);
+    std::string type;
+    if (j.is_object() && j.contains("type") && j["type"].is_string()) type = j["type"].get<std::string>();
+    return {placed.shape, placed.pose, type, {}};
   } catch (const io::QueryFormatError& e) {
     throw py::value_error(e.what());
   } catch (const std::invalid_argument& e) {
@@ -74,18 +96,14 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
       .def(py::init([](const std::string& type, const py::kwargs& fields) {
              Json j = to_json(fields, "shape");
              j["type"] = type;
-             return make_shape(j, io::ShapeFrame::Own);
+             return make_shape(j.dump(), io::ShapeFrame::Own);
            }),
            py::arg("type"))
       .def_static(
           "from_json",
           [](const py::object& value) {
-            if (py::isinstance<py::str>(value)) {
-              const Json j = Json::parse(value.cast<std::string>(), nullptr, false);
-              if (j.is_discarded()) throw py::value_error("shape is not valid JSON");
-              return make_shape(j);
-            }
-            return make_shape(to_json(value, "shape"));
+            if (py::isinstance<py::str>(value)) return make_shape(value.cast<std::string>());
+            return make_shape(to_json(value, "shape").dump());
           },
           py::arg("shape"))
       .def_static(

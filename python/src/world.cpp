@@ -11,8 +11,11 @@
 #include <cstddef>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <thread>
 
 #include "bindings.hpp"
 #include "gjkdem/dem/measure.hpp"
@@ -123,7 +126,44 @@ void def_view(py::class_<World>& c, const char* name, std::size_t offset, py::ss
       name, [=](py::object self) { return body_view<T>(self.cast<World&>(), self, offset, cols, writeable); }, doc);
 }
 
+// The worlds a call is using with the GIL released (a step, a run, a
+// checkpoint), each with the thread making it; kept under the GIL. Any
+// other thread's call on such a world is refused: two threads never step,
+// run or read one world at once (its observer, on the run's thread, may).
+std::map<const World*, std::thread::id>& worlds_in_use() {
+  static std::map<const World*, std::thread::id> in_use;
+  return in_use;
+}
+
+void idle(const World& w) {
+  const auto it = worlds_in_use().find(&w);
+  if (it != worlds_in_use().end() && it->second != std::this_thread::get_id())
+    throw std::runtime_error("this World is being stepped, run or saved by another thread: wait for that call");
+}
+
+// Marks a world in use for the length of a call that releases the GIL.
+class InUse {
+ public:
+  explicit InUse(const World& w) : world_(&w) {
+    const auto [it, fresh] = worlds_in_use().emplace(world_, std::this_thread::get_id());
+    if (fresh) return;
+    world_ = nullptr;
+    throw std::runtime_error(it->second == std::this_thread::get_id()
+                                 ? "this World is already being stepped or run (not from its own observer)"
+                                 : "this World is being stepped, run or saved by another thread: wait for that call");
+  }
+  ~InUse() {
+    if (world_) worlds_in_use().erase(world_);
+  }
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+
+ private:
+  const World* world_;
+};
+
 py::dict contacts_of(const World& w) {
+  idle(w);
   std::size_t n = 0;
   for (const dem::StepContact& c : w.work.contacts) n += c.active;
   py::array_t<std::uint64_t> ids({static_cast<py::ssize_t>(n), py::ssize_t{2}});
@@ -431,6 +471,7 @@ void bind_world(py::module_& m) {
       .def_property_readonly(
           "cell",
           [](const World& w) {
+            idle(w);
             py::dict d;
             if (!w.cell.active()) return d;
             const auto tensor = [](const dem::CellTensor& t) {
@@ -453,6 +494,7 @@ void bind_world(py::module_& m) {
       .def(
           "angular_velocities",
           [](const World& w) {
+            idle(w);
             py::array_t<double> out({static_cast<py::ssize_t>(w.bodies.size()), py::ssize_t{3}});
             double* p = out.mutable_data();
             for (std::size_t k = 0; k < w.bodies.size(); ++k) {
@@ -465,6 +507,7 @@ void bind_world(py::module_& m) {
       .def(
           "masses",
           [](const World& w) {
+            idle(w);
             py::array_t<double> out(static_cast<py::ssize_t>(w.bodies.size()));
             for (std::size_t k = 0; k < w.bodies.size(); ++k) out.mutable_data()[k] = dem::mass_of(w, w.bodies[k]);
             return out;
@@ -473,6 +516,7 @@ void bind_world(py::module_& m) {
       .def(
           "set_positions",
           [](World& w, const py::object& values, const py::object& indices) {
+            idle(w);
             const auto v = to_matrix(values, 3, "positions");
             const std::vector<std::size_t> idx = body_indices(w, indices, v.shape(0));
             for (std::size_t k = 0; k < idx.size(); ++k) {
@@ -488,6 +532,7 @@ void bind_world(py::module_& m) {
       .def(
           "set_orientations",
           [](World& w, const py::object& values, const py::object& indices) {
+            idle(w);
             const auto v = to_matrix(values, 4, "orientations");
             const std::vector<std::size_t> idx = body_indices(w, indices, v.shape(0));
             std::vector<Quat> q(idx.size());
@@ -503,6 +548,7 @@ void bind_world(py::module_& m) {
       .def(
           "step",
           [](World& w, double dt) {
+            const InUse in_use(w);
             if (!(dt > 0 && std::isfinite(dt))) fail("dt", "must be finite and > 0");
             dem::StepReport r;
             {
@@ -518,6 +564,7 @@ void bind_world(py::module_& m) {
              const py::object& observer, std::optional<std::string> out, bool overwrite, bool frames,
              int checkpoint_every) {
             World& w = self.cast<World&>();
+            const InUse in_use(w);
             const double step = dt ? *dt : dem::critical_time_step(w);
             dem::RunState state;
             try {
@@ -565,6 +612,7 @@ void bind_world(py::module_& m) {
       .def(
           "measure",
           [](const World& w, py::object lo, py::object hi) {
+            idle(w);
             const dem::MeasureRegion region{to_vec3(lo, "lo"), to_vec3(hi, "hi")};
             dem::MeasureWorkspace work;
             dem::Measures r;
@@ -594,6 +642,7 @@ void bind_world(py::module_& m) {
       .def(
           "energies",
           [](const World& w) {
+            idle(w);
             py::dict d;
             d["kinetic"] = dem::kinetic_energy(w), d["potential"] = dem::potential_energy(w);
             d["elastic"] = w.stats.elastic_energy;
@@ -609,6 +658,7 @@ void bind_world(py::module_& m) {
       .def(
           "save_checkpoint",
           [](const World& w, const std::string& path, std::optional<double> dt) {
+            const InUse in_use(w);
             // The format keeps a run's clock; a world saved between runs keeps the step to go on with.
             io::Checkpoint c;
             c.run.dt = dt ? *dt : dem::critical_time_step(w);
@@ -624,6 +674,7 @@ void bind_world(py::module_& m) {
       .def(
           "load_checkpoint",
           [](World& w, const std::string& path) {
+            const InUse in_use(w);
             py::gil_scoped_release release;
             return io::load_checkpoint(path, w, 0).run.dt;
           },

@@ -111,6 +111,11 @@ void check_settings(const WorldSettings& s) {
   }
 }
 
+void check_fill_count(std::int64_t count) {
+  need(count > 0 && static_cast<std::uint64_t>(count) <= kMaxFillCount, "region", "count",
+       ("must be a positive integer up to " + std::to_string(kMaxFillCount)).c_str());
+}
+
 WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) {
   check_settings(settings);
   world_.settings = settings;
@@ -405,6 +410,11 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
   check_material(f.material, label);
   if (f.variants.empty()) throw BuildError(label + ": no shape to fill the region with");
+  try {
+    check_fill_count(f.count > kMaxFillCount ? -1 : static_cast<std::int64_t>(f.count));
+  } catch (const BuildError& e) {
+    throw BuildError(label, e.key, e.rule);
+  }
   if (!is_finite(f.lo) || !is_finite(f.hi) || !(f.hi.x > f.lo.x && f.hi.y > f.lo.y && f.hi.z > f.lo.z))
     throw BuildError(label + ": the region's max must exceed its min on every axis");
   const std::uint32_t first_template = static_cast<std::uint32_t>(world_.templates.size());

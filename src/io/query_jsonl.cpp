@@ -20,7 +20,6 @@ using Json = nlohmann::json;
 // Lengths and coordinates beyond this cannot be answered in double precision
 // (squared distances overflow near 1e154): such lines are refused.
 // Deeper JSON is refused before parsing (the parser recurses per level).
-constexpr int kMaxJsonDepth = 64;
 
 Real number(const Json& j, const std::string& what) {
   if (!j.is_number()) fail(what + " must be a number");

@@ -47,7 +47,6 @@ using detail::sample_mix;
 
 // Limits of generators, checked before anything is drawn: each body costs
 // about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
-constexpr std::int64_t kMaxGeneratorCount = 10'000'000;
 constexpr std::int64_t kMaxVariants = 100'000;
 constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
 
@@ -588,8 +587,7 @@ class SceneBuilder {
 
   void read_generator(TableReader& r) {
     const std::int64_t count = r.integer("count").value_or(-1);
-    if (count <= 0 || count > kMaxGeneratorCount)
-      r.fail("count", "must be a positive integer up to " + std::to_string(kMaxGeneratorCount));
+    building(r, [&] { dem::check_fill_count(count); });  // before anything is drawn
     dem::RegionFill fill;
     fill.label = r.where();
     fill.count = static_cast<std::size_t>(count);
@@ -767,6 +765,7 @@ class SceneBuilder {
 }  // namespace
 
 Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir) {
+  detail::check_key_depth(toml_text, source);
   toml::table root;
   try {
     root = toml::parse(toml_text, source);

@@ -27,6 +27,53 @@ inline Real as_real(const toml::node& n) {
   return n.value_exact<double>().value_or(std::numeric_limits<Real>::quiet_NaN());
 }
 
+/// The deepest a scene may nest tables: toml++ caps nested values, not
+/// dotted keys and table headers, whose depth it follows recursively.
+inline constexpr int kMaxKeyDepth = 64;
+
+/// Refuses a table header or key with more than kMaxKeyDepth dotted parts
+/// ("[a.b.c...]", "a.b.c... = 1", and keys of inline tables), naming its
+/// line, before toml++ reads it. Dots in quoted keys and in values do not
+/// count; the dots of one statement's keys (inline tables' included) add up.
+inline void check_key_depth(std::string_view text, const std::string& source) {
+  int line = 1, dots = 0;
+  bool key = true;          // in a key or a table header (before its '=' or ']')
+  char quote = 0;           // inside a quoted key or string
+  bool comment = false;
+  std::string open;         // the '{' and '[' of values not yet closed
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line, comment = false;
+      if (quote == '\'') quote = 0;  // a literal string ends with its line
+      if (open.empty() && !quote) dots = 0, key = true;
+      continue;
+    }
+    if (comment) continue;
+    if (quote) {
+      if (c == '\\' && quote == '"') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    switch (c) {
+      case '"': case '\'': quote = c; break;
+      case '#': comment = true; break;
+      case '=': key = false; break;
+      case '{': open.push_back(c), key = true; break;
+      case '[': if (!key) open.push_back(c); break;  // a value's array (in a key: a table header)
+      case ']': if (key) key = false; else if (!open.empty()) open.pop_back(); break;
+      case '}': if (!open.empty()) open.pop_back(); break;
+      case ',': if (!open.empty() && open.back() == '{') key = true; break;
+      case '.':
+        if (key && ++dots > kMaxKeyDepth)
+          throw SceneError(source + ": a key or table header nested deeper than " + std::to_string(kMaxKeyDepth) +
+                           " levels (line " + std::to_string(line) + ")");
+        break;
+      default: break;
+    }
+  }
+}
+
 inline std::string line_of(const toml::node& n) {
   const auto line = n.source().begin.line;
   return line > 0 ? " (line " + std::to_string(line) + ")" : "";

@@ -41,6 +41,9 @@ inline constexpr int kMinTessellation = 8;
 inline constexpr int kMaxTessellation = 100000;
 /// The most threads a world's step may ask for (0: every core).
 inline constexpr int kMaxThreads = 4096;
+/// The most bodies one region fill may place (about 0.5 KB each with their
+/// contacts), as the most an inflow may insert (kMaxInflowBodies).
+inline constexpr std::uint64_t kMaxFillCount = 10'000'000;
 
 /// The rules of what a world is made of, each written once: the builder
 /// applies them, and the scene reader and the Python module call them to
@@ -59,6 +62,9 @@ void check_cell(const PeriodicCell& cell, const CellControl& control);
 /// Every setting: the contact settings, the cell, gravity (finite) and
 /// threads (keys of [simulation]).
 void check_settings(const WorldSettings& settings);
+/// A region fill's count (key: count): 1 to kMaxFillCount. A reader may
+/// apply it before it draws the fill's shapes.
+void check_fill_count(std::int64_t count);
 
 /// Plane walls get ids from here up, above every body's.
 inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;

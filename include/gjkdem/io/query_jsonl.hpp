@@ -32,6 +32,10 @@ struct PairInput {
 /// On failure throws QueryFormatError; `id_json` receives the id when readable.
 PairInput parse_pair(std::string_view line, std::string& id_json);
 
+/// Input nesting arrays and objects deeper than this is refused (by every
+/// reader of the format: the text, and Python's lists and dicts).
+inline constexpr int kMaxJsonDepth = 64;
+
 /// Where a SHAPE object's coordinates are: in the world (the query format:
 /// every shape placed by its fields), or in its own frame (scenes and
 /// Python), where a shape placed by a "center" is centred on the origin
