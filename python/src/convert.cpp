@@ -62,8 +62,11 @@ Quat to_quat(const py::handle& value, const std::string& what) {
 }
 
 Transform pose_from_row(const double* r, const std::string& what, std::ptrdiff_t row) {
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(r[k])) fail(row_name(what, row), "NaN or infinite number");
+    if (std::fabs(r[k]) > kMaxCoordinate)  // as the query format refuses such a coordinate
+      fail(row_name(what, row), "a position outside the supported range [-1e100, 1e100]");
+  }
   return Transform::from({r[0], r[1], r[2]}, quat_from_row(r + 3, what, row));
 }
 

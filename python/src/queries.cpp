@@ -62,7 +62,8 @@ struct ShapeSet {
 struct Side {
   std::vector<const PyShape*> shapes;  // one, or one per pair (a list)
   const ShapeSet* set = nullptr;       // or these
-  std::vector<Transform> poses;        // empty (identity), or one per pair
+  std::vector<Transform> poses;        // one per pair, when `posed`
+  bool posed = false;                  // poses were given (an (N, 7) array, N may be 0)
   // The Python objects behind `shapes` and `set`, held: a batch runs with
   // the GIL released, while another thread may empty the list it came from.
   std::vector<py::object> held;
@@ -74,7 +75,7 @@ struct Side {
   Transform pose(std::size_t k) const {
     const std::size_t i = size() == 1 ? 0 : k;
     const Transform& offset = set ? set->offsets[i] : shapes[i]->offset;
-    return poses.empty() ? offset : compose(poses[k], offset);
+    return posed ? compose(poses[k], offset) : offset;
   }
 };
 
@@ -116,6 +117,7 @@ Side read_side(const py::handle& shapes, const py::handle& poses, const std::str
   if (!poses.is_none()) {
     const std::string what = "poses_" + name.substr(name.size() - 1);
     const auto rows = to_matrix(poses, 7, what);
+    s.posed = true;
     s.poses.reserve(static_cast<std::size_t>(rows.shape(0)));
     for (py::ssize_t k = 0; k < rows.shape(0); ++k)
       s.poses.push_back(pose_from_row(rows.data(k, 0), what, k));
@@ -127,9 +129,11 @@ Side read_side(const py::handle& shapes, const py::handle& poses, const std::str
 std::size_t pair_count(const Side& a, const Side& b) {
   std::size_t n = 1;
   bool known = false;
-  for (const std::size_t count : {a.size() > 1 ? a.size() : 0, a.poses.size(), b.size() > 1 ? b.size() : 0,
-                                  b.poses.size()}) {
-    if (count == 0) continue;
+  // Every list of shapes longer than one and every pose array says how many
+  // pairs there are (an empty pose array: none).
+  for (const auto& [given, count] : {std::pair{a.size() > 1, a.size()}, {a.posed, a.poses.size()},
+                                    {b.size() > 1, b.size()}, {b.posed, b.poses.size()}}) {
+    if (!given) continue;
     if (known && count != n)
       throw py::value_error("batch: the shape lists and pose arrays must have one entry per pair (got " +
                             std::to_string(n) + " and " + std::to_string(count) + ")");

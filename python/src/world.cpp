@@ -53,6 +53,21 @@ dem::ContactModel model_from(const std::string& name) {
   fail("model", std::string("must be ") + dem::kContactModelNames + ", not \"" + name + "\"");
 }
 
+// Runs `read`, a setter's reading of a Python value, turning pybind11's
+// cast errors (their text names its internals) into a ValueError that says
+// what `what` expects.
+template <class F>
+void recast(const char* what, const char* expected, F&& read) {
+  try {
+    read();
+  } catch (const py::cast_error&) {
+    fail(what, std::string("expected ") + expected);
+  } catch (py::error_already_set& e) {  // a conversion Python itself refused (dict(5))
+    if (!e.matches(PyExc_TypeError)) throw;
+    fail(what, std::string("expected ") + expected);
+  }
+}
+
 // A setter of one of the settings that applies the builder's rules at once
 // (dem::check_settings): what a scene refuses, Python refuses.
 template <class T>
@@ -232,13 +247,15 @@ void bind_world(py::module_& m) {
           },
           [](dem::WorldSettings& s, const py::dict& d) {
             dem::PeriodicCell cell;
-            for (const auto& [key, value] : d) {
-              const std::string name = key.cast<std::string>();
-              const int a = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
-              if (a < 0) fail("periodic", "keys are \"x\", \"y\" and \"z\", not \"" + name + "\"");
-              const auto range = value.cast<std::array<double, 2>>();  // its rules: WorldBuilder's
-              cell.axes[a] = true, cell.lo[a] = range[0], cell.hi[a] = range[1];
-            }
+            recast("periodic", "a dict of \"x\", \"y\" or \"z\" to (min, max) pairs of numbers", [&] {
+              for (const auto& [key, value] : d) {
+                const std::string name = key.cast<std::string>();
+                const int a = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+                if (a < 0) fail("periodic", "keys are \"x\", \"y\" and \"z\", not \"" + name + "\"");
+                const auto range = value.cast<std::array<double, 2>>();  // its rules: WorldBuilder's
+                cell.axes[a] = true, cell.lo[a] = range[0], cell.hi[a] = range[1];
+              }
+            });
             s.periodic = cell;
           },
           "Periodic axes and their ranges, e.g. {\"x\": (0, 0.1), \"y\": (0, 0.1)} (docs/scenes.md); {}: none")
@@ -257,24 +274,26 @@ void bind_world(py::module_& m) {
           },
           [](dem::WorldSettings& s, const py::dict& d) {
             dem::CellControl c;
-            for (const auto& [key, value] : d) {
-              const std::string name = key.cast<std::string>();
-              if (name == "max_strain_rate") {
-                c.max_strain_rate = value.cast<double>();
-                continue;
+            recast("cell_control", "a dict of \"strain_rate\" and \"stress\" dicts of numbers, and a number", [&] {
+              for (const auto& [key, value] : d) {
+                const std::string name = key.cast<std::string>();
+                if (name == "max_strain_rate") {
+                  c.max_strain_rate = value.cast<double>();
+                  continue;
+                }
+                if (name != "strain_rate" && name != "stress")
+                  fail("cell_control", "keys are \"strain_rate\", \"stress\" and \"max_strain_rate\", not \"" + name + "\"");
+                for (const auto& [component, v] : value.cast<py::dict>()) {
+                  const std::string cname = component.cast<std::string>();
+                  int k = 0;
+                  while (k < 6 && cname != dem::kCellComponents[k]) ++k;
+                  if (k == 6) fail("cell_control", "components are x, y, z, xy, xz and yz, not \"" + cname + "\"");
+                  if (c.mode[k] != dem::CellMode::Fixed) fail("cell_control", cname + " takes a strain rate or a stress, not both");
+                  c.mode[k] = name == "stress" ? dem::CellMode::Stress : dem::CellMode::StrainRate;
+                  c.value[k] = v.cast<double>();
+                }
               }
-              if (name != "strain_rate" && name != "stress")
-                fail("cell_control", "keys are \"strain_rate\", \"stress\" and \"max_strain_rate\", not \"" + name + "\"");
-              for (const auto& [component, v] : value.cast<py::dict>()) {
-                const std::string cname = component.cast<std::string>();
-                int k = 0;
-                while (k < 6 && cname != dem::kCellComponents[k]) ++k;
-                if (k == 6) fail("cell_control", "components are x, y, z, xy, xz and yz, not \"" + cname + "\"");
-                if (c.mode[k] != dem::CellMode::Fixed) fail("cell_control", cname + " takes a strain rate or a stress, not both");
-                c.mode[k] = name == "stress" ? dem::CellMode::Stress : dem::CellMode::StrainRate;
-                c.value[k] = v.cast<double>();
-              }
-            }
+            });
             s.cell_control = c;
           },
           "How the periodic cell deforms: {\"strain_rate\": {\"xz\": 1.0}} or {\"stress\": {\"x\": p, \"y\": p, "

@@ -67,10 +67,13 @@ void check_contact_settings(const WorldSettings& s) {
 void check_cell(const PeriodicCell& cell, const CellControl& control) {
   const std::string who = "periodic cell";
   const char* names[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a)
-    if (cell.axes[a])
-      need(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a], who, names[a],
-           "must be [min, max] with max > min (finite)");
+  for (int a = 0; a < 3; ++a) {
+    if (!cell.axes[a]) continue;
+    need(std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]) && cell.hi[a] > cell.lo[a], who, names[a],
+         "must be [min, max] with max > min (finite)");
+    need(std::fabs(cell.lo[a]) <= kMaxCoordinate && std::fabs(cell.hi[a]) <= kMaxCoordinate, who, names[a],
+         "must lie within [-1e100, 1e100] m");
+  }
   need(cell.tilt == Vec3{}, who, "tilt", "must be zero: a periodic cell starts unsheared");
   for (int k = 0; k < 6; ++k) {
     if (control.mode[k] == CellMode::Fixed) continue;

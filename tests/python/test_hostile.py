@@ -141,3 +141,38 @@ def test_settings_made_bad_behind_the_setters_are_refused_by_the_builder():
 def test_a_scene_nested_thousands_deep_is_refused(text):
     with pytest.raises(gjkdem.SceneError, match="nested deeper than 64 levels"):
         gjkdem.load_scene_text(text)
+
+
+def test_poses_beyond_the_supported_range_are_refused_as_shape_fields_are():
+    s = gjkdem.Shape("sphere", radius=1.0)
+    far = [1e200, 0, 0, 1, 0, 0, 0]
+    with pytest.raises(ValueError, match="supported range"):
+        gjkdem.distance(s, s, None, far)
+    with pytest.raises(ValueError, match="supported range"):
+        gjkdem.distance_batch(s, s, None, np.array([far]))
+
+
+def test_an_empty_pose_array_counts_as_zero_pairs():
+    s = gjkdem.Shape("sphere", radius=1.0)
+    five = np.tile([3.0, 0, 0, 1, 0, 0, 0], (5, 1))
+    with pytest.raises(ValueError, match="one entry per pair"):
+        gjkdem.distance_batch(s, s, np.zeros((0, 7)), five)
+    empty = gjkdem.distance_batch(s, s, np.zeros((0, 7)), np.zeros((0, 7)))
+    assert len(empty["distance"]) == 0
+
+
+@pytest.mark.parametrize("field, value", [("periodic", {"x": "ab"}), ("periodic", {"x": (0.0, "1")}),
+                                          ("cell_control", {"stress": {"x": "high"}}),
+                                          ("cell_control", {"stress": 5})])
+def test_settings_of_the_wrong_type_say_what_they_expect(field, value):
+    s = gjkdem.Settings()
+    with pytest.raises(ValueError) as e:
+        setattr(s, field, value)
+    assert field in str(e.value) and "expected" in str(e.value) and "cast" not in str(e.value).lower()
+
+
+def test_a_periodic_range_beyond_the_supported_range_is_refused_by_name():
+    s = gjkdem.Settings()
+    s.periodic = {"x": (-1e308, 1e308)}
+    with pytest.raises(gjkdem.BuildError, match="periodic.x must lie within"):
+        gjkdem.WorldBuilder(s)
