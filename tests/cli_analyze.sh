@@ -48,4 +48,15 @@ refused "x0 < x1" pour --region=0,0,0,-1,1,1
 refused "six numbers" pour --region=0,0,0,1,1,1,5
 mkdir empty
 refused "view/index.csv" empty
+# A region whose volume underflows, and a frame holding a NaN (a blown-up run,
+# or a damaged file): refused, not written into measures.csv as nan and inf.
+refused "underflows" pour --region=0,0,0,1e-120,1e-120,1e-120
+cp -r pour broken
+/usr/bin/python3 - broken/view/frame_000003.bin <<'PY'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read())
+data[40:44] = struct.pack("<f", float("nan"))  # body 0's x: after magic, version, counts, time and step
+open(sys.argv[1], "wb").write(bytes(data))
+PY
+refused "not finite" broken
 echo "analyze: ok"

@@ -142,4 +142,31 @@ for run in servo2 servo12; do
   done
   /usr/bin/python3 "$same_checkpoint" servo1/checkpoint.bin "$run/checkpoint.bin" || fail "the servo checkpoints of servo1 and $run differ"
 done
+# A SIGTERM sent to rank 1 alone stops the run at a step's end on every rank,
+# as one to rank 0 does: exit 130, run.json says interrupted, and the run
+# resumes to the serial bytes.
+"${launch[@]}" -np 2 "$gjkdem" run "$scene" --out signalled --quiet > /dev/null 2>&1 &
+mpi_pid=$!
+rank1=""
+for _ in $(seq 1 400); do
+  if [ -z "$rank1" ]; then
+    for p in $(pgrep -f -- "--out signalled" || true); do
+      tr '\0' '\n' < "/proc/$p/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1" && rank1="$p"
+    done
+  fi
+  [ -n "$rank1" ] && grep -qs '"status": "running"' signalled/run.json && break
+  sleep 0.05
+done
+[ -n "$rank1" ] || { kill "$mpi_pid" 2>/dev/null; fail "rank 1 of the signalled run was not found"; }
+kill -TERM "$rank1"
+set +e
+wait "$mpi_pid"
+rc=$?
+set -e
+[ "$rc" -eq 130 ] || fail "a SIGTERM to rank 1 should stop the run with 130, got $rc"
+grep -q '"status": "interrupted"' signalled/run.json || fail "run.json of the signalled run does not say interrupted"
+grep -q "another rank" signalled/run.json || fail "run.json does not say another rank stopped the run"
+"${launch[@]}" -np 2 "$gjkdem" run --resume signalled --quiet || fail "the resume of the signalled run did not complete"
+same_run serial signalled
+
 echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper, periodic shear and a servoed cell on 2 ranks"

@@ -139,9 +139,13 @@ int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
   }
   if (!run) return started("completed"), 0;
   if (!started("")) return 2;
-  install_signal_handlers();  // rank 0 decides when to stop
+  install_signal_handlers();  // a signal to this rank stops every rank at a step's end
   try {
-    const dem::RunOutcome outcome = run->run({}, {}, &transport);
+    const auto stop = [&]() -> std::string {
+      if (g_stop_signal) return g_stop_signal == SIGINT ? "SIGINT" : "SIGTERM";
+      return "";
+    };
+    const dem::RunOutcome outcome = run->run({}, stop, &transport);
     return outcome.status == dem::RunStatus::Completed ? 0 : outcome.status == dem::RunStatus::Stopped ? 130 : 1;
   } catch (const std::exception& e) {
     std::cerr << "gjkdem: error on rank " << transport.rank() << ": " << e.what() << "\n";

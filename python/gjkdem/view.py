@@ -118,7 +118,20 @@ class RunView:
         lines = text[:text.rfind("\n") + 1].splitlines()
         if not lines or lines[0] != "frame,time,step,bodies,contacts":
             raise ViewFormatError(f"{self.dir / 'index.csv'} does not start with the view index header")
-        rows = [tuple(int(x) if k != 1 else float(x) for k, x in enumerate(line.split(","))) for line in lines[1:]]
+        rows = []
+        for number, line in enumerate(lines[1:], start=2):
+            fields = line.split(",")
+            try:
+                if len(fields) != 5:
+                    raise ValueError(f"{len(fields)} fields, not 5")
+                row = tuple(float(x) if k == 1 else int(x) for k, x in enumerate(fields))
+                if any(v < 0 for k, v in enumerate(row) if k != 1) or not np.isfinite(row[1]):
+                    raise ValueError("a negative count or a time that is not finite")
+                if row[0] >= 2**63 or row[2] >= 2**63 or row[3] >= 2**32 or row[4] >= 2**32:
+                    raise ValueError("a frame number or count out of range")
+            except ValueError as e:
+                raise ViewFormatError(f"{self.dir / 'index.csv'} line {number}: not a frame's row ({e})") from None
+            rows.append(row)
         self.index = np.array(rows, dtype=_INDEX_DTYPE)
 
     def __len__(self):
@@ -128,7 +141,10 @@ class RunView:
         """Frame k of the index (negative counts from the end)."""
         number = int(self.index["frame"][k])
         path = self.dir / f"frame_{number:06d}.bin"
-        return Frame(path.read_bytes(), str(path))
+        frame = Frame(path.read_bytes(), str(path))
+        if np.any(frame.templates >= len(self.templates)):
+            raise ViewFormatError(f"{path} names a shape template shapes.bin does not have")
+        return frame
 
 
 def read_view(run_dir):

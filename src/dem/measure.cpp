@@ -98,6 +98,10 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
   if (!(region.lo.x < region.hi.x && region.lo.y < region.hi.y && region.lo.z < region.hi.z) ||
       !std::isfinite(m.region_volume))
     throw std::invalid_argument("the measurement region must have lo < hi on every axis, all finite");
+  // Fractions and stresses divide by it: a volume that underflows (a region
+  // of 1e-120 m sides) would turn every measure into inf or nan.
+  if (!std::isnormal(m.region_volume))
+    throw std::invalid_argument("the measurement region's volume underflows double precision: make it larger");
   std::vector<char> counted(w.bodies.size(), 0);
   // In a periodic world the region also holds the images of the bodies near
   // the cell's faces (a body straddling one fills both sides).

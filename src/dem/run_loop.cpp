@@ -224,12 +224,13 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     verdict = agree(t, verdict);
     if (!verdict.empty()) return finish(RunStatus::Failed, std::move(verdict));
   }
-  // Rank 0's stop request, or the failure of an on_step observer, told to all.
+  // Any rank's stop request (a signal may reach one rank only), or the
+  // failure of an on_step observer, told to all.
   const std::string kStop = "\x01stop";
   std::string observer_failure;
   auto stop_or_fail = [&](bool ask) -> std::optional<RunOutcome> {
     std::string here = observer_failure;
-    if (root && here.empty() && ask && stop_requested) try {
+    if (here.empty() && ask && stop_requested) try {
         if (stop_requested()) here = kStop;
       } catch (const std::exception& e) {
         here = e.what();

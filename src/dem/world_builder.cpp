@@ -406,6 +406,7 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
                      " bodies; give a smaller count, stop or rate");
   world_.inflows.push_back(f);
   world_.inflow_states.emplace_back();
+  inflow_labels_.push_back(label);
   return static_cast<std::uint32_t>(world_.inflows.size() - 1);
 }
 
@@ -651,11 +652,45 @@ void WorldBuilder::check_periodic_cell() {
   wrap_bodies(world_);
 }
 
+// An inflow whose region lies wholly beyond a plane wall that never moves,
+// or inside a fixed body that never moves, could never insert a body: the
+// run would say nothing and insert nothing.
+void WorldBuilder::check_inflow_regions() const {
+  for (std::size_t k = 0; k < world_.inflows.size(); ++k) {
+    const Inflow& f = world_.inflows[k];
+    const std::string& label = k < inflow_labels_.size() ? inflow_labels_[k] : "an inflow";
+    Vec3 corners[8];
+    for (int c = 0; c < 8; ++c)
+      corners[c] = {c & 1 ? f.hi.x : f.lo.x, c & 2 ? f.hi.y : f.lo.y, c & 4 ? f.hi.z : f.lo.z};
+    for (const PlaneWall& p : world_.planes) {
+      if (p.motion != 0) continue;
+      bool beyond = true;
+      for (const Vec3& c : corners) beyond = beyond && dot(c - p.point, p.normal) < 0;
+      if (beyond)
+        throw BuildError(label + ": its region lies wholly beyond the plane wall with id " + std::to_string(p.id) +
+                         ": no body could ever be inserted there");
+    }
+    for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+      const Body& b = world_.bodies[i];
+      if (!b.fixed || b.motion != 0) continue;
+      const Shape& shape = given_shapes_[b.shape];
+      const Transform pose = shape_pose(world_.templates[b.shape], b);
+      bool inside = true;
+      for (const Vec3& c : corners)
+        inside = inside && intersect(Shape{Point{}}, Transform::from(c, Quat{}), shape, pose);
+      if (inside)
+        throw BuildError(label + ": its region lies wholly inside " + labels_[i] +
+                         ": no body could ever be inserted there", {static_cast<std::uint32_t>(i)});
+    }
+  }
+}
+
 World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
   check_periodic_cell();
   check_explicit_bodies();
+  check_inflow_regions();
   prepare_shapes();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);
   // Room for every body the inflows can insert: the bodies never move in memory.
@@ -669,6 +704,7 @@ World WorldBuilder::build() {
   world_ = World{};
   world_.settings = settings_;
   labels_.clear();
+  inflow_labels_.clear();
   given_shapes_.clear();
   explicit_.clear();
   groups_ = 0;

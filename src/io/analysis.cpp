@@ -1,5 +1,6 @@
 #include "gjkdem/io/analysis.hpp"
 
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 
@@ -19,6 +20,19 @@ Vec3 vec(const std::vector<float>& a, std::size_t k) { return {a[3 * k], a[3 * k
 }  // namespace
 
 std::vector<dem::MeasuredContact> load_frame(dem::World& w, const ViewFrame& f) {
+  // A damaged (or blown-up) frame's numbers are refused, not measured into
+  // nan and inf.
+  const auto finite = [&](const auto& values, const char* what) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(values[i]))
+        throw ViewFormatError("frame at t = " + std::to_string(f.time) + " holds a " + what +
+                              " that is not finite (entry " + std::to_string(i) + ")");
+  };
+  if (!std::isfinite(f.time)) throw ViewFormatError("a frame's time is not finite");
+  finite(f.positions, "position"), finite(f.orientations, "orientation"), finite(f.velocities, "velocity");
+  finite(f.contact_points, "contact point"), finite(f.contact_normals, "contact normal");
+  finite(f.contact_forces, "contact force"), finite(f.plane_points, "plane point");
+  finite(f.cell, "periodic cell bound");
   w.bodies.resize(f.body_count());
   for (std::size_t k = 0; k < f.body_count(); ++k) {
     if (f.templates[k] >= w.templates.size())

@@ -194,9 +194,10 @@ double SceneRun::wall_seconds() const { return writers_ ? writers_->wall_seconds
 dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop,
                               dem::DomainTransport* transport) {
   const bool domains = transport && transport->size() > 1;
-  if (!writers_) {  // a follower
+  if (!writers_) {  // a follower: its own stop request counts too (a signal may reach it alone)
     if (!domains) throw std::logic_error("SceneRun: a follower runs only on domains");
-    return dem::run_domains(scene.world, state, {}, *transport, {}, scene.guards);
+    const auto asked = [&] { return stop && !stop().empty(); };
+    return dem::run_domains(scene.world, state, {}, *transport, asked, scene.guards);
   }
   std::vector<dem::RunObserver*> observers = writers_->observers();
   observers.insert(observers.end(), extra.begin(), extra.end());
@@ -208,6 +209,16 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
     info.stopped_by = stop();
     return !info.stopped_by.empty();
   };
+  // Stopped by another rank's request: said so in run.json.
+  struct OtherRankStop : dem::RunObserver {
+    RunInfoWriter& info;
+    explicit OtherRankStop(RunInfoWriter& i) : info(i) {}
+    void on_output(const dem::World&, const dem::RunState&) override {}
+    void on_stop(const dem::World&, const dem::RunState&, const dem::RunOutcome& o) override {
+      if (o.status == dem::RunStatus::Stopped && info.stopped_by.empty()) info.stopped_by = "another rank's stop request";
+    }
+  } other_rank_stop(info);
+  observers.insert(observers.begin(), &other_rank_stop);
   dem::OneRank alone;
   return dem::run_domains(scene.world, state, observers, transport ? *transport : alone, stop_and_say, scene.guards,
                           {}, &domain_report);

@@ -198,5 +198,39 @@ TEST(Inflow, BadInflowsAreRefused) {
   }
 }
 
+// A region no body could ever be inserted in (under the floor, inside a
+// fixed plate) is refused when the world is built, naming the inflow and
+// the wall (issue 32: it inserted nothing and said nothing); a region
+// reaching past a wall, or beyond a wall that moves, is fine.
+TEST(Inflow, ARegionNoBodyCouldEnterIsRefused) {
+  const auto build = [](Vec3 lo, Vec3 hi, bool plate, bool shaken) {
+    WorldBuilder b;
+    const std::uint32_t m = b.add_material({"grain", 2500, 1e6, 0.25, 0.3, 0.5});
+    PrescribedMotion shake;
+    shake.amplitude = {0, 0, 0.001}, shake.frequency = 10;
+    b.add_plane({0, 0, 0}, {0, 0, 1}, m, "floor", shaken ? b.add_motion(shake, "shake") : 0);
+    if (plate)
+      b.add_body({.shape = {Shape{Box{{0.1, 0.1, 0.01}}}, {}}, .material = m, .position = {0, 0, 0.5}, .fixed = true,
+                  .label = "plate"});
+    InflowDef d = cube_inflow();
+    d.material = m, d.lo = lo, d.hi = hi, d.rate = 100, d.count = 10;
+    b.add_inflow(d);
+    return b.build();
+  };
+  const auto refused = [&](Vec3 lo, Vec3 hi, bool plate, const std::string& message) {
+    try {
+      build(lo, hi, plate, false);
+      ADD_FAILURE() << "accepted: " << message;
+    } catch (const BuildError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  };
+  refused({-0.03, -0.03, -0.2}, {0.03, 0.03, -0.1}, false, "inflow: its region lies wholly beyond the plane wall");
+  refused({-0.03, -0.03, 0.495}, {0.03, 0.03, 0.505}, true, "inflow: its region lies wholly inside plate");
+  EXPECT_NO_THROW(build({-0.03, -0.03, -0.1}, {0.03, 0.03, 0.1}, false, false));  // reaches above the floor
+  EXPECT_NO_THROW(build({-0.03, -0.03, 0.45}, {0.03, 0.03, 0.505}, true, false));  // reaches out of the plate
+  EXPECT_NO_THROW(build({-0.03, -0.03, -0.2}, {0.03, 0.03, -0.1}, false, true));   // the floor moves
+}
+
 }  // namespace
 }  // namespace gjkdem::dem

@@ -85,6 +85,31 @@ def test_damaged_view_files_are_refused(run_dir, tmp_path):
         gjkdem.read_view(tmp_path)
 
 
+@pytest.mark.parametrize("row, why", [("3,abc,1,2,3", "line 3"), ("3,0.1,1,2", "line 3"), ("3,0.1,1,2,3,4", "line 3"),
+                                      ("3,nan,1,2,3", "line 3"), ("3,0.1,-1,2,3", "line 3"), ("(1,2),0,0,0,0", "line 3")])
+def test_a_damaged_index_names_its_file_and_line(run_dir, row, why):
+    out, _ = run_dir
+    index = out / "view" / "index.csv"
+    lines = index.read_text().splitlines()
+    index.write_text("\n".join(lines[:2] + [row] + lines[3:]) + "\n")
+    with pytest.raises(gjkdem.ViewFormatError, match=why) as e:
+        gjkdem.read_view(out)
+    assert "index.csv" in str(e.value)
+
+
+def test_a_frame_naming_a_template_the_shapes_lack_is_refused(run_dir):
+    out, _ = run_dir
+    view = gjkdem.read_view(out)
+    frame = out / "view" / "frame_000003.bin"
+    data = bytearray(frame.read_bytes())
+    n = len(view.frame(3))
+    templates_at = 40 + 4 * 13 * n  # after magic, version, counts, time, step and 13 floats a body
+    data[templates_at:templates_at + 4] = (10**6).to_bytes(4, "little")
+    frame.write_bytes(bytes(data))
+    with pytest.raises(gjkdem.ViewFormatError, match="shape template"):
+        view.frame(3)
+
+
 def test_the_analysis_of_the_frames_is_the_live_worlds(run_dir):
     out, seen = run_dir
     summary = gjkdem.analyze(str(out), region=REGION)

@@ -149,9 +149,10 @@ std::vector<Real> body_costs(const World& whole);
 /// whole world (as built, or restored from a checkpoint) and run state. It
 /// is the one run loop: dem::run is run_domains on one rank (OneRank), which
 /// steps the whole world itself.
-/// Observers, the stop request and the guards act on rank 0, which sees
-/// the gathered whole world at each output (on_step sees rank 0's domain);
-/// the other ranks pass no observers. A failure on any rank fails the run
+/// Observers and the guards act on rank 0, which sees the gathered whole
+/// world at each output (on_step sees rank 0's domain); the other ranks
+/// pass no observers. Every rank may pass a stop request: the run stops
+/// when any rank's says so. A failure on any rank fails the run
 /// on all, with the message of the lowest failing rank. On return, rank
 /// 0's `whole` holds the world as of the last output.
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers,

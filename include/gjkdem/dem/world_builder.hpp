@@ -210,11 +210,13 @@ class WorldBuilder {
   void check_explicit_bodies() const;
   void prepare_shapes();
   void check_periodic_cell();
+  void check_inflow_regions() const;
   void prepare_for_volume_law(Shape& shape, const std::string& who, std::size_t user) const;
 
   WorldSettings settings_;
   World world_;
   std::vector<std::string> labels_;     ///< per body
+  std::vector<std::string> inflow_labels_;  ///< per inflow
   std::vector<Shape> given_shapes_;     ///< per template, as given (before preparation)
   std::vector<std::uint32_t> explicit_; ///< bodies from add_body
   std::size_t prepared_templates_ = 0;  ///< templates of a continued world, prepared already
