@@ -21,7 +21,11 @@ ContactGeometry plane_contact(const PlaneWall& wall, const Shape& sb, const Tran
       c.status = GeometryStatus::Unsupported;
       return c;
     }
-    if (!(h.area > 0) || !(h.volume > 0)) return c;
+    if (!(h.volume > 0)) return c;
+    if (!(h.area > 0)) {  // a half-space's overlap is never empty: the body went through
+      c.status = GeometryStatus::Through;
+      return c;
+    }
     c.area = h.area;
     c.volume = h.volume;
     c.depth = h.volume / h.area;

@@ -1,6 +1,7 @@
 #include "gjkdem/dem/run.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "gjkdem/tolerances.hpp"
@@ -41,6 +42,35 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
   if (state.dt > limit)
     return "the time step " + number_text(state.dt) + " s is above the stability limit " + number_text(limit) +
            " s of the stiffest contact: contacts would blow up (use dt = \"auto\" or a smaller dt)";
+  // A driven wall or body moving more than max_travel of the smallest
+  // moving body's reach in one step can pass through bodies unseen too.
+  Real smallest = std::numeric_limits<Real>::infinity();
+  for (const Body& b : w.bodies)
+    if (!b.fixed) smallest = std::fmin(smallest, w.templates[b.shape].reach);
+  if (std::isfinite(smallest) && w.work.motion_frames.size() == w.motions.size()) {
+    const auto too_fast = [&](Real speed, const std::string& who) -> std::string {
+      const Real travel = speed * state.dt;
+      if (!(travel > g.max_travel * smallest)) return "";
+      return who + " moves " + number_text(travel / smallest) + " of the smallest body's size in one step (speed " +
+             number_text(speed) + " m/s, dt " + number_text(state.dt) + " s) at t = " + number_text(w.time) +
+             " s: it can pass through bodies unseen (lower dt or its speed)";
+    };
+    for (const Body& b : w.bodies) {
+      if (!b.motion) continue;
+      const MotionFrame& f = w.work.motion_frames[b.motion - 1];
+      const std::string m = too_fast(length(b.velocity) + length(f.spin) * w.templates[b.shape].reach,
+                                     "driven body " + std::to_string(b.id));
+      if (!m.empty()) return m;
+    }
+    for (std::size_t p = 0; p < w.planes.size(); ++p) {
+      const PlaneWall& plane = w.planes[p];
+      if (!plane.motion) continue;
+      const MotionFrame& f = w.work.motion_frames[plane.motion - 1];
+      const std::string m = too_fast(std::fabs(dot(point_velocity(f, plane.point), plane.normal)),
+                                     "driven plane wall " + std::to_string(p));
+      if (!m.empty()) return m;
+    }
+  }
   for (const Body& b : w.bodies) {
     if (b.fixed) continue;
     const Real reach = w.templates[b.shape].reach;
@@ -116,6 +146,10 @@ std::string describe_failure(const World& w, const StepReport& r) {
     case StepStatus::UnsupportedPair:
       return "the contact model has no computation for the pair " + name_of(w, r.id_a) + " and " +
              name_of(w, r.id_b) + " at t = " + number_text(w.time) + " s";
+    case StepStatus::ThroughWall:
+      return name_of(w, r.id_b) + " passed wholly through " + name_of(w, r.id_a) + " at t = " + number_text(w.time) +
+             " s: under the volume law nothing holds a body beyond a plane wall (lower dt, or its speed, or "
+             "stiffen the contact)";
     case StepStatus::CellTooShort: {
       const int a = static_cast<int>(r.id_a);
       return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +

@@ -71,9 +71,12 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
     }
     c.active = c.geometry.status == GeometryStatus::Touching;
   }
-  for (const StepContact& c : contacts)
+  for (const StepContact& c : contacts) {
     if (c.geometry.status == GeometryStatus::Unsupported)
       return {StepStatus::UnsupportedPair, c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, w.bodies[c.b].id};
+    if (c.geometry.status == GeometryStatus::Through)
+      return {StepStatus::ThroughWall, w.planes[c.a].id, w.bodies[c.b].id};
+  }
   if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {

@@ -65,6 +65,49 @@ TEST(Run, GuardStopsABodyCrossingItsSizeInAStep) {
   EXPECT_NE(o.error.find("of its size in one step"), std::string::npos) << o.error;
 }
 
+// Issue 32: a soft fast cube under the volume law sinks wholly below the
+// floor between two outputs (no cut face: no force), which once completed
+// the run silently; now the step fails, naming the body and the wall. The
+// same cube on a stiff floor bounces (the guard does not fire on contact).
+TEST(Run, ABodyWhollyBeyondAPlaneWallFailsTheRunNamingBoth) {
+  const auto dropped = [](Real youngs, Real speed) {
+    WorldBuilder b;
+    const std::uint32_t m = b.add_material({"soft", 2500, youngs, 0.25, 0.5, 0.5});
+    b.add_plane({}, {0, 0, 1}, m, "floor");
+    b.add_body({.shape = {Shape{Box{{0.005, 0.005, 0.005}}}, {}}, .material = m, .position = {0, 0, 0.006},
+                .velocity = {0, 0, -speed}, .label = "cube"});
+    return b.build();
+  };
+  World soft = dropped(3e5, 20);
+  RunState run = plan_run(0.01, 2e-5, 0.01);  // a stable step for the contact, long enough to pass through
+  RunGuards no_travel;
+  no_travel.max_travel = 1e9;  // the travel guard would stop it first: let the wall's own check see it
+  const RunOutcome o = dem::run(soft, run, {}, {}, no_travel);
+  ASSERT_EQ(o.status, RunStatus::Failed);
+  EXPECT_NE(o.error.find("body 0 passed wholly through plane wall 0"), std::string::npos) << o.error;
+  World stiff = dropped(1e9, 1);
+  RunState bounce = plan_run(0.01, critical_time_step(stiff), 0.01);
+  EXPECT_EQ(dem::run(stiff, bounce, {}).status, RunStatus::Completed);
+}
+
+// Issue 32: a plate driven at 500 m/s crosses a grain's size in one step;
+// the travel guard, which skipped driven walls, now stops it.
+TEST(Run, GuardStopsADrivenWallCrossingABodysSizeInAStep) {
+  WorldBuilder b;
+  const std::uint32_t m = b.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+  PrescribedMotion push;
+  push.velocity = {0, 0, 500};
+  b.add_plane({0, 0, -0.5}, {0, 0, 1}, m, "piston", b.add_motion(push, "piston"));
+  b.add_body({.shape = {Shape{Box{{0.005, 0.005, 0.005}}}, {}}, .material = m, .position = {0, 0, 0.5},
+              .label = "cube"});
+  World w = b.build();
+  RunState run = plan_run(0.01, critical_time_step(w), 0.001);
+  const RunOutcome o = dem::run(w, run, {});
+  ASSERT_EQ(o.status, RunStatus::Failed);
+  EXPECT_NE(o.error.find("driven plane wall 0 moves"), std::string::npos) << o.error;
+  EXPECT_EQ(run.step, 0u);  // refused before the first step
+}
+
 TEST(Run, GuardSeesEnergyFromNowhere) {
   World w = cube_over_floor(0.01);
   RunState run = plan_run(0.01, critical_time_step(w), 0.001);
@@ -78,8 +121,10 @@ TEST(Run, GuardSeesEnergyFromNowhere) {
   EXPECT_EQ(check_guards(w, run, off), "");
 }
 
+// (Sideways, along the floor: a cube driven through the floor fails the
+// step whatever the guards, ABodyWhollyBeyondAPlaneWallFailsTheRun.)
 TEST(Run, WarnModeGoesOnAndWarnsOnce) {
-  World w = cube_over_floor(0.01, {0, 0, -1000});
+  World w = cube_over_floor(0.01, {1000, 0, 0});
   RunState run = plan_run(0.001, critical_time_step(w), 0.0001);
   Recorder r;
   RunObserver* observers[] = {&r};
@@ -94,7 +139,7 @@ TEST(Run, WarnModeGoesOnAndWarnsOnce) {
 
 // Gravity of 1e308 m/s^2 (issue 11: inf and nan were written to energy.csv).
 TEST(Run, NonFiniteStateFailsTheRun) {
-  World w = cube_over_floor(0.01, {}, {0, 0, -1e308});
+  World w = cube_over_floor(0.01, {}, {1e308, 0, 0});  // along the floor, not through it
   RunState run = plan_run(0.01, 1e-5, 0.001);
   RunGuards off;
   off.action = GuardAction::Off;  // only the finiteness check is left

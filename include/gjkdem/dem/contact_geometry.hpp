@@ -9,6 +9,7 @@ enum class GeometryStatus {
   Apart,        ///< not touching
   Touching,     ///< the fields below are set
   Unsupported,  ///< the contact model has no computation for this pair of shapes
+  Through,      ///< volume law: the body lies wholly beyond a plane wall (no cut face: no force can hold it)
 };
 
 struct ContactGeometry {

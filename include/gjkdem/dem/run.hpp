@@ -50,7 +50,8 @@ enum class GuardAction {
 /// - the time step against the stability limit of the stiffest contact
 ///   (stable_time_step);
 /// - a body travelling more than `max_travel` of its reach in one step (a
-///   fast body tunnels through others: contacts are missed);
+///   fast body tunnels through others: contacts are missed), and a driven
+///   wall or body travelling more than that of the smallest moving body's;
 /// - energy appearing from nowhere: kinetic + elastic energy exceeding what
 ///   the start, the loss of potential energy, the work of driven walls and
 ///   the bodies inflows brought can supply by more than `max_energy_gain` of that supply (1: the energy
