@@ -83,6 +83,29 @@ def status(path):
 assert status("/run/view/index.csv") == 200, "the run's own file"
 for linked in ("/run/passwd", "/run/root/etc/passwd", "/run/view_again/index.csv"):
     assert status(linked) == 404, linked
+# Generated requests (seeded): paths of dots, encodings, links and junk, odd
+# methods and hosts. Each gets an answer, nothing outside the run folder is
+# served, and the server still serves the run afterwards.
+import http.client, random
+rng = random.Random(5)
+host = url.split("//")[1].rstrip("/")
+parts = ["run", "view", "..", ".", "%2e%2e", "%2E%2e%2f", "passwd", "root", "etc", "index.csv", "%00", "a" * 300,
+         "view_again", "frame_000000.bin", "node_modules", "vendor", "three", "%ff", "~", ";", "?x=1", "#f"]
+for k in range(300):
+    path = "/" + "/".join(rng.choice(parts) for _ in range(rng.randrange(1, 7)))
+    method = rng.choice(["GET", "GET", "GET", "HEAD", "POST", "PUT", "DELETE", "OPTIONS"])
+    headers = {"Host": rng.choice([host, host, "evil.example", "", "localhost:" + host.split(":")[1]])}
+    c = http.client.HTTPConnection(host, timeout=10)
+    try:
+        c.request(method, path, headers=headers)
+        r = c.getresponse()
+        body = r.read()
+    finally:
+        c.close()
+    assert r.status in (200, 204, 400, 403, 404, 405, 414, 501), (method, path, r.status)
+    assert b"root:" not in body, (method, path)
+assert status("/run/view/index.csv") == 200, "the server still serves the run"
+print("view: answered", k + 1, "generated requests")
 PY
 kill "$pid2"
 

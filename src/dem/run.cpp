@@ -71,6 +71,25 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
       if (!m.empty()) return m;
     }
   }
+  // A deforming cell moves a body's images by rate x period per second: more
+  // than max_travel of the smallest body's reach in a step and contacts
+  // through the cell's faces are missed (a strain rate of 1e12 /s inverted
+  // the cell in one step, reported as a width of -nan).
+  const CellControl& control = w.settings.cell_control;
+  if (std::isfinite(smallest) && control.deforms() && w.cell.active()) {
+    Real rate = 0, period = 0;
+    for (int k = 0; k < 6; ++k) {
+      if (control.mode[k] == CellMode::StrainRate) rate = std::fmax(rate, std::fabs(control.value[k]));
+      if (control.mode[k] == CellMode::Stress) rate = std::fmax(rate, control.max_strain_rate);
+    }
+    for (int a = 0; a < 3; ++a)
+      if (w.cell.axes[a]) period = std::fmax(period, cell_width(w.cell, a));
+    const Real travel = rate * period * state.dt;
+    if (travel > g.max_travel * smallest)
+      return "the periodic cell's strain rate " + number_text(rate) + " 1/s moves the images " +
+             number_text(travel / smallest) + " of the smallest body's size in one step (dt " + number_text(state.dt) +
+             " s): contacts through the cell's faces would be missed (lower dt or the rate)";
+  }
   for (const Body& b : w.bodies) {
     if (b.fixed) continue;
     const Real reach = w.templates[b.shape].reach;

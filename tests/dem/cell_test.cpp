@@ -356,6 +356,27 @@ TEST(DeformingCell, ACellCompressedBelowFourReachesStopsTheRun) {
   EXPECT_NE(out.error.find("four times the largest body's reach"), std::string::npos) << out.error;
 }
 
+// Issue 32: a strain rate of 1e12 /s inverted the cell in one step and was
+// reported as a width of -nan; the guard now names the rate before the
+// first step, and 3 /s at the same dt passes it.
+TEST(DeformingCell, AStrainRateTooFastForTheStepIsNamed) {
+  for (const Real rate : {1e12, 3.0}) {
+    CellControl c;
+    for (int a = 0; a < 3; ++a) c.mode[a] = CellMode::StrainRate, c.value[a] = -rate;
+    World w = loose_box(3, 0.04, c, 0.3);
+    RunState run = plan_run(2e-4, 5e-5, 1e-4);
+    const RunOutcome out = dem::run(w, run, {});
+    if (rate > 1e6) {
+      ASSERT_EQ(out.status, RunStatus::Failed);
+      EXPECT_NE(out.error.find("the periodic cell's strain rate"), std::string::npos) << out.error;
+      EXPECT_NE(out.error.find("moves the images"), std::string::npos) << out.error;
+      EXPECT_EQ(run.step, 0u);
+    } else {
+      EXPECT_EQ(out.status, RunStatus::Completed) << out.error;
+    }
+  }
+}
+
 TEST(DeformingCell, TheBuilderRefusesControlsItCannotHonour) {
   // Refused by the builder's constructor (dem::check_settings) or, for
   // what depends on the bodies, by build().

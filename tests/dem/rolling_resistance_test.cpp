@@ -61,6 +61,44 @@ TEST(RollingResistance, ABallStopsWhereTheAnalysisSays) {
       }
 }
 
+// Issue 32: rolling_friction = 1000 created energy (the dissipation went
+// negative) at the normal contact's time step: the rolling spring, 2.25 k
+// (mu_r R)^2 on the ball's inertia, rings 2.37 mu_r times as fast. The
+// critical step now counts it; the step that ignored it is refused by the
+// stability guard, and the shorter one keeps the energy balance.
+TEST(RollingResistance, AHugeRollingFrictionTakesAShorterStepNotEnergy) {
+  for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear}) {
+    const auto ball = [&](Real mu_r) {
+      WorldSettings settings;
+      settings.model = model;
+      settings.gravity = {0, 0, -kGravity};
+      WorldBuilder b(settings);
+      Material rubber{"ball", 1200, 1e7, 0.3, 0.5, 0.8};
+      rubber.rolling_friction = mu_r;
+      const std::uint32_t m = b.add_material(rubber);
+      b.add_plane({}, {0, 0, 1}, m, "floor");
+      b.add_body({.shape = {make_sphere(kRadius), {}}, .material = m, .position = {-0.1, 0, kRadius * 0.999},
+                  .velocity = {kSpeed, 0, 0}, .label = "ball"});  // sliding: the rolling spring winds up
+      b.accept_initial_overlaps();
+      return b.build();
+    };
+    const std::string what = model == ContactModel::Hertz ? "Hertz" : "linear";
+    const Real plain = critical_time_step(ball(0));
+    World w = ball(1000);
+    const Real dt = critical_time_step(w);
+    EXPECT_LT(dt, plain / 1000) << what;  // 2.37 mu_r against a wall
+    RunState too_long = plan_run(2e-4, plain, 2e-4);
+    const RunOutcome refused = dem::run(w, too_long, {});
+    EXPECT_EQ(refused.status, RunStatus::Failed) << what;
+    EXPECT_NE(refused.error.find("above the stability limit"), std::string::npos) << what << ": " << refused.error;
+    World again = ball(1000);
+    RunState run = plan_run(2e-4, dt, 2e-4);
+    ASSERT_EQ(dem::run(again, run, {}).status, RunStatus::Completed) << what;
+    const EnergyBalance e = energy_balance(again, run.initial_energy);
+    EXPECT_GE(e.dissipated, -1e-9 * run.initial_energy) << what << ": energy from nowhere";
+  }
+}
+
 TEST(RollingResistance, WithoutItABallRollsOn) {
   for (const bool on_plane : {true, false}) {
     const Rolled r = roll_ball(ContactModel::Hertz, on_plane, 0, 0.3);
