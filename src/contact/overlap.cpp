@@ -490,6 +490,9 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       return r;  // the surface is all on one boundary: no contact normal
     }
   }
+  // Shapes that only touch (a rounded box and a sphere at distance 0) share
+  // no volume, whatever their kind: the overlap is empty, not unknown.
+  if (!(penetration(a, pose_a, b, pose_b).depth > tol)) return r;
   r.status = OverlapStatus::Unsupported;
   return r;
 }

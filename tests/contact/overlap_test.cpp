@@ -202,5 +202,37 @@ TEST(Overlap, AThinPlateThroughAFaceHasThatFacesNormal) {
   EXPECT_LT(worst, 1e-9) << "the largest angle off the face's normal (rad)";
 }
 
+// Issue 32: shapes the clipper cannot take (margins, curved cores) that
+// exactly touch (distance 0 in exact arithmetic) share no volume: Empty with
+// volume 0, not Unsupported; overlapping ones are still Unsupported.
+TEST(Overlap, TouchingCurvedShapesHaveNoVolume) {
+  OverlapWorkspace w;
+  Shape rounded_box{Box{{0.5, 0.5, 0.5}}};
+  rounded_box.margin = 0.25;
+  Shape sphere{Point{}};
+  sphere.margin = 0.25;
+  const Shape cylinder{Cylinder{0.5, 0.5}};
+  const Shape ellipsoid{Ellipsoid{{0.5, 0.25, 0.25}}};
+  const Shape box{Box{{0.5, 0.5, 0.5}}};
+  struct Pair {
+    const Shape& a;
+    const Shape& b;
+    Vec3 touching;  // b's centre where the two touch; a at the origin
+  };
+  for (const Pair& p : {Pair{rounded_box, sphere, {0.25, 0, 1.0}}, Pair{rounded_box, cylinder, {0, 0, 1.25}},
+                        Pair{box, ellipsoid, {1.0, 0, 0}}, Pair{cylinder, ellipsoid, {0, 0, 0.75}}}) {
+    for (int swap = 0; swap < 2; ++swap) {
+      const Shape& a = swap ? p.b : p.a;
+      const Shape& b = swap ? p.a : p.b;
+      const Vec3 at = swap ? -p.touching : p.touching;
+      const OverlapResult touching = overlap(a, Transform::identity(), b, Transform::from(at, Quat{}), w);
+      EXPECT_EQ(touching.status, OverlapStatus::Empty) << at.x << " " << at.y << " " << at.z;
+      EXPECT_EQ(touching.volume, 0);
+      const OverlapResult deep = overlap(a, Transform::identity(), b, Transform::from(at * 0.9, Quat{}), w);
+      EXPECT_NE(deep.status, OverlapStatus::Empty) << "0.9 of the way: they overlap";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gjkdem
