@@ -78,4 +78,17 @@ for f in long tiny_dt big_dt stiff soft; do
   grep -qE "2\^53|longer than the duration|must be > 0" opt.err || fail "$f.toml: $(cat opt.err)"
 done
 
+# 6. Issue 32's wrong causes: a duration of more than 2^53 steps names its
+# keys; a mesh scaled beyond 1e100 m (or below 1e-100 m) names `scale`, not
+# a flat mesh.
+scene 9007199254740993 '"auto"' 1e7 > steps.toml
+expect2 run steps.toml --out out_steps --quiet
+grep -q "simulation.duration and dt: the run would take" opt.err || fail "steps.toml: $(cat opt.err)"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > tet.obj
+for scale in 1.0e200 1.0e-200; do
+  printf '[simulation]\nduration = 0.01\n[[material]]\nname = "rock"\ndensity = 2500.0\nyoungs_modulus = 1.0e7\n[[body]]\nshape = { type = "compound", file = "tet.obj", scale = %s }\nmaterial = "rock"\n' "$scale" > scaled.toml
+  expect2 run scaled.toml --out out_scaled --quiet
+  grep -q "shape.scale: .* the mesh" opt.err || fail "scale $scale: $(cat opt.err)"
+done
+
 echo "cli_limits: all checks passed"

@@ -155,6 +155,9 @@ inline constexpr Real kMassFractionSumTol = 1e-6;
 /// magnitude (m) are refused by every reader (queries, scenes): squares of
 /// such numbers, and their differences, stay finite and resolvable.
 inline constexpr Real kMaxCoordinate = 1e100;
+/// The smallest mesh a scale may leave (its largest |coordinate|, m): below
+/// it the vertices' differences underflow and the mesh reads as flat.
+inline constexpr Real kMinMeshSize = 1e-100;
 
 /// A run of duration T in steps of dt takes ceil(T / dt - kStepCountRelTol)
 /// steps (relative, in steps): a duration that is a whole number of steps up

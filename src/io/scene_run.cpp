@@ -63,8 +63,10 @@ FolderScene read_folder_scene(const RunPaths& folder) {
 dem::RunState plan_scene(const Scene& scene, const std::string& source) {
   try {
     return dem::plan_run(scene.duration, scene.dt, scene.output_every);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(source + ": " + e.what());
+  } catch (const std::invalid_argument& e) {  // named by the keys that set the run's length and cadence
+    const std::string why = e.what();
+    const char* keys = why.find("output") != std::string::npos ? "output.every" : "simulation.duration and dt";
+    throw SceneError(source + ": " + keys + ": " + why);
   }
 }
 

@@ -297,11 +297,25 @@ class SceneBuilder {
     return f;
   }
 
+  // A mesh's vertices scaled, then placed; a scale that puts them beyond
+  // kMaxCoordinate, or shrinks the mesh below what double precision
+  // resolves, is refused by its key (not reported later as a flat mesh).
+  void scale_mesh(TableReader& r, TriangleMesh& mesh, Real scale, const Transform& place = Transform::identity()) {
+    Real extent = 0;
+    for (const Vec3& v : mesh.vertices) extent = std::fmax(extent, max_abs(v));
+    if (!mesh.vertices.empty() && !(extent * scale >= kMinMeshSize))
+      r.fail("scale", "shrinks the mesh below 1e-100 m (not resolvable)");
+    for (Vec3& v : mesh.vertices) {
+      v = apply(place, v * scale);
+      if (!(max_abs(v) <= kMaxCoordinate)) r.fail("scale", "puts the mesh beyond 1e100 m (not resolvable)");
+    }
+  }
+
   Polytope mesh_hull(TableReader& r, Real scale) {
     const std::filesystem::path file = file_of(r, "file");
     try {
       TriangleMesh mesh = read_mesh(file);
-      for (Vec3& v : mesh.vertices) v *= scale;
+      scale_mesh(r, mesh, scale);
       ConvexMesh c = convex_from_mesh(mesh, file.string());
       for (std::string& w : c.warnings) scene_.warnings.push_back(r.where() + ": " + w);
       return c.polytope;
@@ -320,7 +334,7 @@ class SceneBuilder {
       const Real scale = r.positive("scale", 1.0);
       try {
         TriangleMesh mesh = read_mesh(file);
-        for (Vec3& v : mesh.vertices) v *= scale;
+        scale_mesh(r, mesh, scale);
         for (ConvexMesh& c : convex_parts_from_mesh(mesh, file.string())) {
           for (std::string& w : c.warnings) scene_.warnings.push_back(r.where() + ": " + w);
           parts.push_back({Shape{c.polytope}, {}});
@@ -720,13 +734,9 @@ class SceneBuilder {
       } catch (const MeshError& e) {
         r.fail("file", e.what());
       }
+      scale_mesh(r, mesh, scale, Transform::from(position, rotation));
       Vec3 lo{1e300, 1e300, 1e300}, hi = -lo;
-      for (Vec3& v : mesh.vertices) {
-        v = apply(Transform::from(position, rotation), v * scale);
-        lo = min(lo, v);
-        hi = max(hi, v);
-        if (!(max_abs(v) <= kMaxCoordinate)) r.fail("scale", "puts the mesh beyond 1e100 m (not resolvable)");
-      }
+      for (const Vec3& v : mesh.vertices) lo = min(lo, v), hi = max(hi, v);
       const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
       building(r.table_node(),
                [&] { builder_->add_mesh_walls(mesh.vertices, mesh.triangles, thick, material, r.where(), motion); });
