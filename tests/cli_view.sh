@@ -81,7 +81,8 @@ def status(path):
     except urllib.error.HTTPError as e:
         return e.code
 assert status("/run/view/index.csv") == 200, "the run's own file"
-for linked in ("/run/passwd", "/run/root/etc/passwd", "/run/view_again/index.csv"):
+for linked in ("/run/passwd", "/run/root/etc/passwd", "/run/view_again/index.csv", "/runpasswd",
+               "/runroot/etc/passwd"):
     assert status(linked) == 404, linked
 # Generated requests (seeded): paths of dots, encodings, links and junk, odd
 # methods and hosts. Each gets an answer, nothing outside the run folder is

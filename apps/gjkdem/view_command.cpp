@@ -83,7 +83,7 @@ int view_run(const ViewOptions& opt) {
     // through node_modules: /./node_modules, //node_modules, ...), and only
     // the run folder's own files: never through a symbolic link in it.
     if (req.path.find("node_modules") != std::string::npos ||
-        (req.path.rfind("/run/", 0) == 0 && !reached_without_links(run, req.path.substr(5)))) {
+        (req.path.rfind("/run", 0) == 0 && !reached_without_links(run, req.path.substr(4)))) {  // "/runx" too
       res.status = 404;
       return httplib::Server::HandlerResponse::Handled;
     }

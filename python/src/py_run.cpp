@@ -1,8 +1,40 @@
 #include "py_run.hpp"
 
+#include <map>
+#include <thread>
 #include <vector>
 
 namespace gjkdem::py_bind {
+namespace {
+
+std::map<const dem::World*, std::thread::id>& worlds_in_use() {
+  static std::map<const dem::World*, std::thread::id> in_use;
+  return in_use;
+}
+
+const char* const kOtherThread = "this World is being stepped, run or saved by another thread: wait for that call";
+
+}  // namespace
+
+void idle(const dem::World& w) {
+  const auto it = worlds_in_use().find(&w);
+  if (it != worlds_in_use().end() && it->second != std::this_thread::get_id()) throw std::runtime_error(kOtherThread);
+}
+
+InUse::InUse(const dem::World& w, Kind kind) {
+  const auto it = worlds_in_use().find(&w);
+  if (it == worlds_in_use().end()) {
+    worlds_in_use().emplace(&w, std::this_thread::get_id());
+    world_ = &w;
+    return;
+  }
+  if (it->second != std::this_thread::get_id()) throw std::runtime_error(kOtherThread);
+  if (kind == Changes) throw std::runtime_error("this World is already being stepped or run (not from its own observer)");
+}
+
+InUse::~InUse() {
+  if (world_) worlds_in_use().erase(world_);
+}
 
 void PyObserver::on_output(const dem::World&, const dem::RunState& state) {
   if (callback_.is_none() || error_ || !stop_.empty()) return;

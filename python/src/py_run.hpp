@@ -37,6 +37,26 @@ class PyObserver : public dem::RunObserver {
   unsigned polls_ = 0;
 };
 
+/// A world a call is using with the GIL released (a step, a run, a
+/// checkpoint), for the length of that call; kept under the GIL. Another
+/// thread's call on it is refused (RuntimeError): two threads never step,
+/// run or read one world at once. On the holding thread (its observer),
+/// reading calls go on; a second step or run is refused.
+class InUse {
+ public:
+  enum Kind { Changes, Reads };
+  explicit InUse(const dem::World& world, Kind kind = Changes);
+  ~InUse();
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+
+ private:
+  const dem::World* world_ = nullptr;  ///< registered here; null when the thread held it already (a read)
+};
+
+/// Refuses a call on `world` from a thread other than the one using it.
+void idle(const dem::World& world);
+
 /// Runs `loop(observers, stop)` with the GIL released and maps the outcome:
 /// "completed" or "stopped", RunError on failure, the observer's exception.
 std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> extra,

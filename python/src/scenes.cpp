@@ -86,6 +86,7 @@ void bind_scenes(py::module_& m) {
           "run",
           [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after) {
             io::SceneRun& r = self.cast<io::SceneRun&>();
+            const InUse in_use(r.scene.world);
             PyObserver o(self.attr("world"), observer);
             return run_with(o, {}, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
               return r.run(obs, [&]() -> std::string {

@@ -75,7 +75,9 @@ auto checked(T dem::WorldSettings::*field) {
   return [field](dem::WorldSettings& s, T value) {
     dem::WorldSettings next = s;
     next.*field = value;
-    dem::check_settings(next);
+    dem::WorldSettings alone = next;  // the cell's rules wait for the builder: it may be set later
+    alone.periodic = {}, alone.cell_control = {};
+    dem::check_settings(alone);
     s = next;
   };
 }
@@ -140,42 +142,6 @@ void def_view(py::class_<World>& c, const char* name, std::size_t offset, py::ss
   c.def_property_readonly(
       name, [=](py::object self) { return body_view<T>(self.cast<World&>(), self, offset, cols, writeable); }, doc);
 }
-
-// The worlds a call is using with the GIL released (a step, a run, a
-// checkpoint), each with the thread making it; kept under the GIL. Any
-// other thread's call on such a world is refused: two threads never step,
-// run or read one world at once (its observer, on the run's thread, may).
-std::map<const World*, std::thread::id>& worlds_in_use() {
-  static std::map<const World*, std::thread::id> in_use;
-  return in_use;
-}
-
-void idle(const World& w) {
-  const auto it = worlds_in_use().find(&w);
-  if (it != worlds_in_use().end() && it->second != std::this_thread::get_id())
-    throw std::runtime_error("this World is being stepped, run or saved by another thread: wait for that call");
-}
-
-// Marks a world in use for the length of a call that releases the GIL.
-class InUse {
- public:
-  explicit InUse(const World& w) : world_(&w) {
-    const auto [it, fresh] = worlds_in_use().emplace(world_, std::this_thread::get_id());
-    if (fresh) return;
-    world_ = nullptr;
-    throw std::runtime_error(it->second == std::this_thread::get_id()
-                                 ? "this World is already being stepped or run (not from its own observer)"
-                                 : "this World is being stepped, run or saved by another thread: wait for that call");
-  }
-  ~InUse() {
-    if (world_) worlds_in_use().erase(world_);
-  }
-  InUse(const InUse&) = delete;
-  InUse& operator=(const InUse&) = delete;
-
- private:
-  const World* world_;
-};
 
 py::dict contacts_of(const World& w) {
   idle(w);
@@ -677,7 +643,7 @@ void bind_world(py::module_& m) {
       .def(
           "save_checkpoint",
           [](const World& w, const std::string& path, std::optional<double> dt) {
-            const InUse in_use(w);
+            const InUse in_use(w, InUse::Reads);  // from its own observer too
             // The format keeps a run's clock; a world saved between runs keeps the step to go on with.
             io::Checkpoint c;
             c.run.dt = dt ? *dt : dem::critical_time_step(w);

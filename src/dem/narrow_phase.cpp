@@ -22,8 +22,9 @@ ContactGeometry plane_contact(const PlaneWall& wall, const Shape& sb, const Tran
       return c;
     }
     if (!(h.volume > 0)) return c;
-    if (!(h.area > 0)) {  // a half-space's overlap is never empty: the body went through
-      c.status = GeometryStatus::Through;
+    if (!(h.area > 0)) {  // no face cut: wholly beyond (went through), or a vertex grazing the plane
+      const Vec3 top = apply(pb, support(sb, apply_inverse_rotation(pb, wall.normal)));
+      if (dot(top - wall.point, wall.normal) < 0) c.status = GeometryStatus::Through;
       return c;
     }
     c.area = h.area;

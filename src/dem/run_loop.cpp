@@ -119,8 +119,13 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   auto finish = [&](RunStatus status, std::string error = {}) {
     rank.gather(state.step);
     outcome = {status, std::move(error)};
-    if (root)
-      for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
+    // An observer failing here fails the run with its message, after the
+    // collectives below, which every rank must reach.
+    if (root) try {
+        for (RunObserver* o : observers) o->on_stop(whole, state, outcome);
+      } catch (const std::exception& e) {
+        outcome = {RunStatus::Failed, e.what()};
+      }
     // Every rank takes part (the others pass no report).
     const std::string bytes(reinterpret_cast<const char*>(&mine), sizeof mine);
     const std::vector<std::string> all = t.size() == 1 ? std::vector{bytes} : all_gather(t, bytes);
@@ -151,8 +156,8 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     seconds_at_output = mine.step_seconds;
     const std::vector<std::string> times = all_gather(t, std::string(reinterpret_cast<const char*>(&took), sizeof took));
     DomainLayout& layout = rank.layout();
-    std::string regions;
-    if (root) {
+    std::string regions;  // none: the regions stay (also when drawing them failed: every rank must go on)
+    if (root) try {
       const std::size_t ranks = times.size();
       std::vector<double> seconds(ranks, 0);
       for (std::size_t r = 0; r < ranks; ++r)
@@ -176,6 +181,8 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
         if (*std::max_element(predicted.begin(), predicted.end()) < slowest)
           regions.assign(reinterpret_cast<const char*>(next.regions.data()), next.regions.size() * sizeof(DomainBox));
       }
+    } catch (const std::exception&) {
+      regions.clear();
     }
     const std::string said = all_gather(t, regions)[0];
     if (said.size() != layout.regions.size() * sizeof(DomainBox)) return;

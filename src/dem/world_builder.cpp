@@ -672,7 +672,8 @@ void WorldBuilder::check_inflow_regions() const {
     }
     for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
       const Body& b = world_.bodies[i];
-      if (!b.fixed || b.motion != 0) continue;
+      // (A compound's given shape is its hull: a hopper of parts holds room inside.)
+      if (!b.fixed || b.motion != 0 || !world_.templates[b.shape].parts.empty()) continue;
       const Shape& shape = given_shapes_[b.shape];
       const Transform pose = shape_pose(world_.templates[b.shape], b);
       bool inside = true;

@@ -337,6 +337,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.cell_rate = rate;
   w.cell_stress = stress;
   w.work = {};
+  w.search = {};  // a checkpoint without anchors leaves none of the world's old ones
   dem::place_driven(w);  // planes and motion frames (driven bodies come back as saved)
   if (anchors > 0) {
     w.search.boxes = std::move(boxes);

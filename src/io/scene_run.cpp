@@ -41,8 +41,8 @@ Json read_run_json(const RunPaths& folder) {
   Json j = Json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw SceneError(folder.run_json().string() + " is not a run's JSON");
   if (!j.contains("scene_base") || !j["scene_base"].is_string())
-    throw SceneError(folder.dir.string() + " was written by a World built in Python (World.run(out=...)): it keeps "
-                     "no scene to rebuild its world from; continue it with that World's load_checkpoint");
+    throw SceneError(folder.run_json().string() + " names no scene to rebuild the world from (a folder written by "
+                     "World.run(out=...) from Python keeps none: continue it with that World's load_checkpoint)");
   return j;
 }
 

@@ -38,25 +38,28 @@ inline constexpr int kMaxKeyDepth = 64;
 inline void check_key_depth(std::string_view text, const std::string& source) {
   int line = 1, dots = 0;
   bool key = true;          // in a key or a table header (before its '=' or ']')
-  char quote = 0;           // inside a quoted key or string
+  std::string quote;        // the quotes a string or quoted key is in: one or three of " or '
   bool comment = false;
   std::string open;         // the '{' and '[' of values not yet closed
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n') {
       ++line, comment = false;
-      if (quote == '\'') quote = 0;  // a literal string ends with its line
-      if (open.empty() && !quote) dots = 0, key = true;
+      if (quote.size() == 1) quote.clear();  // one-line strings end with their line (an error toml++ reports)
+      if (open.empty() && quote.empty()) dots = 0, key = true;
       continue;
     }
     if (comment) continue;
-    if (quote) {
-      if (c == '\\' && quote == '"') ++i;
-      else if (c == quote) quote = 0;
+    if (!quote.empty()) {
+      if (c == '\\' && quote[0] == '"') ++i;  // an escape in a basic string
+      else if (text.substr(i, quote.size()) == quote) i += quote.size() - 1, quote.clear();
       continue;
     }
     switch (c) {
-      case '"': case '\'': quote = c; break;
+      case '"': case '\'':
+        quote = text.substr(i, 3) == std::string(3, c) ? std::string(3, c) : std::string(1, c);
+        i += quote.size() - 1;
+        break;
       case '#': comment = true; break;
       case '=': key = false; break;
       case '{': open.push_back(c), key = true; break;

@@ -1,6 +1,6 @@
 // The step's stages through step(), begin_step and finish_step:
-// - step(world, dt) is begin_step then finish_step with StepContext{dt}, bit
-//   for bit, on a world with body and wall contacts;
+// - the run loop (dem::run) steps a world as step() does, bit for bit, on a
+//   world with body and wall contacts;
 // - a free body under gravity follows uniform acceleration to round-off
 //   (kick-drift-kick is exact for a constant force), and the clock advances
 //   by dt per step;
@@ -20,6 +20,7 @@
 #include <cstring>
 #include <random>
 
+#include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
@@ -60,26 +61,28 @@ World small_world() {
   return b.build();
 }
 
-TEST(StepTest, StepIsBeginStepThenFinishStep) {
-  World whole = small_world();
-  World halves = whole;
+// The run loop (dem::run: run_domains on one rank, run_loop.cpp) steps a
+// world as step() does, bit for bit: it neither cuts, copies nor gathers a
+// whole world, and adds nothing to the step.
+TEST(StepTest, TheRunLoopStepsAsStepDoes) {
+  World stepped = small_world();
+  World looped = stepped;
   const Real dt = 2e-5;
+  const int n = 2000;
   bool wall_contact = false, body_contact = false;
-  for (int i = 0; i < 2000; ++i) {
-    const StepReport r = step(whole, dt);
-    ASSERT_EQ(r.status, StepStatus::Ok);
-    StepContext context{.dt = dt};
-    ASSERT_EQ(begin_step(halves, context).status, StepStatus::Ok);
-    ASSERT_EQ(finish_step(halves, context).status, StepStatus::Ok);
-    ASSERT_TRUE(same_bodies(whole, halves)) << "step " << i;
-    ASSERT_EQ(whole.time, halves.time);
-    ASSERT_EQ(whole.stats.contacts, halves.stats.contacts);
-    ASSERT_EQ(whole.stats.elastic_energy, halves.stats.elastic_energy);
-    wall_contact = wall_contact || whole.stats.wall_contacts > 0;
-    body_contact = body_contact || whole.stats.contacts > whole.stats.wall_contacts;
+  for (int i = 0; i < n; ++i) {
+    ASSERT_EQ(step(stepped, dt).status, StepStatus::Ok);
+    wall_contact = wall_contact || stepped.stats.wall_contacts > 0;
+    body_contact = body_contact || stepped.stats.contacts > stepped.stats.wall_contacts;
   }
-  EXPECT_TRUE(same_pairs(whole, halves));
-  EXPECT_EQ(whole.wall_work, halves.wall_work);
+  RunState run = plan_run(n * dt, dt, 10 * dt);
+  ASSERT_EQ(run.steps_total, static_cast<std::uint64_t>(n));
+  ASSERT_EQ(dem::run(looped, run, {}).status, RunStatus::Completed);
+  EXPECT_TRUE(same_bodies(stepped, looped));
+  EXPECT_TRUE(same_pairs(stepped, looped));
+  EXPECT_EQ(stepped.time, looped.time);
+  EXPECT_EQ(stepped.wall_work, looped.wall_work);
+  EXPECT_EQ(stepped.stats.elastic_energy, looped.stats.elastic_energy);
   EXPECT_TRUE(wall_contact) << "the faller met the floor";
   EXPECT_TRUE(body_contact) << "the flyers met";
 }

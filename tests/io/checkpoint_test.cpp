@@ -110,6 +110,23 @@ std::string refusal(const std::string& bytes, dem::World& w, std::uint64_t finge
   return "(accepted)";
 }
 
+// A checkpoint saved before any box was made (no anchors) restores into a
+// world that has run since as into a fresh one: nothing of the stepped
+// world's broad-phase cache (box anchors, search cell) survives the load.
+TEST(Checkpoint, ACheckpointWithoutAnchorsLeavesNoneOfTheWorldsOwn) {
+  const dem::World start = pour(2, 30);
+  const std::string bytes = io::encode_checkpoint(start, {dem::plan_run(0.02, 1e-4, 0.01), {}}, 5);
+  dem::World fresh = pour(2, 30), stepped = pour(2, 30);
+  for (int i = 0; i < 50; ++i) ASSERT_EQ(dem::step(stepped, 1e-4).status, dem::StepStatus::Ok);
+  ASSERT_FALSE(stepped.search.boxes.anchor_position.empty());
+  dem::RunState a = io::decode_checkpoint(bytes, fresh, 5, "memory").run;
+  dem::RunState b = io::decode_checkpoint(bytes, stepped, 5, "memory").run;
+  EXPECT_TRUE(stepped.search.boxes.anchor_position.empty());
+  ASSERT_EQ(dem::run(fresh, a, {}).status, dem::RunStatus::Completed);
+  ASSERT_EQ(dem::run(stepped, b, {}).status, dem::RunStatus::Completed);
+  EXPECT_TRUE(same_state(fresh, stepped));
+}
+
 TEST(Checkpoint, DamagedForeignAndEditedCheckpointsAreRefused) {
   dem::World w = pour(2);
   dem::RunState run = dem::plan_run(0.02, 1e-4, 0.01);

@@ -176,3 +176,15 @@ def test_a_periodic_range_beyond_the_supported_range_is_refused_by_name():
     s.periodic = {"x": (-1e308, 1e308)}
     with pytest.raises(gjkdem.BuildError, match="periodic.x must lie within"):
         gjkdem.WorldBuilder(s)
+
+
+def test_the_depth_check_reads_multi_line_strings_as_toml_does():
+    deep = "[" + "a." * 50000 + "b]\n"
+    with pytest.raises(gjkdem.SceneError, match="nested deeper than 64 levels"):  # a quote inside """ ends nothing
+        gjkdem.load_scene_text('x = """say "hi" now"""\n' + deep)
+    # Dots and braces inside a literal multi-line string are not keys: the
+    # scene is read on, and refused for what it lacks, not for its depth.
+    text = "[simulation]\nduration = 1.0\nnote = '''\n" + "a." * 100 + "{ [\n'''\n"
+    with pytest.raises(gjkdem.SceneError) as e:
+        gjkdem.load_scene_text(text)
+    assert "nested deeper" not in str(e.value)
