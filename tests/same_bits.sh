@@ -2,7 +2,8 @@
 # Same bits as a reference build: every example scene, every test scene and
 # the default scene run their first STEPS steps (stopped as if interrupted,
 # which writes the checkpoint) with the reference binary on one thread, then
-# with the binary under test on 1 and 2 threads and on 1 to 4 MPI ranks;
+# with the binary under test on 1 and 2 threads, on 1 to 4 MPI ranks, and
+# stopped half way and resumed;
 # trace.csv, energy.csv and the checkpoint (but the wall-clock seconds it
 # records) must match byte for byte. Kept for refactors of the engine
 # (issue 29): build the commit before the change into another folder and
@@ -59,6 +60,17 @@ for scene in "${scenes[@]}"; do
     fi
     if same "$work/$name.ref" "$out" "$name $label"; then echo "same: $name $label"; else failures=$((failures + 1)); fi
   done
+  # Stopped half way and resumed (one thread): the bits of the run that never stopped.
+  out="$work/$name.resumed"
+  status=0
+  "$candidate" "${args[@]}" --threads 1 --out "$out" --quiet --stop-after $((steps / 2)) >"$out.log" 2>&1 || status=$?
+  [ "$status" -eq 130 ] || { echo "FAIL: $name resumed: the first half exited $status"; failures=$((failures + 1)); continue; }
+  status=0
+  "$candidate" run --resume "$out" --quiet --stop-after "$steps" >>"$out.log" 2>&1 || status=$?
+  if [ "$status" -ne 130 ] && [ "$status" -ne 0 ]; then
+    echo "FAIL: $name resumed: the second half exited $status"; cat "$out.log"; failures=$((failures + 1)); continue
+  fi
+  if same "$work/$name.ref" "$out" "$name resumed"; then echo "same: $name resumed"; else failures=$((failures + 1)); fi
 done
 [ "$failures" -eq 0 ] || { echo "$failures differences"; exit 1; }
 echo "every scene gives the reference's bits"

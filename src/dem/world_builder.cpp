@@ -31,7 +31,7 @@ bool solid_polytope(const Shape& s) {
 namespace {
 
 // A field's rule: throws BuildError(subject, key, rule) unless `ok`.
-void need(bool ok, const std::string& subject, const std::string& key, const char* rule) {
+void need(bool ok, const std::string& subject, const std::string& key, const std::string& rule) {
   if (!ok) throw BuildError(subject, key, rule);
 }
 
@@ -116,7 +116,7 @@ void check_settings(const WorldSettings& s) {
 
 void check_fill_count(std::int64_t count) {
   need(count > 0 && static_cast<std::uint64_t>(count) <= kMaxFillCount, "region", "count",
-       ("must be a positive integer up to " + std::to_string(kMaxFillCount)).c_str());
+       "must be a positive integer up to " + std::to_string(kMaxFillCount));
 }
 
 WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) {

@@ -213,6 +213,7 @@ void RunInfoWriter::write(const std::string& status, const dem::World& w, const 
   nlohmann::ordered_json info = nlohmann::ordered_json::parse(info_json_);
   info["status"] = status;
   if (status == "interrupted" && !stopped_by.empty()) info["stopped_by"] = stopped_by;
+  else if (status == "interrupted" && ranks > 1) info["stopped_by"] = "another rank's stop request";  // not rank 0's
   if (!error.empty()) info["error"] = error;
   for (const std::string& warning : warnings_) info["warnings"].push_back(warning);
   info["ranks"] = ranks;

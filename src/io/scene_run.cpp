@@ -211,16 +211,6 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
     info.stopped_by = stop();
     return !info.stopped_by.empty();
   };
-  // Stopped by another rank's request: said so in run.json.
-  struct OtherRankStop : dem::RunObserver {
-    RunInfoWriter& info;
-    explicit OtherRankStop(RunInfoWriter& i) : info(i) {}
-    void on_output(const dem::World&, const dem::RunState&) override {}
-    void on_stop(const dem::World&, const dem::RunState&, const dem::RunOutcome& o) override {
-      if (o.status == dem::RunStatus::Stopped && info.stopped_by.empty()) info.stopped_by = "another rank's stop request";
-    }
-  } other_rank_stop(info);
-  observers.insert(observers.begin(), &other_rank_stop);
   dem::OneRank alone;
   return dem::run_domains(scene.world, state, observers, transport ? *transport : alone, stop_and_say, scene.guards,
                           {}, &domain_report);
