@@ -31,8 +31,9 @@ void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>
 // plane ids lie above every body's): for each body, its candidates with
 // larger indices, then the plane walls its box reaches; for compounds, each
 // pair of parts whose bounding spheres meet, in part order.
-void list_contacts(World& w, const DomainRole* domain) {
-  StepWorkspace& work = w.work;
+void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                   std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
+                   const DomainRole* domain, StepWorkspace& work) {
   std::vector<StepContact>& contacts = work.contacts;
   contacts.clear();
   work.keys.clear();
@@ -40,11 +41,11 @@ void list_contacts(World& w, const DomainRole* domain) {
   std::vector<PartSphere> parts_a, parts_b;
   // Worlds without compounds never look at templates here.
   const bool any_compound =
-      std::any_of(w.templates.begin(), w.templates.end(), [](const ShapeTemplate& t) { return !t.parts.empty(); });
+      std::any_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return !t.parts.empty(); });
   std::size_t k = 0;
-  for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
-    const Body& body = w.bodies[i];
-    const ShapeTemplate& t = w.templates[body.shape];
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    const ShapeTemplate& t = templates[body.shape];
     const bool compound = any_compound && !t.parts.empty();
     if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
@@ -53,14 +54,14 @@ void list_contacts(World& w, const DomainRole* domain) {
       c.a = i;
       c.b = pairs[k].second;
       if (!work.candidate_images.empty()) c.image = work.candidate_images[k];
-      const Body& other = w.bodies[c.b];
-      if (!any_compound || (!compound && w.templates[other.shape].parts.empty())) {
+      const Body& other = bodies[c.b];
+      if (!any_compound || (!compound && templates[other.shape].parts.empty())) {
         contacts.push_back(c);
         work.keys.push_back(pair_key(body.id, other.id));
         continue;
       }
       if (!compound) part_spheres(t, body, parts_a);
-      part_spheres(w.templates[other.shape], other, parts_b, shift_of(w, c));
+      part_spheres(templates[other.shape], other, parts_b, image_shift_of(cell, c));
       for (std::uint16_t pa = 0; pa < parts_a.size(); ++pa)
         for (std::uint16_t pb = 0; pb < parts_b.size(); ++pb) {
           if (length(parts_a[pa].centre - parts_b[pb].centre) > parts_a[pa].radius + parts_b[pb].radius) continue;
@@ -70,9 +71,9 @@ void list_contacts(World& w, const DomainRole* domain) {
         }
     }
     if (body.fixed || (domain && !domain->owns(i))) continue;
-    const Aabb& box = w.search.boxes.boxes[i];
-    for (std::uint32_t p = 0; p < w.planes.size(); ++p) {
-      const PlaneWall& wall = w.planes[p];
+    const Aabb& box = boxes[i];
+    for (std::uint32_t p = 0; p < planes.size(); ++p) {
+      const PlaneWall& wall = planes[p];
       Real lowest = -dot(wall.normal, wall.point);  // of the box's corners above the plane
       for (int axis = 0; axis < 3; ++axis) lowest += wall.normal[axis] * (wall.normal[axis] > 0 ? box.lo[axis] : box.hi[axis]);
       if (lowest > 0) continue;

@@ -1,6 +1,7 @@
 // What the contact laws see of each side of a contact (stages.hpp).
 #include <limits>
 
+#include "gjkdem/dem/rigid_rotation.hpp"
 #include "stages.hpp"
 
 namespace gjkdem::dem::detail {
@@ -27,22 +28,23 @@ ContactSide driven_side(const MotionFrame& f, const Vec3& position, const Vec3& 
 
 }  // namespace
 
-ContactSide plane_side(const World& w, const PlaneWall& p) {
+ContactSide plane_side(const SideSources& sources, const PlaneWall& p) {
   if (p.motion == 0) return fixed_side();
-  const MotionFrame& f = w.work.motion_frames[p.motion - 1];
+  const MotionFrame& f = sources.motion_frames[p.motion - 1];
   return driven_side(f, f.center, f.velocity);
 }
 
-ContactSide side_of(const World& w, const Body& b, std::uint32_t part, const Vec3& shift) {
-  const Vec3 velocity = b.velocity + affine_velocity(w.cell_rate, shift);
-  if (b.fixed) return b.motion ? driven_side(w.work.motion_frames[b.motion - 1], b.position + shift, velocity) : fixed_side();
+ContactSide side_of(const SideSources& sources, const Body& b, std::uint32_t part, const Vec3& shift) {
+  const Vec3 velocity = b.velocity + affine_velocity(sources.cell_rate, shift);
+  if (b.fixed) return b.motion ? driven_side(sources.motion_frames[b.motion - 1], b.position + shift, velocity) : fixed_side();
   ContactSide s;
-  const ShapeTemplate& t = w.templates[b.shape];
+  const Makeup& makeup = sources.makeup;
+  const ShapeTemplate& t = makeup.templates[b.shape];
   s.moving = true;
   s.position = b.position + shift;
   s.velocity = velocity;
-  s.spin = angular_velocity_of(w, b);
-  s.mass = mass_of(w, b);
+  s.spin = angular_velocity(b.orientation, b.angular_momentum, makeup.moments(b));
+  s.mass = makeup.mass(b);
   s.curvature_radius = t.parts.empty() ? t.curvature_radius : t.parts[part].curvature_radius;
   s.volume = t.parts.empty() ? t.unit_mass.volume : t.parts[part].volume;
   return s;

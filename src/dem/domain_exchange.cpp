@@ -24,7 +24,7 @@ constexpr Real kInf = std::numeric_limits<Real>::infinity();
 std::uint64_t insert_inflow_bodies(World& w, StepContext& ctx, const DomainLayout& layout, DomainTransport& t) {
   DomainRole& role = *ctx.domain;
   constexpr std::uint64_t kNone = ~std::uint64_t{0};
-  if (w.inflows.empty() || !inflows_due(w)) return kNone;  // the same answer on every rank
+  if (w.inflows.empty() || !inflows_due(w.inflows, w.inflow_states, {w.templates, w.materials}, w.time)) return kNone;  // the same answer on every rank
   std::vector<Body> near;   // this domain's bodies near an inflow
   std::vector<std::uint64_t> top{0};  // its highest id
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
@@ -32,7 +32,7 @@ std::uint64_t insert_inflow_bodies(World& w, StepContext& ctx, const DomainLayou
     top[0] = std::max(top[0], b.id + 1);
     if (b.fixed || !role.owns(i)) continue;
     for (const Inflow& f : w.inflows)
-      if (near_inflow(w, f, b)) {
+      if (near_inflow(w.templates, f, b)) {
         near.push_back(b);
         break;
       }
@@ -51,11 +51,9 @@ std::uint64_t insert_inflow_bodies(World& w, StepContext& ctx, const DomainLayou
   }
   std::sort(all.begin(), all.end(), [](const Body& x, const Body& y) { return x.id < y.id; });
   const std::uint64_t first = *std::max_element(tops.begin(), tops.end());
-  std::swap(w.bodies, all);
-  const std::size_t before = w.bodies.size();
-  ctx.inserted = run_inflows(w, first);
-  std::vector<Body> fresh(w.bodies.begin() + static_cast<std::ptrdiff_t>(before), w.bodies.end());
-  std::swap(w.bodies, all);
+  const std::size_t before = all.size();
+  ctx.inserted = run_inflows(w.inflows, w.inflow_states, inflow_site(w), all, first);
+  const std::vector<Body> fresh(all.begin() + static_cast<std::ptrdiff_t>(before), all.end());
   // All are kept: this domain's own, the others' as ghosts until the exchange.
   for (const Body& b : fresh) {
     w.bodies.push_back(b);

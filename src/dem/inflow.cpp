@@ -28,36 +28,34 @@ Quat uniform_rotation(Real u1, Real u2, Real u3) noexcept {
 
 // The bodies (or their periodic images) that might touch a body placed in
 // the inflow's region.
-std::vector<std::uint32_t> bodies_near(const World& w, const Inflow& f, const std::vector<Vec3>& shifts) {
+std::vector<std::uint32_t> bodies_near(std::span<const Body> bodies, const Makeup& makeup, const Inflow& f,
+                                       const std::vector<Vec3>& shifts) {
   std::vector<std::uint32_t> near;
-  for (std::uint32_t i = 0; i < w.bodies.size(); ++i)
+  for (std::uint32_t i = 0; i < bodies.size(); ++i)
     for (const Vec3& s : shifts)
-      if (near_inflow(w, f, w.bodies[i], s)) {
+      if (near_inflow(makeup.templates, f, bodies[i], s)) {
         near.push_back(i);
         break;
       }
   return near;
 }
 
-// Whether the next body of inflow k is due at w.time.
-bool due(const World& w, std::size_t k) {
-  const Inflow& f = w.inflows[k];
-  const InflowState& s = w.inflow_states[k];
-  if (w.time < f.start || (f.count > 0 && s.inserted >= f.count)) return false;
-  const Real elapsed = std::fmin(w.time, f.stop) - f.start;
-  const ShapeTemplate& t = w.templates[f.templates[inflow_variant(f, s.inserted)]];
-  const Real mass = w.materials[f.material].density * t.unit_mass.volume;
+// Whether the next body of inflow f (in state s) is due at `time`.
+bool due(const Inflow& f, const InflowState& s, const Makeup& makeup, Real time) {
+  if (time < f.start || (f.count > 0 && s.inserted >= f.count)) return false;
+  const Real elapsed = std::fmin(time, f.stop) - f.start;
+  const Real mass = makeup.mass(f.templates[inflow_variant(f, s.inserted)], f.material);
   return f.rate > 0 ? static_cast<Real>(s.inserted) <= f.rate * elapsed : s.mass + 0.5 * mass <= f.mass_rate * elapsed;
 }
 
-bool is_free(const World& w, const std::vector<std::uint32_t>& near, const std::vector<Vec3>& shifts,
-             const ShapeTemplate& t, const Body& body) {
-  for (const PlaneWall& p : w.planes)
+bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::vector<std::uint32_t>& near,
+             const std::vector<Vec3>& shifts, const ShapeTemplate& t, const Body& body) {
+  for (const PlaneWall& p : site.planes)
     if (dot(body.position - p.point, p.normal) < t.reach) return false;
   const Transform pose = shape_pose(t, body);
   for (const std::uint32_t i : near) {
-    const Body& other = w.bodies[i];
-    const ShapeTemplate& o = w.templates[other.shape];
+    const Body& other = bodies[i];
+    const ShapeTemplate& o = site.makeup.templates[other.shape];
     for (const Vec3& s : shifts) {
       if (!(length(other.position + s - body.position) < o.reach + t.reach)) continue;
       Transform other_pose = shape_pose(o, other);
@@ -70,17 +68,22 @@ bool is_free(const World& w, const std::vector<std::uint32_t>& near, const std::
 
 }  // namespace
 
-bool near_inflow(const World& w, const Inflow& f, const Body& b, const Vec3& shift) noexcept {
-  Real reach = 0;
-  for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
-  const Vec3 image = b.position + shift;
-  const Vec3 closest = max(f.lo, min(f.hi, image));  // of the region, to the body
-  return length(image - closest) < w.templates[b.shape].reach + reach;
+InflowSite inflow_site(const World& w) {
+  return {{w.templates, w.materials}, w.planes, w.cell, w.time, w.settings.gravity};
 }
 
-bool inflows_due(const World& w) {
-  for (std::size_t k = 0; k < w.inflows.size(); ++k)
-    if (due(w, k)) return true;
+bool near_inflow(std::span<const ShapeTemplate> templates, const Inflow& f, const Body& b, const Vec3& shift) noexcept {
+  Real reach = 0;
+  for (const std::uint32_t t : f.templates) reach = std::fmax(reach, templates[t].reach);
+  const Vec3 image = b.position + shift;
+  const Vec3 closest = max(f.lo, min(f.hi, image));  // of the region, to the body
+  return length(image - closest) < templates[b.shape].reach + reach;
+}
+
+bool inflows_due(std::span<const Inflow> inflows, std::span<const InflowState> states, const Makeup& makeup,
+                 Real time) {
+  for (std::size_t k = 0; k < inflows.size(); ++k)
+    if (due(inflows[k], states[k], makeup, time)) return true;
   return false;
 }
 
@@ -95,10 +98,10 @@ std::uint32_t inflow_variant(const Inflow& f, std::uint64_t n) noexcept {
   return static_cast<std::uint32_t>(std::min<std::size_t>(it - f.cumulative.begin(), f.cumulative.size() - 1));
 }
 
-std::uint64_t inflow_capacity(const World& w, const Inflow& f) noexcept {
+std::uint64_t inflow_capacity(const Inflow& f, const Makeup& makeup) noexcept {
   Real lightest_mass = std::numeric_limits<Real>::infinity();
   for (const std::uint32_t t : f.templates)
-    lightest_mass = std::fmin(lightest_mass, w.materials[f.material].density * w.templates[t].unit_mass.volume);
+    lightest_mass = std::fmin(lightest_mass, makeup.mass(t, f.material));
   Real most = std::numeric_limits<Real>::infinity();
   if (f.count > 0) most = static_cast<Real>(f.count);
   const Real span = f.stop - f.start;
@@ -107,23 +110,23 @@ std::uint64_t inflow_capacity(const World& w, const Inflow& f) noexcept {
   return most < 1.8e19 ? static_cast<std::uint64_t>(most) : std::numeric_limits<std::uint64_t>::max();
 }
 
-std::size_t run_inflows(World& w) { return run_inflows(w, w.bodies.empty() ? 0 : w.bodies.back().id + 1); }
-
-std::size_t run_inflows(World& w, std::uint64_t next_id) {
+std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> states, const InflowSite& site,
+                        std::vector<Body>& bodies, std::uint64_t next_id) {
+  const Makeup& makeup = site.makeup;
   std::size_t added = 0;
-  for (std::size_t k = 0; k < w.inflows.size(); ++k) {
-    const Inflow& f = w.inflows[k];
-    InflowState& s = w.inflow_states[k];
+  for (std::size_t k = 0; k < inflows.size(); ++k) {
+    const Inflow& f = inflows[k];
+    InflowState& s = states[k];
     std::vector<std::uint32_t> near;
     std::vector<Vec3> shifts;  // made once a body is due: most steps insert nothing
     bool looked = false;
-    while (due(w, k)) {
+    while (due(f, s, makeup, site.time)) {
       const std::uint32_t v = inflow_variant(f, s.inserted);
-      const ShapeTemplate& t = w.templates[f.templates[v]];
-      const Real mass = w.materials[f.material].density * t.unit_mass.volume;
+      const ShapeTemplate& t = makeup.templates[f.templates[v]];
+      const Real mass = makeup.mass(f.templates[v], f.material);
       if (!looked) {
-        shifts = image_shifts(w.cell);
-        near = bodies_near(w, f, shifts);
+        shifts = image_shifts(site.cell);
+        near = bodies_near(bodies, makeup, f, shifts);
         looked = true;
       }
       Body body;
@@ -136,18 +139,18 @@ std::size_t run_inflows(World& w, std::uint64_t next_id) {
         const auto u = [&](Draw d) { return keyed_uniform(f.seed, s.inserted, attempt, d); };
         body.position = f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
         body.orientation = uniform_rotation(u(kTurn1), u(kTurn2), u(kTurn3));
-        placed = is_free(w, near, shifts, t, body);
+        placed = is_free(bodies, site, near, shifts, t, body);
       }
       if (!placed) {
         ++s.behind;
         break;
       }
       body.id = next_id++;
-      w.bodies.push_back(body);
-      near.push_back(static_cast<std::uint32_t>(w.bodies.size() - 1));
+      bodies.push_back(body);
+      near.push_back(static_cast<std::uint32_t>(bodies.size() - 1));
       ++s.inserted;
       s.mass += mass;
-      s.energy += mass * (0.5 * dot(body.velocity, body.velocity) - dot(w.settings.gravity, body.position));
+      s.energy += mass * (0.5 * dot(body.velocity, body.velocity) - dot(site.gravity, body.position));
       ++added;
     }
   }

@@ -73,41 +73,39 @@ namespace {
 
 // A moving body this world moves: a domain moves only its own (their
 // owners move the others).
-bool moves_here(const World& w, const DomainRole* domain, std::size_t i) {
-  return !w.bodies[i].fixed && (!domain || domain->owns(i));
+bool moves_here(const CellBodies& m, std::size_t i) {
+  return !m.bodies[i].fixed && (!m.domain || m.domain->owns(i));
 }
 
 // The kinetic energy the cell's field gives moving bodies (a change of the
-// field, a wrap) is the cell's work on them: summed in body order into
-// wall_work in a whole world, listed per body (id, joules) in a domain,
-// which owns only some (domains.hpp sums the lists on rank 0 in id order).
+// field, a wrap): summed in body order in a whole world, listed per body in
+// a domain (CellBodies).
 struct FieldWorkSum {
-  World& w;
+  const CellBodies& moved;
   std::vector<FieldWork>* listed;  ///< a domain's list; null in a whole world
   Real added = 0;
   bool any = false;
   void give(Body& b, const Vec3& v) {
-    const Real gained = 0.5 * mass_of(w, b) * (dot(v, v) - dot(b.velocity, b.velocity));
+    const Real gained = 0.5 * moved.makeup->mass(b) * (dot(v, v) - dot(b.velocity, b.velocity));
     if (!listed) added += gained, any = true;
     else listed->push_back({b.id, gained});
     b.velocity = v;
   }
   void finish() {
-    if (any) w.wall_work += added;
+    if (any) *moved.wall_work += added;
   }
 };
 
 }  // namespace
 
-std::size_t wrap_bodies(World& w, DomainRole* domain) {
-  const PeriodicCell& cell = w.cell;
-  BoxCache& cache = w.search.boxes;
-  const bool boxed = cache.boxes.size() == w.bodies.size();
+std::size_t wrap_bodies(const PeriodicCell& cell, const CellTensor& rate, BoxCache& cache, const CellBodies& moved) {
+  const std::span<Body> bodies = moved.bodies;
+  const bool boxed = cache.boxes.size() == bodies.size();
   std::size_t crossed = 0;
-  FieldWorkSum work{w, domain ? &domain->wrap_work : nullptr};
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    Body& b = w.bodies[i];
-    if (!moves_here(w, domain, i)) continue;
+  FieldWorkSum work{moved, moved.domain ? &moved.domain->wrap_work : nullptr};
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (!moves_here(moved, i)) continue;
     const Vec3 move = into_cell(cell, b.position);
     if (move == Vec3{}) continue;
     ++crossed;
@@ -116,7 +114,7 @@ std::size_t wrap_bodies(World& w, DomainRole* domain) {
     // faster by L m: the body takes that velocity, and the kinetic energy
     // it gains or loses is the cell's work on it (Lees-Edwards' boundary
     // drives the flow this way).
-    if (const Vec3 jump = affine_velocity(w.cell_rate, move); jump != Vec3{}) work.give(b, b.velocity + jump);
+    if (const Vec3 jump = affine_velocity(rate, move); jump != Vec3{}) work.give(b, b.velocity + jump);
     if (boxed) {
       cache.anchor_position[i] += move;
       cache.boxes[i].lo += move;
@@ -127,29 +125,31 @@ std::size_t wrap_bodies(World& w, DomainRole* domain) {
   return crossed;
 }
 
-void control_cell(World& w, DomainRole* domain) {
-  const CellControl& control = w.settings.cell_control;
+void control_cell(const CellControl& control, const CellTensor& stress, const PeriodicCell& cell, CellTensor& rate,
+                  const CellBodies& moved) {
   Real scale = 0;  // of the servo's errors: the largest target
   for (int k = 0; k < 6; ++k)
     if (control.mode[k] == CellMode::Stress) scale = std::fmax(scale, std::fabs(control.value[k]));
-  CellTensor rate{};
+  CellTensor next{};
   for (int k = 0; k < 6; ++k) {
     if (control.mode[k] == CellMode::StrainRate) {
-      rate[k] = control.value[k];
+      next[k] = control.value[k];
     } else if (control.mode[k] == CellMode::Stress) {
-      const Real error = (w.cell_stress[k] - control.value[k]) / scale;
-      rate[k] = control.max_strain_rate * std::clamp(error, Real(-1), Real(1));
+      const Real error = (stress[k] - control.value[k]) / scale;
+      next[k] = control.max_strain_rate * std::clamp(error, Real(-1), Real(1));
     }
   }
   CellTensor change;
   bool changed = false;
-  for (int k = 0; k < 6; ++k) change[k] = rate[k] - w.cell_rate[k], changed |= change[k] != 0;
-  w.cell_rate = rate;
+  for (int k = 0; k < 6; ++k) change[k] = next[k] - rate[k], changed |= change[k] != 0;
+  rate = next;
   if (!changed) return;
-  const Vec3 centre = cell_centre(w.cell);
-  FieldWorkSum work{w, domain ? &domain->field_work : nullptr};
-  for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    if (moves_here(w, domain, i)) work.give(w.bodies[i], w.bodies[i].velocity + affine_velocity(change, w.bodies[i].position - centre));
+  const Vec3 centre = cell_centre(cell);
+  FieldWorkSum work{moved, moved.domain ? &moved.domain->field_work : nullptr};
+  for (std::size_t i = 0; i < moved.bodies.size(); ++i) {
+    Body& b = moved.bodies[i];
+    if (moves_here(moved, i)) work.give(b, b.velocity + affine_velocity(change, b.position - centre));
+  }
   work.finish();
 }
 
@@ -209,10 +209,8 @@ Real shortest_period(const World& w, const DomainRole* domain) noexcept {
   return 4 * largest_reach(w, domain) * (1 + w.settings.box_skin);
 }
 
-void find_periodic_candidates(World& w, int threads) {
-  StepWorkspace& work = w.work;
-  const PeriodicCell& cell = w.search.cell;
-  const std::vector<Aabb>& boxes = w.search.boxes.boxes;
+void find_periodic_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell& cell,
+                              int threads, StepWorkspace& work) {
   Vec3 widest{};
   for (const std::uint32_t i : work.moving) widest = max(widest, boxes[i].hi - boxes[i].lo);
   // Every moving and driven box, and its images where it comes within the
@@ -277,7 +275,7 @@ void find_periodic_candidates(World& w, int threads) {
   };
   for (const BodyPair& p : raw) {
     const std::uint32_t i = sweep_body[p.first], j = sweep_body[p.second];
-    if (i == j || (w.bodies[i].fixed && w.bodies[j].fixed)) continue;
+    if (i == j || (bodies[i].fixed && bodies[j].fixed)) continue;
     // j's image relative to i's: the difference of their shifts.
     const std::uint8_t si = sweep_image[p.first], sj = sweep_image[p.second];
     const int rel[3] = {sj % 3 - si % 3, sj / 3 % 3 - si / 3 % 3, sj / 9 - si / 9};
@@ -286,7 +284,7 @@ void find_periodic_candidates(World& w, int threads) {
   }
   std::vector<std::uint32_t> hits;
   for (const std::uint32_t i : work.moving) {
-    if (w.bodies[i].fixed) continue;
+    if (bodies[i].fixed) continue;
     images(boxes[i], [&](const Aabb& box, std::uint8_t code) {  // i at `code` meets static f
       hits.clear();
       query_static_tree(work.fixed_tree, box, hits);

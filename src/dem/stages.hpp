@@ -1,42 +1,61 @@
 #pragma once
-// The stages of a force evaluation that read and write the world as a
-// whole, each in its own file; step.cpp runs them in order (world.hpp lists
-// every stage of a step). Internal to src/dem.
+// The stages of a force evaluation, each in its own file, each taking the
+// spans and values it reads and writes; step.cpp runs them in order
+// (world.hpp lists every stage of a step). Internal to src/dem.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
+#include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/contact_force.hpp"
+#include "gjkdem/dem/periodic.hpp"
+#include "gjkdem/dem/step_context.hpp"
+#include "gjkdem/dem/step_workspace.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem::detail {
 
-/// candidates.cpp: the candidate body pairs (work.candidates, and their
-/// images in a periodic world) from the boxes: moving and driven bodies
-/// against each other by the sweep, moving against fixed ones from the
-/// static tree.
-void find_candidates(World& world, int threads);
+/// candidates.cpp: the candidate body pairs (work.candidates, and in a
+/// periodic world work.candidate_images) from the bodies' boxes: moving and
+/// driven bodies against each other by the sweep (two driven ones never
+/// touch: `any_driven` says there may be some), moving against fixed ones
+/// from the static tree. `periodic`: the cell the search takes, null
+/// without one.
+void find_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell* periodic,
+                     bool any_driven, int threads, StepWorkspace& work);
 
 /// contact_list.cpp: the contact list (work.contacts and work.keys) in
-/// pair-key order from the candidates and the plane walls, a contact per
-/// pair of compound parts whose bounding spheres meet; a domain (`domain`
-/// not null) lists only pairs with a body it owns.
-void list_contacts(World& world, const DomainRole* domain);
+/// pair-key order from the candidates and the plane walls the boxes reach,
+/// a contact per pair of compound parts whose bounding spheres meet; a
+/// domain (`domain` not null) lists only pairs with a body it owns.
+void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                   std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
+                   const DomainRole* domain, StepWorkspace& work);
 
-/// contact_sides.cpp: what the contact laws see of each side of a contact.
+/// contact_sides.cpp: what the contact laws see of each side of a contact,
+/// from the bodies' make-up, the driven motions' frames at this step's time
+/// and a deforming cell's velocity gradient.
+struct SideSources {
+  Makeup makeup;
+  std::span<const MotionFrame> motion_frames;
+  CellTensor cell_rate{};
+};
 /// A plane wall (fixed, or moving with its motion's frame).
-ContactSide plane_side(const World& world, const PlaneWall& plane);
+ContactSide plane_side(const SideSources& sources, const PlaneWall& plane);
 /// A body, or a part of a compound (`part`, whose own radius of curvature
 /// and volume the laws use), at its image moved by `shift`, which moves
 /// with b and the deforming cell.
-ContactSide side_of(const World& world, const Body& body, std::uint32_t part, const Vec3& shift = {});
+ContactSide side_of(const SideSources& sources, const Body& body, std::uint32_t part, const Vec3& shift = {});
 
 /// force_sums.cpp: the contacts' forces and torques added to their bodies
 /// in the fixed order of the contact list (the same bits for any thread
-/// count), the pairs' springs kept or forgotten, and the stats, the driven
-/// walls' power and a periodic cell's stress summed.
-void sum_forces(World& world, std::size_t box_updates);
-
-/// Where b's image lies from b in a periodic world (zero otherwise).
-inline Vec3 shift_of(const World& w, const StepContact& c) { return image_shift_of(w.cell, c); }
+/// count), the pairs' springs kept or forgotten (`pairs` aligned with
+/// `contacts`); returns the stats (the driven walls' power included, but
+/// for box_updates). In a periodic world (`cell` active) the contacts'
+/// stress is written to `cell_stress` and the deforming cell's power
+/// (`cell_rate`) counted.
+StepStats sum_forces(std::span<const StepContact> contacts, std::span<Body> bodies, std::span<PairState> pairs,
+                     std::span<const PlaneWall> planes, std::span<const MotionFrame> motion_frames,
+                     const PeriodicCell& cell, const CellTensor& cell_rate, CellTensor& cell_stress);
 
 }  // namespace gjkdem::dem::detail

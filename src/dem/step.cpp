@@ -20,7 +20,6 @@ using detail::kMinParallelBodies;
 using detail::kMinParallelContacts;
 using detail::thread_count;
 using detail::thread_id;
-using detail::shift_of;
 using detail::side_of;
 using detail::plane_side;
 
@@ -48,8 +47,13 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   const std::size_t updated =
       update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w.cell, w.search.cell));
   if (updated > 0) w.search.renew_cell = true;
-  if (updated > 0 || !work.static_ready || !work.candidates_current) detail::find_candidates(w, threads);
-  detail::list_contacts(w, domain);
+  const std::span<const Aabb> boxes = w.search.boxes.boxes;
+  if (updated > 0 || !work.static_ready || !work.candidates_current) {
+    if (w.cell.active() && w.search.renew_cell) w.search.cell = w.cell, w.search.renew_cell = false;
+    detail::find_candidates(w.bodies, boxes, w.cell.active() ? &w.search.cell : nullptr, !w.driven.empty(), threads,
+                            work);
+  }
+  detail::list_contacts(w.bodies, w.templates, w.planes, boxes, w.cell, domain, work);
   align_pair_states(work.keys, w.pairs);
 
   std::vector<StepContact>& contacts = work.contacts;
@@ -60,7 +64,7 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
     StepContact& c = contacts[k];
     const Body& b = w.bodies[c.b];
     PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
-    pb.pose.translation += shift_of(w, c);
+    pb.pose.translation += image_shift_of(w.cell, c);
     if (c.a_is_plane) {
       c.geometry = plane_contact(w.planes[c.a], *pb.shape, pb.pose, model);
     } else {
@@ -78,22 +82,26 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
       return {StepStatus::ThroughWall, w.planes[c.a].id, w.bodies[c.b].id};
   }
   if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
+  const detail::SideSources sources{{w.templates, w.materials}, work.motion_frames, w.cell_rate};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
     if (!c.active) continue;
     const Body& b = w.bodies[c.b];
-    const ContactSide side_a = c.a_is_plane ? plane_side(w, w.planes[c.a]) : side_of(w, w.bodies[c.a], c.part_a);
+    const ContactSide side_a =
+        c.a_is_plane ? plane_side(sources, w.planes[c.a]) : side_of(sources, w.bodies[c.a], c.part_a);
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                                         side_of(w, b, c.part_b, shift_of(w, c)), w.pairs[k].history, w.settings, dt);
+                                         side_of(sources, b, c.part_b, image_shift_of(w.cell, c)), w.pairs[k].history, w.settings, dt);
     c.force = f.force;
     c.torque = f.torque;
     c.history = f.history;
     c.elastic = f.elastic;
   }
 
-  detail::sum_forces(w, updated);
+  w.stats = detail::sum_forces(contacts, w.bodies, w.pairs, w.planes, work.motion_frames, w.cell, w.cell_rate,
+                               w.cell_stress);
+  w.stats.box_updates = static_cast<int>(updated);
   w.forces_current = true;
   return {};
 }
@@ -113,10 +121,12 @@ StepReport begin_step(World& w, StepContext& ctx) {
   }
   const Real dt = ctx.dt;
   const int threads = thread_count(w.settings.threads);
-  kick(w.bodies, w.templates, w.materials, dt / 2, threads);
+  const Makeup makeup{w.templates, w.materials};
+  const CellBodies moved{w.bodies, &makeup, ctx.domain, &w.wall_work};
+  kick(w.bodies, makeup, dt / 2, threads);
   const bool deforming = w.settings.cell_control.deforms();
-  if (deforming) control_cell(w, ctx.domain);
-  drift(w.bodies, w.templates, w.materials, dt, threads);
+  if (deforming) control_cell(w.settings.cell_control, w.cell_stress, w.cell, w.cell_rate, moved);
+  drift(w.bodies, makeup, dt, threads);
   if (deforming) {
     if (deform_cell(w.cell, w.cell_rate, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
     const Real shortest = shortest_period(w, ctx.domain);
@@ -126,13 +136,15 @@ StepReport begin_step(World& w, StepContext& ctx) {
         return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0, shortest};
       }
   }
-  if (w.cell.active() && wrap_bodies(w, ctx.domain) > 0) w.work.candidates_current = false, w.search.renew_cell = true;
+  if (w.cell.active() && wrap_bodies(w.cell, w.cell_rate, w.search.boxes, moved) > 0) w.work.candidates_current = false, w.search.renew_cell = true;
   ctx.power_before = w.stats.wall_power;
   w.time += dt;
   ctx.kicked_bodies = w.bodies.size();
   // A domain run inserts the inflows' bodies itself, before its exchange
   // (insert_inflow_bodies, domains.hpp).
-  ctx.inserted = w.inflows.empty() || ctx.domain ? 0 : run_inflows(w);
+  ctx.inserted = w.inflows.empty() || ctx.domain ? 0
+                 : run_inflows(w.inflows, w.inflow_states, inflow_site(w), w.bodies,
+                               w.bodies.empty() ? 0 : w.bodies.back().id + 1);
   if (!w.motions.empty()) place_driven(w);
   w.forces_current = false;
   return {};
@@ -148,7 +160,7 @@ StepReport finish_step(World& w, StepContext& ctx) {
   }
   // Bodies inserted now start at this time with their velocity: no half kick.
   const std::size_t kicked = std::min(ctx.kicked_bodies, w.bodies.size());
-  kick(std::span(w.bodies).first(kicked), w.templates, w.materials, dt / 2, thread_count(w.settings.threads));
+  kick(std::span(w.bodies).first(kicked), {w.templates, w.materials}, dt / 2, thread_count(w.settings.threads));
   w.wall_work += 0.5 * dt * (ctx.power_before + w.stats.wall_power);  // trapezoid rule
   return r;
 }

@@ -12,13 +12,9 @@ namespace gjkdem::dem {
 
 Transform shape_pose(const World& w, const Body& b) noexcept { return shape_pose(w.templates[b.shape], b); }
 
-Real mass_of(const World& w, const Body& b) noexcept {
-  return w.materials[b.material].density * w.templates[b.shape].unit_mass.volume;
-}
+Real mass_of(const World& w, const Body& b) noexcept { return Makeup{w.templates, w.materials}.mass(b); }
 
-Vec3 principal_moments(const World& w, const Body& b) noexcept {
-  return w.templates[b.shape].principal.moments * w.materials[b.material].density;
-}
+Vec3 principal_moments(const World& w, const Body& b) noexcept { return Makeup{w.templates, w.materials}.moments(b); }
 
 Vec3 angular_velocity_of(const World& w, const Body& b) noexcept {
   return b.fixed ? Vec3{} : angular_velocity(b.orientation, b.angular_momentum, principal_moments(w, b));

@@ -401,7 +401,7 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   f.start = d.start, f.stop = d.stop;
   f.count = d.count;
   f.seed = d.seed;
-  if (inflow_capacity(world_, f) > kMaxInflowBodies)
+  if (inflow_capacity(f, {world_.templates, world_.materials}) > kMaxInflowBodies)
     throw BuildError(label + ": it could insert more than " + std::to_string(kMaxInflowBodies) +
                      " bodies; give a smaller count, stop or rate");
   world_.inflows.push_back(f);
@@ -649,7 +649,8 @@ void WorldBuilder::check_periodic_cell() {
   }
   world_.settings.periodic = cell;
   world_.settings.cell_control = control;
-  wrap_bodies(world_);
+  const Makeup makeup{world_.templates, world_.materials};
+  wrap_bodies(world_.cell, world_.cell_rate, world_.search.boxes, {world_.bodies, &makeup, nullptr, &world_.wall_work});
 }
 
 // An inflow whose region lies wholly beyond a plane wall that never moves,
@@ -697,7 +698,7 @@ World WorldBuilder::build() {
   // Room for every body the inflows can insert: the bodies never move in memory.
   std::size_t room = world_.bodies.size();
   for (std::size_t k = 0; k < world_.inflows.size(); ++k) {
-    const std::uint64_t most = inflow_capacity(world_, world_.inflows[k]);
+    const std::uint64_t most = inflow_capacity(world_.inflows[k], {world_.templates, world_.materials});
     room += most - std::min(most, world_.inflow_states[k].inserted);
   }
   world_.bodies.reserve(room);

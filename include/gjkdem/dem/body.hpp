@@ -9,6 +9,7 @@
 #include <vector>
 #include <type_traits>
 
+#include "gjkdem/dem/material.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
 
@@ -73,6 +74,22 @@ struct Body {
   Vec3 force, torque;            ///< of the last force evaluation (N, N m about the centre of mass)
 };
 static_assert(std::is_trivially_copyable_v<Body> && std::is_standard_layout_v<Body>);
+
+/// What bodies are made of, by the indices they hold (Body::shape,
+/// Body::material): the view of a world's templates and materials that the
+/// stages of a step take, and the one place a body's mass is worked out.
+struct Makeup {
+  std::span<const ShapeTemplate> templates;
+  std::span<const Material> materials;
+
+  /// kg, of a body or of one made of template `shape` and `material`
+  Real mass(std::uint32_t shape, std::uint32_t material) const noexcept {
+    return materials[material].density * templates[shape].unit_mass.volume;
+  }
+  Real mass(const Body& b) const noexcept { return mass(b.shape, b.material); }
+  /// Principal moments of inertia (kg m^2).
+  Vec3 moments(const Body& b) const noexcept { return templates[b.shape].principal.moments * materials[b.material].density; }
+};
 
 /// Fixed and without a motion: its box and place never change.
 inline bool is_static(const Body& b) noexcept { return b.fixed && b.motion == 0; }

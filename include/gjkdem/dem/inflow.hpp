@@ -15,8 +15,11 @@
 // (InflowState::behind counts the steps) until its region clears.
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
+#include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/math/vec3.hpp"
 
 namespace gjkdem::dem {
@@ -53,23 +56,38 @@ std::uint32_t inflow_variant(const Inflow& inflow, std::uint64_t n) noexcept;
 
 /// The most bodies an inflow can insert, from its count, or its rate and
 /// time span (its lightest variant for a mass rate).
-std::uint64_t inflow_capacity(const World& world, const Inflow& inflow) noexcept;
+std::uint64_t inflow_capacity(const Inflow& inflow, const Makeup& makeup) noexcept;
 
 /// The builder refuses inflows that could insert more.
 inline constexpr std::uint64_t kMaxInflowBodies = 10'000'000;
 
-/// Inserts the bodies the world's inflows owe at world.time, appended after
-/// every body with the next ids (from `next_id`: a domain run's world holds
-/// only some of the bodies). Returns how many.
-std::size_t run_inflows(World& world);
-std::size_t run_inflows(World& world, std::uint64_t next_id);
+/// What the inflows read of the world when they place bodies at `time`:
+/// the make-up of what they insert, the plane walls and periodic cell a new
+/// body must keep clear of, and gravity (the energy a body brings in).
+struct InflowSite {
+  Makeup makeup;
+  std::span<const PlaneWall> planes;
+  PeriodicCell cell;
+  Real time = 0;
+  Vec3 gravity;
+};
+/// A world's (world.hpp).
+InflowSite inflow_site(const World& world);
 
-/// Whether an inflow owes a body at world.time.
-bool inflows_due(const World& world);
+/// Inserts the bodies the inflows owe at site.time, clear of `bodies`, and
+/// appends them to it with the next ids (from `next_id`: a domain run
+/// places them among the bodies near the regions only). Returns how many.
+std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> states, const InflowSite& site,
+                        std::vector<Body>& bodies, std::uint64_t next_id);
+
+/// Whether an inflow owes a body at `time`.
+bool inflows_due(std::span<const Inflow> inflows, std::span<const InflowState> states, const Makeup& makeup,
+                 Real time);
 
 /// Whether a body (moved by `shift`: a periodic image) lies near enough to
 /// the inflow's region to stop a body from being placed there.
-bool near_inflow(const World& world, const Inflow& inflow, const Body& body, const Vec3& shift = {}) noexcept;
+bool near_inflow(std::span<const ShapeTemplate> templates, const Inflow& inflow, const Body& body,
+                 const Vec3& shift = {}) noexcept;
 
 /// A uniform number in [0, 1) from a key (splitmix64 of the key's parts).
 Real keyed_uniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b, std::uint64_t c) noexcept;

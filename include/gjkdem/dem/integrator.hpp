@@ -7,14 +7,11 @@
 #include <span>
 
 #include "gjkdem/dem/body.hpp"
-#include "gjkdem/dem/material.hpp"
 
 namespace gjkdem::dem {
 
-void kick(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
-          Real h, int threads) noexcept;
+void kick(std::span<Body> bodies, const Makeup& makeup, Real h, int threads) noexcept;
 
-void drift(std::span<Body> bodies, std::span<const ShapeTemplate> templates, std::span<const Material> materials,
-           Real dt, int threads) noexcept;
+void drift(std::span<Body> bodies, const Makeup& makeup, Real dt, int threads) noexcept;
 
 }  // namespace gjkdem::dem

@@ -26,14 +26,20 @@
 // gave.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gjkdem/math/vec3.hpp"
+#include "gjkdem/shape/aabb.hpp"
 
 namespace gjkdem::dem {
 
 struct World;
+struct Body;
+struct Makeup;
+struct BoxCache;
 struct DomainRole;
+struct StepWorkspace;
 
 struct PeriodicCell {
   bool axes[3] = {false, false, false};  ///< periodic on x, y, z
@@ -132,20 +138,29 @@ inline void add_virial(CellTensor& sum, const Vec3& force, const Vec3& branch) n
   sum[kYZ] += 0.5 * (force.y * branch.z + force.z * branch.y);
 }
 
+/// The moving bodies a periodic cell moves, and where the kinetic energy
+/// its field gives them goes (the cell's work on them): a whole world
+/// (`domain` null) adds it to `wall_work` in body order; a domain moves
+/// only the bodies it owns (their owners move the others) and lists it per
+/// body (DomainRole::field_work, wrap_work) for rank 0 to sum in id order.
+struct CellBodies {
+  std::span<Body> bodies;
+  const Makeup* makeup = nullptr;
+  DomainRole* domain = nullptr;
+  Real* wall_work = nullptr;
+};
+
 /// Puts the moving bodies back into the cell, moving their box anchors and
-/// boxes with them (and their velocities by the affine velocity of the
-/// move in a deforming cell, whose kinetic energy is counted as the cell's
-/// work: a domain lists it in DomainRole::wrap_work). Returns how many
-/// crossed. A domain (`domain` not null) moves only its own bodies (their
-/// owners move the others).
-std::size_t wrap_bodies(World& world, DomainRole* domain = nullptr);
+/// boxes with them (and their velocities by the affine velocity `rate` of
+/// the move in a deforming cell). Returns how many crossed.
+std::size_t wrap_bodies(const PeriodicCell& cell, const CellTensor& rate, BoxCache& boxes, const CellBodies& moved);
 
 /// A deforming cell, before the drift of a step: sets the velocity
-/// gradient (the servo's from the stress of the last force evaluation),
-/// changes the moving bodies' velocities by the change of the affine field,
-/// and counts the kinetic energy that adds as work done on the bodies (a
-/// domain lists it per body in DomainRole::field_work instead).
-void control_cell(World& world, DomainRole* domain = nullptr);
+/// gradient `rate` (the servo's from `stress`, the contacts' stress at the
+/// last force evaluation) and changes the moving bodies' velocities by the
+/// change of the affine field about the cell's centre.
+void control_cell(const CellControl& control, const CellTensor& stress, const PeriodicCell& cell, CellTensor& rate,
+                  const CellBodies& moved);
 
 /// Moves the cell's edges by the velocity gradient over dt (with the
 /// drift), taking back a tilt beyond half its edge. Returns true when the
@@ -168,9 +183,11 @@ Real shortest_period(const World& world, const DomainRole* domain = nullptr) noe
 /// crossing that axis (the length on the axis for an unsheared cell).
 Real cell_width(const PeriodicCell& cell, int axis) noexcept;
 
-/// The candidate pairs of a periodic world with their images: fills
+/// The candidate pairs of a periodic world with their images, the boxes
+/// searched in `cell` (the search cell: World::search): fills
 /// work.candidates and work.candidate_images from the moving and static sets
 /// that find_candidates prepared.
-void find_periodic_candidates(World& world, int threads);
+void find_periodic_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell& cell,
+                              int threads, StepWorkspace& work);
 
 }  // namespace gjkdem::dem
