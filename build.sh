@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 mode="${1:-run}"
-base_pkgs=(cmake make g++ pkg-config libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libtomlplusplus-dev
+base_pkgs=(cmake make g++ pkg-config libgmp-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libeigen3-dev libtomlplusplus-dev
            libcpp-httplib-dev
            python3 python3-dev pybind11-dev python3-numpy python3-scipy
            libopenmpi-dev openmpi-bin)  # mpirun -np N gjkdem run (docs/scaling.md)

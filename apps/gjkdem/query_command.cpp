@@ -40,6 +40,13 @@ int run_query(const QueryOptions& opt) {
     errors = for_each_pair(
         in,
         [&](const io::PairInput& p) {
+          if (p.a.surface) {  // and b: pairs of meshes only (parse_pair)
+            const SurfaceOverlap o = surface_overlap(*p.a.surface, *p.b.surface);
+            SurfaceDistance d;
+            if (!o.intersect) d = surface_distance(*p.a.surface, *p.b.surface);
+            emit(io::format_surface_result(p.id_json, o, o.intersect ? nullptr : &d));
+            return;
+          }
           const PenetrationResult r = penetration(p.a.shape, p.a.pose, p.b.shape, p.b.pose);
           OverlapResult o = overlap(p.a.shape, p.a.pose, p.b.shape, p.b.pose, work);
           if (o.status == OverlapStatus::Unsupported && opt.tessellate > 0) {

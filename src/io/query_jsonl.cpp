@@ -122,10 +122,39 @@ PlacedInput shape_from_json(const Json& s, const std::string& where) {
   if (t == s.end() || !t->is_string()) fail(where + " needs a string 'type'");
   const std::string type = t->get<std::string>();
   static constexpr const char* kTypes[] = {"polytope", "triangle", "sphere", "box", "ellipsoid",
-                                           "capsule", "cylinder", "cone", "superellipsoid"};
+                                           "capsule", "cylinder", "cone", "superellipsoid", "mesh"};
   if (std::find(std::begin(kTypes), std::end(kTypes), type) == std::end(kTypes))
     fail(where + " has unknown type '" + type + "'");
   PlacedInput out;
+  if (type == "mesh") {
+    if (s.contains("margin")) fail(where + ": a mesh takes no 'margin'");
+    check_keys(s, {"type", "vertices", "triangles"}, where);
+    std::vector<Vec3> pts = point_list(s, where);
+    const Json& arr = field(s, "triangles", where);
+    if (!arr.is_array() || arr.empty()) fail(where + ".triangles must be a non-empty array of [i,j,k]");
+    std::vector<TriangleIndices> triangles;
+    triangles.reserve(arr.size());
+    for (std::size_t n = 0; n < arr.size(); ++n) {
+      const std::string at = where + ".triangles[" + std::to_string(n) + "]";
+      const Json& tri = arr[n];
+      if (!tri.is_array() || tri.size() != 3) fail(at + " must be [i,j,k]");
+      TriangleIndices ids{};
+      for (int k = 0; k < 3; ++k) {
+        const Json& i = tri[k];
+        if (!i.is_number_integer() || (i.is_number_integer() && !i.is_number_unsigned() && i.get<std::int64_t>() < 0) ||
+            i.get<std::uint64_t>() >= pts.size())
+          fail(at + " must hold indices of vertices (integers from 0 to " + std::to_string(pts.size() - 1) + ")");
+        ids[k] = static_cast<std::uint32_t>(i.get<std::uint64_t>());
+      }
+      triangles.push_back(ids);
+    }
+    try {
+      out.surface = std::make_shared<const Surface>(make_surface(std::move(pts), std::move(triangles)));
+    } catch (const SurfaceError& e) {
+      fail(where + " is not a closed surface: " + e.what());
+    }
+    return out;
+  }
   Real margin = 0;
   if (s.contains("margin")) margin = non_negative(s, "margin", where);
   if (type == "polytope" || type == "triangle") {
@@ -246,6 +275,8 @@ PairInput parse_pair(std::string_view line, std::string& id_json) {
   } catch (const std::invalid_argument& e) {
     fail(e.what());
   }
+  if (!pair.a.surface != !pair.b.surface)
+    fail(std::string(pair.a.surface ? "a" : "b") + " is a mesh: a mesh pairs only with another mesh in this version");
   return pair;
 }
 
@@ -277,6 +308,33 @@ std::string format_result(const std::string& id_json, const PenetrationResult& r
   if (o.has_normal) append_vec(s, o.contact_normal);
   else s += "null";
   s += ",\"iterations\":" + std::to_string(r.iterations) + "}";
+  return s;
+}
+
+std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& o, const SurfaceDistance* d) {
+  const bool finite = std::isfinite(o.volume) && is_finite(o.centroid) && is_finite(o.area_a) && is_finite(o.area_b) &&
+                      (!d || (std::isfinite(d->distance) && is_finite(d->witness_a) && is_finite(d->witness_b)));
+  if (!finite) return format_error(id_json, "the answer is not finite (the pair is beyond what double precision resolves)");
+  std::string s;
+  s.reserve(400);
+  s += "{\"id\":" + id_json + ",\"intersect\":" + (o.intersect ? "true" : "false") + ",\"distance\":";
+  append_number(s, d ? d->distance : 0);
+  s += ",\"witness_a\":";
+  if (d) append_vec(s, d->witness_a);
+  else s += "null";
+  s += ",\"witness_b\":";
+  if (d) append_vec(s, d->witness_b);
+  else s += "null";
+  s += ",\"depth\":null,\"normal\":null,\"overlap_volume\":";
+  append_number(s, o.volume);
+  s += ",\"overlap_centroid\":";
+  if (o.volume > 0) append_vec(s, o.centroid);
+  else s += "null";
+  s += ",\"contact_normal\":";
+  const Vec3 n = o.area_a - o.area_b;
+  if (o.volume > 0 && length(n) > 0) append_vec(s, n / length(n));
+  else s += "null";
+  s += "}";
   return s;
 }
 

@@ -28,21 +28,7 @@ Mat3 axisymmetric(const Vec3& u, Real axial, Real transverse) {
 
 MassProperties polytope(const PolytopeData& d) {
   if (d.triangles.empty()) throw std::invalid_argument("mass_properties: a flat polytope has no volume");
-  // Second moments by tetrahedra (centroid, a, b, c): the covariance of one is
-  // det/120 (a a^T + b b^T + c c^T + s s^T), s = a + b + c; inertia = tr(C) I - C.
-  Real c[3][3] = {};
-  for (const auto& t : d.triangles) {
-    const Vec3 a = d.vertices[t[0]] - d.centroid, b = d.vertices[t[1]] - d.centroid, e = d.vertices[t[2]] - d.centroid;
-    const Real det = dot(a, cross(b, e));
-    const Vec3 s = a + b + e;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) c[i][j] += det / 120 * (a[i] * a[j] + b[i] * b[j] + e[i] * e[j] + s[i] * s[j]);
-  }
-  MassProperties m{d.volume, d.centroid, {}};
-  const Real tr = c[0][0] + c[1][1] + c[2][2];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m.inertia.row[i][j] = (i == j ? tr : 0) - c[i][j];
-  return m;
+  return closed_surface_inertia(d.vertices, d.triangles, d.volume, d.centroid);
 }
 
 MassProperties superellipsoid(const Superellipsoid& s) {
@@ -143,6 +129,26 @@ PrincipalAxes principal_axes(const Mat3& inertia) {
   p.moments = {solver.eigenvalues()(0), solver.eigenvalues()(1), solver.eigenvalues()(2)};
   p.rotation = normalized(Quat{q.w(), q.x(), q.y(), q.z()});
   return p;
+}
+
+MassProperties closed_surface_inertia(std::span<const Vec3> vertices,
+                                      std::span<const std::array<std::uint32_t, 3>> triangles, Real volume,
+                                      const Vec3& centroid) {
+  // Second moments by tetrahedra (centroid, a, b, c): the covariance of one is
+  // det/120 (a a^T + b b^T + c c^T + s s^T), s = a + b + c; inertia = tr(C) I - C.
+  Real c[3][3] = {};
+  for (const auto& t : triangles) {
+    const Vec3 a = vertices[t[0]] - centroid, b = vertices[t[1]] - centroid, e = vertices[t[2]] - centroid;
+    const Real det = dot(a, cross(b, e));
+    const Vec3 s = a + b + e;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += det / 120 * (a[i] * a[j] + b[i] * b[j] + e[i] * e[j] + s[i] * s[j]);
+  }
+  MassProperties m{volume, centroid, {}};
+  const Real tr = c[0][0] + c[1][1] + c[2][2];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m.inertia.row[i][j] = (i == j ? tr : 0) - c[i][j];
+  return m;
 }
 
 }  // namespace gjkdem

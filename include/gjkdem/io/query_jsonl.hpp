@@ -7,7 +7,11 @@
 #include <string>
 #include <string_view>
 
+#include <memory>
+
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/collide/surface_distance.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
 
 namespace gjkdem::io {
 
@@ -21,6 +25,9 @@ struct QueryFormatError : std::runtime_error {
 struct PlacedInput {
   Shape shape;
   Transform pose;
+  /// A `mesh` (query-format-mesh.md): its checked surface, in world
+  /// coordinates (`shape` and `pose` unused); null for the convex shapes.
+  std::shared_ptr<const Surface> surface;
 };
 
 struct PairInput {
@@ -58,6 +65,12 @@ struct OverlapFields {
 
 /// One result line (no trailing newline).
 std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& overlap = {});
+
+/// One result line of a pair of meshes: `distance` of separated solids
+/// (null when they intersect), the overlap otherwise. Depth and normal are
+/// null (not defined for meshes in this version).
+std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& overlap,
+                                  const SurfaceDistance* distance);
 
 /// One error line (no trailing newline).
 std::string format_error(const std::string& id_json, const std::string& message);

@@ -5,6 +5,8 @@
 // closed form, superellipsoids by Jaklic, Leonardis and Solina's beta-function
 // formulas ("Segmentation and Recovery of Superquadrics", 2000, ch. 2).
 // Many particles share one template, so this runs once per shape.
+#include <array>
+#include <cstdint>
 #include <span>
 
 #include "gjkdem/math/quat.hpp"
@@ -28,6 +30,13 @@ MassProperties mass_properties(const Shape& shape);
 /// parts' inertias turned into the compound's axes and moved to its centre
 /// of mass (parallel axes). Throws as mass_properties(Shape) for a part.
 MassProperties mass_properties(std::span<const PlacedShape> parts);
+
+/// The inertia about `centroid` (per unit density) of the solid a closed,
+/// outward triangle surface bounds, given its volume and centroid: the
+/// divergence theorem, by tetrahedra from the centroid.
+MassProperties closed_surface_inertia(std::span<const Vec3> vertices,
+                                      std::span<const std::array<std::uint32_t, 3>> triangles, Real volume,
+                                      const Vec3& centroid);
 
 /// Principal moments (ascending) and the rotation taking principal axes to the
 /// local frame: inertia = R diag(moments) R^T, R = to_matrix(rotation).

@@ -1,0 +1,36 @@
+#pragma once
+// The overlap of two solids bounded by closed triangle surfaces
+// (shape/surface.hpp), convex or not: the volume and centroid of A ∩ B and
+// its vector areas, exactly up to rounding, with no decomposition.
+//
+// The boundary of A ∩ B is the part of A's surface inside B and the part of
+// B's inside A. Each triangle's part is bounded by a cycle of segments: the
+// pieces of its edges inside the other solid and the segments where it
+// crosses the other surface's triangles. Where a segment starts and ends is
+// decided exactly (predicates.hpp, B symbolically moved by delta), so the
+// segments of a triangle close into cycles whatever the rounding of the
+// points; fans over the cycles give the volume (cones from one point), the
+// centroid and the vector areas S_A and S_B (the seed's area-weighted
+// normal, query-format-mesh.md). Only triangle pairs whose boxes meet are
+// looked at, besides a walk over the vertices near the overlap that carries
+// the inside/outside status along the edges.
+#include "gjkdem/shape/surface.hpp"
+
+namespace gjkdem {
+
+struct SurfaceOverlap {
+  bool intersect = false;  ///< the solids share a point (touching counts; exact)
+  Real volume = 0;         ///< of A ∩ B
+  Vec3 centroid;           ///< of A ∩ B (when volume > 0)
+  /// Sum of the outward vector areas of the boundary of A ∩ B that lies on
+  /// A's surface (area_a) and on B's (area_b); without shared faces
+  /// area_a = -area_b, and normalize(area_a - area_b) is the contact normal
+  /// from A towards B.
+  Vec3 area_a, area_b;
+};
+
+/// Both surfaces in one frame. Throws std::logic_error if the exact
+/// decisions ever fail to close a cycle (a defect, never bad input).
+SurfaceOverlap surface_overlap(const Surface& a, const Surface& b);
+
+}  // namespace gjkdem

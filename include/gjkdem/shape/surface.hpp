@@ -1,0 +1,61 @@
+#pragma once
+// A closed triangle surface, convex or not, and the solid it bounds: the
+// shape of a non-convex grain taken as scanned (no hull, no decomposition).
+// Made once per template by make_surface, which checks what the contact
+// model relies on and names the edge, vertex or triangles at fault: closed
+// and manifold (every edge in exactly two triangles, every vertex one fan),
+// consistently oriented outward ((v1 - v0) x (v2 - v0) points out of the
+// solid), no triangle without area, no unused vertex, no two triangles
+// meeting anywhere but in their shared edge or vertex (decided exactly:
+// predicates.hpp). It keeps its edges and a tree of its triangles' boxes
+// (triangle_tree.hpp), all in its own frame.
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "gjkdem/shape/aabb.hpp"
+#include "gjkdem/shape/mass_properties.hpp"
+#include "gjkdem/shape/triangle_tree.hpp"
+
+namespace gjkdem {
+
+using TriangleIndices = std::array<std::uint32_t, 3>;
+
+struct Surface {
+  std::vector<Vec3> vertices;
+  std::vector<TriangleIndices> triangles;              ///< counter-clockwise seen from outside
+  std::vector<std::array<std::uint32_t, 2>> edges;     ///< each edge once, lower vertex index first
+  /// Per triangle, the edge of each side k: from corner k to corner k + 1.
+  std::vector<std::array<std::uint32_t, 3>> triangle_edges;
+  /// Per edge, its two triangles: [0] runs it from edges[e][0] to edges[e][1], [1] the other way.
+  std::vector<std::array<std::uint32_t, 2>> edge_triangles;
+  /// The edges at each vertex: vertex_edges[vertex_edge_begin[v] .. vertex_edge_begin[v + 1]).
+  std::vector<std::uint32_t> vertex_edge_begin, vertex_edges;
+  std::vector<Aabb> triangle_boxes;
+  TriangleTree tree;
+  Aabb box;
+};
+
+/// A surface that breaks a rule: the message names the edge, vertex or
+/// triangles (0-based indices).
+struct SurfaceError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Checks the surface (file comment) and builds its edges and tree. Throws
+/// SurfaceError. Coordinates must be finite.
+Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> triangles);
+
+/// Volume, centroid and inertia (per unit density) of the solid, exactly
+/// from its triangles (the divergence theorem).
+MassProperties mass_properties(const Surface& surface);
+
+/// True when triangles s and t of the surface meet anywhere but in the edge
+/// or vertex they share (exact).
+bool triangles_clash(const Surface& surface, std::uint32_t s, std::uint32_t t);
+
+/// True when the closed triangles abc and def share a point (exact).
+bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f);
+
+}  // namespace gjkdem

@@ -1,0 +1,60 @@
+#include "gjkdem/collide/surface_distance.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "gjkdem/collide/triangle_contact.hpp"
+
+namespace gjkdem {
+namespace {
+
+Real box_distance(const Aabb& a, const Aabb& b) {
+  Real d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Real gap = std::fmax(Real(0), std::fmax(a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]));
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
+}
+
+}  // namespace
+
+SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
+  SurfaceDistance best;
+  best.distance = std::numeric_limits<Real>::infinity();
+  if (a.tree.nodes.empty() || b.tree.nodes.empty()) return best;
+  const auto corner = [](const Surface& s, std::uint32_t t, int k) -> const Vec3& { return s.vertices[s.triangles[t][k]]; };
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0, 0}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    const TriangleTree::Node& n = a.tree.nodes[i];
+    const TriangleTree::Node& m = b.tree.nodes[j];
+    if (box_distance(n.box, m.box) >= best.distance) continue;
+    if (n.count && m.count) {
+      for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
+        for (std::uint32_t t = m.first; t < m.first + m.count; ++t) {
+          const std::uint32_t ta = a.tree.items[s], tb = b.tree.items[t];
+          const TriangleContact c = triangle_contact(corner(a, ta, 0), corner(a, ta, 1), corner(a, ta, 2),
+                                                     corner(b, tb, 0), corner(b, tb, 1), corner(b, tb, 2), 0);
+          if (c.distance < best.distance) best = {c.distance, c.witness_a, c.witness_b};
+        }
+      continue;
+    }
+    const Vec3 sn = n.box.hi - n.box.lo, sm = m.box.hi - m.box.lo;
+    const bool split_a = !n.count && (m.count || sn.x + sn.y + sn.z >= sm.x + sm.y + sm.z);
+    // The nearer child last, so that it is looked at first.
+    std::pair<std::uint32_t, std::uint32_t> c1 = split_a ? std::pair{n.first, j} : std::pair{i, m.first};
+    std::pair<std::uint32_t, std::uint32_t> c2 = split_a ? std::pair{n.right, j} : std::pair{i, m.right};
+    const auto gap = [&](const std::pair<std::uint32_t, std::uint32_t>& c) {
+      return box_distance(a.tree.nodes[c.first].box, b.tree.nodes[c.second].box);
+    };
+    if (gap(c1) < gap(c2)) std::swap(c1, c2);
+    stack.push_back(c1);
+    stack.push_back(c2);
+  }
+  return best;
+}
+
+}  // namespace gjkdem

@@ -1,0 +1,82 @@
+#include "gjkdem/shape/predicates.hpp"
+
+#include <cmath>
+#include <gmpxx.h>
+
+namespace gjkdem {
+namespace {
+
+// A filter's answer is trusted when the value exceeds this many times the
+// sum of the magnitudes of its terms (the bound on the rounding error of
+// the floating-point evaluation, Shewchuk's 7 eps for orient3d, with room);
+// below kTinyPermanent products may have lost bits to underflow.
+constexpr Real kFilterRelBound = 2e-15;
+constexpr Real kTinyPermanent = 1e-250;
+
+int sign_of(Real v) { return (v > 0) - (v < 0); }
+int sign_of(const mpq_class& v) { return sgn(v); }
+
+mpq_class exact(Real v) { return mpq_class(v); }
+
+int orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const mpq_class bx = exact(b.x) - exact(a.x), by = exact(b.y) - exact(a.y), bz = exact(b.z) - exact(a.z);
+  const mpq_class cx = exact(c.x) - exact(a.x), cy = exact(c.y) - exact(a.y), cz = exact(c.z) - exact(a.z);
+  const mpq_class dx = exact(d.x) - exact(a.x), dy = exact(d.y) - exact(a.y), dz = exact(d.z) - exact(a.z);
+  const mpq_class det = bx * (cy * dz - cz * dy) - by * (cx * dz - cz * dx) + bz * (cx * dy - cy * dx);
+  return sign_of(det);
+}
+
+int cross_sign_exact(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, int axis) {
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  const mpq_class ui = exact(q[i]) - exact(p[i]), uj = exact(q[j]) - exact(p[j]);
+  const mpq_class vi = exact(s[i]) - exact(r[i]), vj = exact(s[j]) - exact(r[j]);
+  return sign_of(mpq_class(ui * vj - uj * vi));
+}
+
+// The first nonzero sign of the components of v (x, then y, then z): the
+// sign of v . delta as e -> 0+.
+template <class Component>
+int delta_sign(Component component) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (const int s = component(axis)) return s;
+  return 0;
+}
+
+}  // namespace
+
+int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const Real m1 = v.y * w.z, m2 = v.z * w.y, m3 = v.x * w.z, m4 = v.z * w.x, m5 = v.x * w.y, m6 = v.y * w.x;
+  const Real det = u.x * (m1 - m2) - u.y * (m3 - m4) + u.z * (m5 - m6);
+  const Real permanent = std::fabs(u.x) * (std::fabs(m1) + std::fabs(m2)) + std::fabs(u.y) * (std::fabs(m3) + std::fabs(m4)) +
+                         std::fabs(u.z) * (std::fabs(m5) + std::fabs(m6));
+  if (std::fabs(det) > kFilterRelBound * permanent && permanent > kTinyPermanent) return sign_of(det);
+  if (permanent == 0) return 0;  // two of the differences are zero exactly
+  return orient3d_exact(a, b, c, d);
+}
+
+int cross_sign(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, int axis) {
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  const Real a = (q[i] - p[i]) * (s[j] - r[j]), b = (q[j] - p[j]) * (s[i] - r[i]);
+  const Real permanent = std::fabs(a) + std::fabs(b);
+  if (std::fabs(a - b) > kFilterRelBound * permanent && permanent > kTinyPermanent) return sign_of(a - b);
+  if (permanent == 0) return 0;
+  return cross_sign_exact(p, q, r, s, axis);
+}
+
+int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc) {
+  if (const int s = orient3d(a, b, c, d)) return s;
+  // det[b - a, c - a, d -/+ delta - a] = det - / + n . delta, n = (b - a) x (c - a).
+  const int n = delta_sign([&](int axis) { return cross_sign(a, b, a, c, axis); });
+  return abc == Side::B ? -n : n;
+}
+
+int perturbed_orient3d_edges(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, Side pq) {
+  if (const int o = orient3d(p, q, r, s)) return o;
+  // Edge rs moved by delta: det[q - p, r - p, s - p] + ((q - p) x (r - s)) . delta;
+  // edge pq moved: the same with -delta.
+  const int m = delta_sign([&](int axis) { return cross_sign(p, q, s, r, axis); });
+  return pq == Side::A ? m : -m;
+}
+
+}  // namespace gjkdem

@@ -1,0 +1,247 @@
+#include "gjkdem/shape/surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gjkdem/shape/predicates.hpp"
+
+namespace gjkdem {
+namespace {
+
+std::string edge_name(std::uint32_t i, std::uint32_t j) {
+  return "edge (" + std::to_string(i) + ", " + std::to_string(j) + ")";
+}
+
+// The coordinate to drop when looking at a plane with these three points
+// (not collinear) flat on: one where their orientation is not 0.
+int flat_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = cross(b - a, c - a);
+  int axes[3] = {0, 1, 2};
+  std::sort(axes, axes + 3, [&](int s, int t) { return std::fabs(n[s]) > std::fabs(n[t]); });
+  for (const int axis : axes)
+    if (orient2d(a, b, c, axis) != 0) return axis;
+  return 0;
+}
+
+// Closed segment pq against closed segment rs, all on one plane seen down `axis`.
+bool segments_meet_2d(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, int axis) {
+  const int d1 = orient2d(p, q, r, axis), d2 = orient2d(p, q, s, axis);
+  const int d3 = orient2d(r, s, p, axis), d4 = orient2d(r, s, q, axis);
+  if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  const auto within = [&](const Vec3& u, const Vec3& v, const Vec3& x) {  // x on line uv: inside the segment?
+    return std::min(u[i], v[i]) <= x[i] && x[i] <= std::max(u[i], v[i]) && std::min(u[j], v[j]) <= x[j] &&
+           x[j] <= std::max(u[j], v[j]);
+  };
+  return (d1 == 0 && within(p, q, r)) || (d2 == 0 && within(p, q, s)) || (d3 == 0 && within(r, s, p)) ||
+         (d4 == 0 && within(r, s, q));
+}
+
+// Point x in the closed triangle abc, all on one plane seen down `axis`.
+bool inside_2d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x, int axis) {
+  const int o = orient2d(a, b, c, axis);
+  return o * orient2d(a, b, x, axis) >= 0 && o * orient2d(b, c, x, axis) >= 0 && o * orient2d(c, a, x, axis) >= 0;
+}
+
+// The closed segment pq meets the closed triangle abc.
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int sp = orient3d(a, b, c, p), sq = orient3d(a, b, c, q);
+  if (sp * sq > 0) return false;
+  if (sp == 0 && sq == 0) {
+    const int axis = flat_axis(a, b, c);
+    return inside_2d(a, b, c, p, axis) || inside_2d(a, b, c, q, axis) || segments_meet_2d(p, q, a, b, axis) ||
+           segments_meet_2d(p, q, b, c, axis) || segments_meet_2d(p, q, c, a, axis);
+  }
+  const int o1 = orient3d(p, q, a, b), o2 = orient3d(p, q, b, c), o3 = orient3d(p, q, c, a);
+  return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
+}
+
+// Edge v->x of one triangle, lying in the plane of triangle (v, c, d) that
+// shares corner v, points into that triangle's corner.
+bool edge_enters_corner(const Vec3& v, const Vec3& x, const Vec3& c, const Vec3& d) {
+  if (orient3d(v, c, d, x) != 0) return false;
+  const int axis = flat_axis(v, c, d);
+  const int o = orient2d(v, c, d, axis);
+  return o * orient2d(v, c, x, axis) >= 0 && o * orient2d(v, x, d, axis) >= 0;
+}
+
+}  // namespace
+
+bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f) {
+  return segment_meets_triangle(a, b, d, e, f) || segment_meets_triangle(b, c, d, e, f) ||
+         segment_meets_triangle(c, a, d, e, f) || segment_meets_triangle(d, e, a, b, c) ||
+         segment_meets_triangle(e, f, a, b, c) || segment_meets_triangle(f, d, a, b, c);
+}
+
+bool triangles_clash(const Surface& surface, std::uint32_t s, std::uint32_t t) {
+  const TriangleIndices& ts = surface.triangles[s];
+  const TriangleIndices& tt = surface.triangles[t];
+  const auto& v = surface.vertices;
+  int shared = 0, ks = 0, kt = 0;  // corners of a shared vertex
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (ts[i] == tt[j]) ++shared, ks = i, kt = j;
+  const auto corner = [&](const TriangleIndices& tri, int k) -> const Vec3& { return v[tri[k % 3]]; };
+  if (shared == 0)
+    return triangles_meet(corner(ts, 0), corner(ts, 1), corner(ts, 2), corner(tt, 0), corner(tt, 1), corner(tt, 2));
+  if (shared == 1) {
+    const Vec3 &p = corner(ts, ks), &a = corner(ts, ks + 1), &b = corner(ts, ks + 2);
+    const Vec3 &c = corner(tt, kt + 1), &d = corner(tt, kt + 2);
+    return segment_meets_triangle(a, b, p, c, d) || segment_meets_triangle(c, d, p, a, b) ||
+           edge_enters_corner(p, a, c, d) || edge_enters_corner(p, b, c, d) || edge_enters_corner(p, c, a, b) ||
+           edge_enters_corner(p, d, a, b);
+  }
+  if (shared == 2) {
+    // Folded onto each other: the third corners on one plane with the shared
+    // edge, on the same side of it.
+    int a = 0, b = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (std::find(tt.begin(), tt.end(), ts[k]) == tt.end()) a = k;
+      if (std::find(ts.begin(), ts.end(), tt[k]) == ts.end()) b = k;
+    }
+    const Vec3 &x = corner(ts, a + 1), &y = corner(ts, a + 2), &pa = corner(ts, a), &pb = corner(tt, b);
+    if (orient3d(x, y, pa, pb) != 0) return false;
+    const int axis = flat_axis(x, y, pa);
+    return orient2d(x, y, pa, axis) * orient2d(x, y, pb, axis) > 0;
+  }
+  return true;  // the same three corners
+}
+
+Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> triangles) {
+  Surface s;
+  s.vertices = std::move(vertices);
+  s.triangles = std::move(triangles);
+  const std::size_t nv = s.vertices.size(), nt = s.triangles.size();
+  if (nt < 4) throw SurfaceError("a closed surface needs at least 4 triangles, not " + std::to_string(nt));
+  for (std::size_t i = 0; i < nv; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(s.vertices[i][k]))
+        throw SurfaceError("vertex " + std::to_string(i) + " has a coordinate that is not finite");
+  std::vector<std::uint8_t> used(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const TriangleIndices& tri = s.triangles[t];
+    for (const std::uint32_t i : tri) {
+      if (i >= nv)
+        throw SurfaceError("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(i) + " but there are " +
+                           std::to_string(nv) + " vertices");
+      used[i] = 1;
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
+      throw SurfaceError("triangle " + std::to_string(t) + " repeats a vertex");
+    const Vec3 &a = s.vertices[tri[0]], &b = s.vertices[tri[1]], &c = s.vertices[tri[2]];
+    if (orient2d(a, b, c, 0) == 0 && orient2d(a, b, c, 1) == 0 && orient2d(a, b, c, 2) == 0)
+      throw SurfaceError("triangle " + std::to_string(t) + " has no area (its corners are collinear)");
+  }
+  for (std::size_t i = 0; i < nv; ++i)
+    if (!used[i]) throw SurfaceError("vertex " + std::to_string(i) + " is in no triangle");
+
+  // Edges: every side of every triangle, sorted by its vertices.
+  struct EdgeSide {
+    std::uint32_t lo, hi, triangle, k;
+    bool forward;  // runs lo -> hi
+  };
+  std::vector<EdgeSide> sides;
+  sides.reserve(3 * nt);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t i = s.triangles[t][k], j = s.triangles[t][(k + 1) % 3];
+      sides.push_back({std::min(i, j), std::max(i, j), t, k, i < j});
+    }
+  std::sort(sides.begin(), sides.end(), [](const EdgeSide& x, const EdgeSide& y) {
+    return std::tie(x.lo, x.hi, x.triangle) < std::tie(y.lo, y.hi, y.triangle);
+  });
+  s.triangle_edges.resize(nt);
+  for (std::size_t k = 0; k < sides.size();) {
+    std::size_t end = k;
+    while (end < sides.size() && sides[end].lo == sides[k].lo && sides[end].hi == sides[k].hi) ++end;
+    const EdgeSide &x = sides[k], &y = sides[k + 1 < end ? k + 1 : k];
+    const std::string name = edge_name(x.lo, x.hi);
+    if (end - k == 1)
+      throw SurfaceError(name + " is in only one triangle (" + std::to_string(x.triangle) + "): the surface is not closed");
+    if (end - k > 2) {
+      std::string list;
+      for (std::size_t m = k; m < end; ++m) list += (m > k ? ", " : "") + std::to_string(sides[m].triangle);
+      throw SurfaceError(name + " is in " + std::to_string(end - k) + " triangles (" + list + "): the surface is not manifold");
+    }
+    if (x.forward == y.forward)
+      throw SurfaceError("triangles " + std::to_string(x.triangle) + " and " + std::to_string(y.triangle) + " run " + name +
+                         " the same way: their orientations disagree");
+    const std::uint32_t e = static_cast<std::uint32_t>(s.edges.size());
+    s.edges.push_back({x.lo, x.hi});
+    s.edge_triangles.push_back(x.forward ? std::array{x.triangle, y.triangle} : std::array{y.triangle, x.triangle});
+    s.triangle_edges[x.triangle][x.k] = e;
+    s.triangle_edges[y.triangle][y.k] = e;
+    k = end;
+  }
+
+  // One fan about every vertex: walking from triangle to triangle across the
+  // edges at the vertex comes back having met all of them.
+  std::vector<std::uint32_t> incident(nv, 0);
+  for (const TriangleIndices& tri : s.triangles)
+    for (const std::uint32_t i : tri) ++incident[i];
+  std::vector<std::uint8_t> walked(nv, 0);
+  for (std::uint32_t t0 = 0; t0 < nt; ++t0)
+    for (int k0 = 0; k0 < 3; ++k0) {
+      const std::uint32_t v = s.triangles[t0][k0];
+      if (walked[v]) continue;
+      walked[v] = 1;
+      std::uint32_t t = t0, count = 0;
+      do {
+        ++count;
+        // The side of t that leaves v (v -> next): its other triangle comes next.
+        int k = 0;
+        while (s.triangles[t][k] != v) ++k;
+        const std::uint32_t e = s.triangle_edges[t][k];
+        t = s.edge_triangles[e][0] == t ? s.edge_triangles[e][1] : s.edge_triangles[e][0];
+      } while (t != t0 && count <= incident[v]);
+      if (count != incident[v])
+        throw SurfaceError("vertex " + std::to_string(v) + " joins separate fans of triangles: the surface is not manifold there");
+    }
+
+  s.vertex_edge_begin.assign(nv + 1, 0);
+  for (const auto& e : s.edges) ++s.vertex_edge_begin[e[0] + 1], ++s.vertex_edge_begin[e[1] + 1];
+  for (std::size_t i = 0; i < nv; ++i) s.vertex_edge_begin[i + 1] += s.vertex_edge_begin[i];
+  s.vertex_edges.resize(2 * s.edges.size());
+  {
+    std::vector<std::uint32_t> next(s.vertex_edge_begin.begin(), s.vertex_edge_begin.end() - 1);
+    for (std::uint32_t e = 0; e < s.edges.size(); ++e)
+      for (const std::uint32_t v : s.edges[e]) s.vertex_edges[next[v]++] = e;
+  }
+
+  s.triangle_boxes.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Vec3 &a = s.vertices[s.triangles[t][0]], &b = s.vertices[s.triangles[t][1]], &c = s.vertices[s.triangles[t][2]];
+    s.triangle_boxes[t] = {min(a, min(b, c)), max(a, max(b, c))};
+  }
+  s.tree = build_triangle_tree(s.triangle_boxes);
+  s.box = s.tree.nodes[0].box;
+
+  overlapping_triangles(s.tree, s.tree, [&](std::uint32_t i, std::uint32_t j) {
+    if (i < j && triangles_clash(s, i, j))
+      throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
+                         " intersect: the surface crosses itself");
+  });
+  if (!(mass_properties(s).volume > 0))
+    throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
+                       "the other way round");
+  return s;
+}
+
+MassProperties mass_properties(const Surface& s) {
+  // Volume and first moments by tetrahedra from the middle of the box (for
+  // precision far from the origin), then the inertia about the centroid.
+  const Vec3 o = 0.5 * (s.box.lo + s.box.hi);
+  Real volume = 0;
+  Vec3 moment;
+  for (const TriangleIndices& t : s.triangles) {
+    const Vec3 a = s.vertices[t[0]] - o, b = s.vertices[t[1]] - o, c = s.vertices[t[2]] - o;
+    const Real v = dot(a, cross(b, c)) / 6;
+    volume += v;
+    moment += v * (a + b + c) / 4;
+  }
+  const Vec3 centroid = volume > 0 ? o + moment / volume : o;
+  return closed_surface_inertia(s.vertices, s.triangles, volume, centroid);
+}
+
+}  // namespace gjkdem
