@@ -121,6 +121,27 @@ void find_status(View& v, const Surface& solid) {
     }
 }
 
+// Crossings at the same point along an edge (an edge through another
+// surface's edge or vertex) may be sorted either way by their rounded
+// positions: put each run of them in the order the exact statuses imply,
+// an entry where the edge is outside, an exit where it is inside.
+void order_crossings(View& v) {
+  for (std::size_t e = 0; e < v.s.edges.size(); ++e) {
+    bool in = v.inside[v.s.edges[e][0]];
+    for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
+      if (v.crossings[c].exits != in) {
+        std::uint32_t d = c + 1;  // the next crossing that fits
+        while (d < v.first_crossing[e + 1] && v.crossings[d].exits != in) ++d;
+        if (d == v.first_crossing[e + 1]) throw std::logic_error("surface_overlap: crossings out of step along an edge");
+        std::swap(v.crossings[c], v.crossings[d]);
+      }
+      in = !in;
+    }
+    if (in != static_cast<bool>(v.inside[v.s.edges[e][1]]))
+      throw std::logic_error("surface_overlap: an edge's crossings disagree with its ends");
+  }
+}
+
 // The integrals of A ∩ B, summed over the segments of the cycles.
 struct Sums {
   Real volume6 = 0;  // six times the volume
@@ -133,6 +154,27 @@ struct Sums {
     area += 0.5 * cross(p - apex, q - apex);
   }
 };
+
+// The area of the overlap of two triangles on one plane (abc's, whose
+// normal is n), by clipping abc with def's three sides.
+Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec3& n) {
+  std::vector<Vec3> poly(abc, abc + 3), next;
+  const Vec3 m = cross(def[1] - def[0], def[2] - def[0]);  // def's own normal: its corners run ccw about it
+  for (int k = 0; k < 3 && !poly.empty(); ++k) {
+    const Vec3 inward = cross(m, def[(k + 1) % 3] - def[k]);
+    next.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+      const Real dp = dot(inward, p - def[k]), dq = dot(inward, q - def[k]);
+      if (dp >= 0) next.push_back(p);
+      if ((dp >= 0) != (dq >= 0)) next.push_back(p + (dp / (dp - dq)) * (q - p));
+    }
+    poly.swap(next);
+  }
+  Vec3 area;
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) area += cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
+  return 0.5 * std::fabs(dot(area, n)) / length(n);
+}
 
 // A segment of a triangle's cycle, and where it ends on a crossing.
 struct Endpoint {
@@ -166,6 +208,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   find_crossings(vb, a, edges_b, origin);
   find_status(va, b);
   find_status(vb, a);
+  order_crossings(va);
+  order_crossings(vb);
 
   // The crossing segments of each pair of triangles that cross, oriented for
   // A's triangle's cycle (B's runs it the other way).
@@ -222,6 +266,25 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   };
   cycles(va, cross_a, sums.area_a);
   cycles(vb, cross_b, sums.area_b);
+
+  // Coplanar faces: the perturbation put the one or both of them inside the
+  // other solid and their cycles counted them, but they bound no volume
+  // (facing each other) or lie on both surfaces (facing the same way): the
+  // areas count neither (query-format-mesh.md).
+  for (const auto& [s, t] : pairs) {
+    const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
+    const Vec3 pa[3] = {a.vertices[ts[0]] - origin, a.vertices[ts[1]] - origin, a.vertices[ts[2]] - origin};
+    const Vec3 pb[3] = {b.vertices[tt[0]] - origin, b.vertices[tt[1]] - origin, b.vertices[tt[2]] - origin};
+    const Vec3 na = cross(pa[1] - pa[0], pa[2] - pa[0]), nb = cross(pb[1] - pb[0], pb[2] - pb[0]);
+    if (length(cross(na, nb)) > 1e-6 * length(na) * length(nb)) continue;  // far from parallel: never coplanar
+    const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];
+    const Vec3 &b0 = b.vertices[tt[0]], &b1 = b.vertices[tt[1]], &b2 = b.vertices[tt[2]];
+    if (orient3d(a0, a1, a2, b0) || orient3d(a0, a1, a2, b1) || orient3d(a0, a1, a2, b2)) continue;
+    const Real area = coplanar_overlap_area(pa, pb, na);
+    if (area == 0) continue;
+    if (perturbed_orient3d(b0, b1, b2, a0, Side::B) < 0) sums.area_a -= area / length(na) * na;  // a's face inside B
+    if (perturbed_orient3d(a0, a1, a2, b0, Side::A) < 0) sums.area_b -= area / length(nb) * nb;  // b's face inside A
+  }
 
   out.volume = sums.volume6 / 6;
   out.area_a = sums.area_a;
