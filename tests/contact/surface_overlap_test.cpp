@@ -1,0 +1,144 @@
+// The overlap of closed surfaces against independent answers: the convex
+// clipping of contact/overlap.hpp on random hulls, closed forms on boxes and
+// an L-shaped prism, and the properties every answer must have (swap,
+// translate, scale, touching, coplanar faces).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "gjkdem/collide/surface_distance.hpp"
+#include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
+#include "gjkdem/shape/polytope.hpp"
+#include "shape/surface_shapes.hpp"
+
+namespace gjkdem {
+namespace {
+
+using test::box_surface;
+using test::Mesh;
+using test::surface_of;
+
+// The hull of points as a closed surface, the points moved by `shift`.
+Surface hull_surface(const Polytope& p, const Vec3& shift) {
+  Mesh m;
+  for (const Vec3& v : p.data->vertices) m.vertices.push_back(v + shift);
+  m.triangles.assign(p.data->triangles.begin(), p.data->triangles.end());
+  return surface_of(m);
+}
+
+Mesh moved(Mesh m, const Vec3& by, Real scale = 1) {
+  for (Vec3& v : m.vertices) v = scale * v + by;
+  return m;
+}
+
+TEST(SurfaceOverlap, MatchesConvexClippingOnRandomHulls) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<Real> gauss;
+  std::uniform_real_distribution<Real> offset(-0.8, 0.8);
+  OverlapWorkspace work;
+  int overlapping = 0;
+  for (int n = 0; n < 200; ++n) {
+    std::vector<Vec3> pa(12), pb(12);
+    for (Vec3& p : pa) p = {gauss(rng), gauss(rng), gauss(rng)};
+    for (Vec3& p : pb) p = {gauss(rng), gauss(rng), gauss(rng)};
+    const Polytope a = make_polytope(pa), b = make_polytope(pb);
+    const Vec3 shift{offset(rng) * 3, offset(rng) * 3, offset(rng) * 3};
+    const OverlapResult expected = overlap(Shape{a}, Transform{}, Shape{b}, Transform::from(shift, Quat{}), work);
+    const SurfaceOverlap got = surface_overlap(hull_surface(a, {}), hull_surface(b, shift));
+    const Real scale = std::fmax(mass_properties(Shape{a}).volume, Real(1));
+    ASSERT_NEAR(got.volume, expected.volume, 1e-10 * scale) << n;
+    if (expected.volume > 1e-6) {
+      ++overlapping;
+      EXPECT_NEAR(length(got.centroid - expected.centroid), 0, 1e-9) << n;
+      EXPECT_NEAR(length(got.area_a - expected.area_a), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
+      EXPECT_NEAR(length(got.area_a + got.area_b), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
+    }
+  }
+  EXPECT_GT(overlapping, 50);
+}
+
+TEST(SurfaceOverlap, LPrismAgainstABoxInItsCorner) {
+  // The box [0.5,1.5]^2 x [0.25,0.75] less the L's notch [1,1.5]^2.
+  const Surface l = surface_of(test::l_prism(1));
+  const Surface box = surface_of(box_surface({0.5, 0.5, 0.25}, {1.5, 1.5, 0.75}));
+  const SurfaceOverlap o = surface_overlap(l, box);
+  EXPECT_TRUE(o.intersect);
+  EXPECT_NEAR(o.volume, 0.375, 1e-14);
+  const Real c = (1 * 1 - 0.25 * 1.25) / 0.75;
+  EXPECT_NEAR(o.centroid.x, c, 1e-14);
+  EXPECT_NEAR(o.centroid.y, c, 1e-14);
+  EXPECT_NEAR(o.centroid.z, 0.5, 1e-14);
+  // The box lies wholly within the L's height: the contact surface is the
+  // L's two inner walls of the notch, facing +x and +y ... inside the box.
+  EXPECT_NEAR(o.area_a.x, 0.25, 1e-14);  // the L's wall x = 1 across y in [1, 1.5], z in [0.25, 0.75]
+  EXPECT_NEAR(o.area_a.y, 0.25, 1e-14);
+  EXPECT_NEAR(o.area_a.z, 0, 1e-14);
+}
+
+TEST(SurfaceOverlap, PropertiesHoldOnAnLPrismAndARotatedBox) {
+  Mesh bar = box_surface({-0.3, -0.2, -0.4}, {0.3, 0.2, 0.4});
+  // Turned about z and x so that no face is parallel to the L's.
+  const Quat q = normalized(Quat{0.9, 0.2, 0.1, 0.3});
+  for (Vec3& v : bar.vertices) v = rotate(q, v) + Vec3{1.1, 0.9, 0.5};
+  const Mesh l = test::l_prism(1);
+  const SurfaceOverlap o = surface_overlap(surface_of(l), surface_of(bar));
+  ASSERT_GT(o.volume, 0.01);
+  // Swap: the same solid, the areas exchanged.
+  const SurfaceOverlap s = surface_overlap(surface_of(bar), surface_of(l));
+  EXPECT_NEAR(s.volume, o.volume, 1e-14);
+  EXPECT_NEAR(length(s.centroid - o.centroid), 0, 1e-14);
+  EXPECT_NEAR(length(s.area_a - o.area_b), 0, 1e-14);
+  // Never more than either body's volume; the areas opposite (no shared faces).
+  EXPECT_LE(o.volume, 0.6 * 0.4 * 0.8);
+  EXPECT_NEAR(length(o.area_a + o.area_b), 0, 1e-13);
+  // Translated by 1e5 and scaled by 1e-3 and 1e3.
+  const Vec3 far{1e5, -1e5, 1e5};
+  const SurfaceOverlap t = surface_overlap(surface_of(moved(l, far)), surface_of(moved(bar, far)));
+  EXPECT_NEAR(t.volume, o.volume, 1e-9 * o.volume);
+  EXPECT_NEAR(length(t.centroid - far - o.centroid), 0, 1e-9);
+  for (const Real k : {1e-3, 1e3}) {
+    const SurfaceOverlap m = surface_overlap(surface_of(moved(l, {}, k)), surface_of(moved(bar, {}, k)));
+    EXPECT_NEAR(m.volume, k * k * k * o.volume, 1e-12 * k * k * k * o.volume);
+    EXPECT_NEAR(length(m.centroid - k * o.centroid), 0, 1e-12 * k);
+    EXPECT_NEAR(length(m.area_a - k * k * o.area_a), 0, 1e-12 * k * k);
+  }
+}
+
+TEST(SurfaceOverlap, TouchingAndSharedFaces) {
+  const Surface unit = surface_of(box_surface({0, 0, 0}, {1, 1, 1}));
+  // Face to face: touching, no volume.
+  const SurfaceOverlap touch = surface_overlap(unit, surface_of(box_surface({0.5, 0.5, 1}, {1.5, 1.5, 2})));
+  EXPECT_TRUE(touch.intersect);
+  EXPECT_EQ(touch.volume, 0);
+  // Apart by the least step: neither.
+  const SurfaceOverlap apart = surface_overlap(unit, surface_of(box_surface({0.5, 0.5, 1 + 0x1p-52}, {1.5, 1.5, 2})));
+  EXPECT_FALSE(apart.intersect);
+  EXPECT_EQ(apart.volume, 0);
+  // Identical: the whole box, no contact surface.
+  const SurfaceOverlap same = surface_overlap(unit, unit);
+  EXPECT_NEAR(same.volume, 1, 1e-15);
+  EXPECT_NEAR(length(same.area_a - same.area_b), 0, 1e-15);
+  // Sharing the planes y = 0, y = 1 and z = 0 (facing the same way: in
+  // neither area): A ∩ B = [0.5,1] x [0,1] x [0,0.5], bounded by A's face
+  // x = 1 and B's faces x = 0.5 and z = 0.5.
+  const SurfaceOverlap shared = surface_overlap(unit, surface_of(box_surface({0.5, 0, 0}, {1.5, 1, 0.5})));
+  EXPECT_NEAR(shared.volume, 0.25, 1e-15);
+  const Vec3 n = shared.area_a - shared.area_b;
+  EXPECT_NEAR(n.x, 0.5 + 0.5, 1e-15);  // +x 0.5 from A's wall x = 1 (its lower half), minus -x 0.5 from B's wall x = 0.5
+  EXPECT_NEAR(n.y, 0, 1e-15);
+  EXPECT_NEAR(n.z, -0.5, 1e-15);  // minus B's top, 0.5 facing +z
+}
+
+TEST(SurfaceDistance, SeparatedBoxesGiveTheirGapAndWitnesses) {
+  const Surface a = surface_of(box_surface({0, 0, 0}, {1, 1, 1}));
+  const Surface b = surface_of(box_surface({1.5, 0.25, 0.25}, {2, 0.75, 0.75}));
+  const SurfaceDistance d = surface_distance(a, b);
+  EXPECT_NEAR(d.distance, 0.5, 1e-14);
+  EXPECT_NEAR(d.witness_a.x, 1, 1e-14);
+  EXPECT_NEAR(d.witness_b.x, 1.5, 1e-14);
+}
+
+}  // namespace
+}  // namespace gjkdem

@@ -1,0 +1,60 @@
+#pragma once
+// Closed surfaces for tests: boxes and an L-shaped prism, as vertex and
+// triangle lists (outward, counter-clockwise from outside).
+#include <vector>
+
+#include "gjkdem/shape/surface.hpp"
+
+namespace gjkdem::test {
+
+struct Mesh {
+  std::vector<Vec3> vertices;
+  std::vector<TriangleIndices> triangles;
+};
+
+/// A prism over a polygon (counter-clockwise in x, y) from z0 to z1; `cap`
+/// triangulates the polygon (indices into it, counter-clockwise).
+inline Mesh prism(const std::vector<std::pair<Real, Real>>& outline, const std::vector<TriangleIndices>& cap, Real z0,
+                  Real z1) {
+  Mesh m;
+  const std::uint32_t n = static_cast<std::uint32_t>(outline.size());
+  for (const auto& [x, y] : outline) m.vertices.push_back({x, y, z0});
+  for (const auto& [x, y] : outline) m.vertices.push_back({x, y, z1});
+  for (const TriangleIndices& t : cap) {
+    m.triangles.push_back({t[0], t[2], t[1]});              // bottom, facing down
+    m.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});  // top
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    m.triangles.push_back({i, j, j + n});
+    m.triangles.push_back({i, j + n, i + n});
+  }
+  return m;
+}
+
+inline Mesh box_surface(const Vec3& lo, const Vec3& hi) {
+  return prism({{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}, {{0, 1, 2}, {0, 2, 3}}, lo.z, hi.z);
+}
+
+/// The L of [0,2]x[0,1] and [0,1]x[0,2], from z = 0 to `height`.
+inline Mesh l_prism(Real height) {
+  return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}, 0, height);
+}
+
+/// Adds b's triangles to a (b's vertices appended; with `weld`, b's
+/// vertices equal to one of a's are taken as a's).
+inline void append(Mesh& a, const Mesh& b, bool weld = false) {
+  std::vector<std::uint32_t> index(b.vertices.size());
+  for (std::size_t i = 0; i < b.vertices.size(); ++i) {
+    index[i] = static_cast<std::uint32_t>(a.vertices.size());
+    if (weld)
+      for (std::uint32_t k = 0; k < a.vertices.size(); ++k)
+        if (a.vertices[k] == b.vertices[i]) index[i] = k;
+    if (index[i] == a.vertices.size()) a.vertices.push_back(b.vertices[i]);
+  }
+  for (const TriangleIndices& t : b.triangles) a.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+}
+
+inline Surface surface_of(const Mesh& m) { return make_surface(m.vertices, m.triangles); }
+
+}  // namespace gjkdem::test

@@ -1,0 +1,103 @@
+// Closed triangle surfaces: what make_surface accepts and refuses (naming
+// the fault), and their exact mass properties.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "gjkdem/shape/surface.hpp"
+#include "surface_shapes.hpp"
+
+namespace gjkdem {
+namespace {
+
+using test::box_surface;
+using test::Mesh;
+
+std::string refusal(Mesh m) {
+  try {
+    make_surface(std::move(m.vertices), std::move(m.triangles));
+  } catch (const SurfaceError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Surface, BoxHasItsMassProperties) {
+  const Mesh m = box_surface({1, 2, 3}, {3, 3, 4});
+  const Surface s = make_surface(m.vertices, m.triangles);
+  EXPECT_EQ(s.edges.size(), 18u);
+  const MassProperties p = mass_properties(s);
+  EXPECT_NEAR(p.volume, 2, 1e-14);
+  EXPECT_NEAR(p.centroid.x, 2, 1e-14);
+  EXPECT_NEAR(p.centroid.y, 2.5, 1e-14);
+  EXPECT_NEAR(p.centroid.z, 3.5, 1e-14);
+  // A box a x b x c: I_xx = V (b^2 + c^2) / 12.
+  EXPECT_NEAR(p.inertia.row[0][0], 2 * (1 + 1) / 12.0, 1e-14);
+  EXPECT_NEAR(p.inertia.row[2][2], 2 * (4 + 1) / 12.0, 1e-14);
+  EXPECT_NEAR(p.inertia.row[0][1], 0, 1e-14);
+}
+
+TEST(Surface, LPrismIsNotConvexAndHasItsVolume) {
+  const Mesh m = test::l_prism(0.5);
+  const MassProperties p = mass_properties(make_surface(m.vertices, m.triangles));
+  EXPECT_NEAR(p.volume, 1.5, 1e-14);
+  EXPECT_NEAR(p.centroid.x, (0.5 * 1 * 2 + 1.5 * 1 * 1) / 3, 1e-14);  // strips [0,1]x[0,2] and [1,2]x[0,1]
+}
+
+TEST(Surface, RefusalsNameTheFault) {
+  Mesh open = box_surface({0, 0, 0}, {1, 1, 1});
+  open.triangles.pop_back();
+  EXPECT_NE(refusal(open).find("only one triangle"), std::string::npos) << refusal(open);
+
+  Mesh flipped = box_surface({0, 0, 0}, {1, 1, 1});
+  std::swap(flipped.triangles[3][0], flipped.triangles[3][1]);
+  EXPECT_NE(refusal(flipped).find("orientations disagree"), std::string::npos) << refusal(flipped);
+
+  Mesh inward = box_surface({0, 0, 0}, {1, 1, 1});
+  for (auto& t : inward.triangles) std::swap(t[0], t[1]);
+  EXPECT_NE(refusal(inward).find("face inward"), std::string::npos) << refusal(inward);
+
+  Mesh unused = box_surface({0, 0, 0}, {1, 1, 1});
+  unused.vertices.push_back({5, 5, 5});
+  EXPECT_EQ(refusal(unused), "vertex 8 is in no triangle");
+
+  Mesh beyond = box_surface({0, 0, 0}, {1, 1, 1});
+  beyond.triangles[0][2] = 99;
+  EXPECT_NE(refusal(beyond).find("triangle 0 refers to vertex 99"), std::string::npos) << refusal(beyond);
+
+  Mesh flat = box_surface({0, 0, 0}, {1, 1, 1});
+  flat.vertices[0] = flat.vertices[1];  // corners 0 and 1 of the box made one point
+  EXPECT_NE(refusal(flat).find("has no area"), std::string::npos) << refusal(flat);
+
+  // Two boxes listed as one surface, one through the other.
+  Mesh crossing = box_surface({0, 0, 0}, {2, 2, 2});
+  test::append(crossing, box_surface({1, 1, 1}, {3, 3, 3}));
+  EXPECT_NE(refusal(crossing).find("crosses itself"), std::string::npos) << refusal(crossing);
+
+  // Two boxes sharing one corner: the corner joins two fans.
+  Mesh bowtie = box_surface({0, 0, 0}, {1, 1, 1});
+  test::append(bowtie, box_surface({1, 1, 1}, {2, 2, 2}), /*weld=*/true);
+  const std::string fans = refusal(bowtie);
+  EXPECT_TRUE(fans.find("separate fans") != std::string::npos || fans.find("crosses itself") != std::string::npos) << fans;
+
+  // Two boxes sharing an edge as four triangles: not manifold.
+  Mesh three = box_surface({0, 0, 0}, {1, 1, 1});
+  test::append(three, box_surface({1, 1, 0}, {2, 2, 1}), /*weld=*/true);
+  EXPECT_NE(refusal(three).find("not manifold"), std::string::npos) << refusal(three);
+
+  // Two separate boxes make a good surface (two shells).
+  Mesh two = box_surface({0, 0, 0}, {1, 1, 1});
+  test::append(two, box_surface({2, 0, 0}, {3, 1, 1}));
+  EXPECT_EQ(refusal(two), "");
+}
+
+TEST(Surface, TouchingTrianglesMeetAndApartOnesDoNot) {
+  // Exact: a triangle whose corner lies on another's face meets it; moved
+  // by the smallest step away it does not.
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_TRUE(triangles_meet(a, b, c, {0.25, 0.25, 0}, {0.25, 0.25, 1}, {1, 1, 1}));
+  EXPECT_FALSE(triangles_meet(a, b, c, {0.25, 0.25, 0x1p-60}, {0.25, 0.25, 1}, {1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace gjkdem
