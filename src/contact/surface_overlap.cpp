@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
 #include "gjkdem/shape/predicates.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 namespace {
@@ -142,22 +145,50 @@ void order_crossings(View& v) {
   }
 }
 
-// The integrals of A ∩ B, summed over the segments of the cycles.
+// A segment of a triangle's cycle: from point to point (ids: the surfaces'
+// vertices, then their crossings), with what it adds to the integrals.
+struct CycleSegment {
+  std::uint32_t triangle;  // A's triangles, then B's
+  std::uint32_t from, to;
+  Vec3 p, q;
+};
+
+// What a set of cycle segments adds up to.
 struct Sums {
   Real volume6 = 0;  // six times the volume
   Vec3 moment24;     // 24 times the first moment
   Vec3 area_a, area_b;
-  void add(const Vec3& apex, const Vec3& p, const Vec3& q, Vec3& area) {
-    const Real v6 = dot(apex, cross(p, q));
-    volume6 += v6;
-    moment24 += v6 * (apex + p + q);
-    area += 0.5 * cross(p - apex, q - apex);
-  }
 };
 
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  std::uint32_t find(std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(std::uint32_t i, std::uint32_t j) { parent[find(i)] = find(j); }
+};
+
+// Whether point x lies inside the closed polygon of the loop's segments,
+// seen down `axis` (crossings of a ray along the first remaining axis).
+bool loop_holds(const std::vector<const CycleSegment*>& loop, const Vec3& x, int axis) {
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  bool in = false;
+  for (const CycleSegment* g : loop) {
+    const Vec3 &p = g->p, &q = g->q;
+    if ((p[j] > x[j]) != (q[j] > x[j]) && x[i] < p[i] + (x[j] - p[j]) / (q[j] - p[j]) * (q[i] - p[i])) in = !in;
+  }
+  return in;
+}
+
+int dominant_axis(const Vec3& n) {
+  const Vec3 m{std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
+  return m.x >= m.y && m.x >= m.z ? 0 : m.y >= m.z ? 1 : 2;
+}
+
 // The area of the overlap of two triangles on one plane (abc's, whose
-// normal is n), by clipping abc with def's three sides.
-Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec3& n) {
+// normal is n), by clipping abc with def's three sides, and a point inside it.
+Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec3& n, Vec3& inside) {
   std::vector<Vec3> poly(abc, abc + 3), next;
   const Vec3 m = cross(def[1] - def[0], def[2] - def[0]);  // def's own normal: its corners run ccw about it
   for (int k = 0; k < 3 && !poly.empty(); ++k) {
@@ -172,14 +203,17 @@ Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec
     poly.swap(next);
   }
   Vec3 area;
+  inside = {};
   for (std::size_t i = 1; i + 1 < poly.size(); ++i) area += cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
+  for (const Vec3& p : poly) inside += p / static_cast<Real>(poly.size());
   return 0.5 * std::fabs(dot(area, n)) / length(n);
 }
 
-// A segment of a triangle's cycle, and where it ends on a crossing.
+// An end of a crossing segment: a crossing, where A's triangle's cycle
+// starts or ends it.
 struct Endpoint {
-  Vec3 point;
-  bool start;  // in the cycle of the first surface's triangle (A's)
+  std::uint32_t id;
+  bool start;
 };
 
 }  // namespace
@@ -211,90 +245,213 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   order_crossings(va);
   order_crossings(vb);
 
+  // Point ids: A's vertices, B's, A's crossings, B's.
+  const std::uint32_t base_b = static_cast<std::uint32_t>(a.vertices.size());
+  const std::uint32_t base_ca = base_b + static_cast<std::uint32_t>(b.vertices.size());
+  const std::uint32_t base_cb = base_ca + static_cast<std::uint32_t>(va.crossings.size());
+  const std::uint32_t triangles_a = static_cast<std::uint32_t>(a.triangles.size());
+  const auto point_of = [&](std::uint32_t id) {
+    if (id < base_b) return a.vertices[id] - origin;
+    if (id < base_ca) return b.vertices[id - base_b] - origin;
+    if (id < base_cb) return va.crossings[id - base_ca].point;
+    return vb.crossings[id - base_cb].point;
+  };
+
   // The crossing segments of each pair of triangles that cross, oriented for
   // A's triangle's cycle (B's runs it the other way).
-  std::unordered_map<std::uint64_t, std::vector<Endpoint>> segments;
+  std::unordered_map<std::uint64_t, std::vector<Endpoint>> crossing_ends;
   const auto key = [](std::uint32_t s, std::uint32_t t) { return (std::uint64_t{s} << 32) | t; };
-  for (const Crossing& c : va.crossings)
-    for (int k = 0; k < 2; ++k) {
-      const std::uint32_t s = a.edge_triangles[c.edge][k];  // runs the edge forward for k = 0
-      const bool exits = c.exits != (k == 1);
-      segments[key(s, c.triangle)].push_back({c.point, exits});
+  for (std::uint32_t k = 0; k < va.crossings.size(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const Crossing& c = va.crossings[k];
+      const std::uint32_t s = a.edge_triangles[c.edge][side];  // runs the edge forward for side 0
+      crossing_ends[key(s, c.triangle)].push_back({base_ca + k, c.exits != (side == 1)});
     }
-  for (const Crossing& c : vb.crossings)
-    for (int k = 0; k < 2; ++k) {
-      const std::uint32_t t = b.edge_triangles[c.edge][k];
-      const bool exits = c.exits != (k == 1);  // in t's cycle: an exit starts the segment
-      segments[key(c.triangle, t)].push_back({c.point, !exits});
+  for (std::uint32_t k = 0; k < vb.crossings.size(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const Crossing& c = vb.crossings[k];
+      const std::uint32_t t = b.edge_triangles[c.edge][side];
+      const bool exits = c.exits != (side == 1);  // in t's cycle: an exit starts the segment
+      crossing_ends[key(c.triangle, t)].push_back({base_cb + k, !exits});
     }
 
-  Sums sums;
-  std::vector<std::vector<std::pair<Vec3, Vec3>>> cross_a(a.triangles.size()), cross_b(b.triangles.size());
-  for (const auto& [k, ends] : segments) {
+  std::vector<CycleSegment> segments;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> links;  // one boundary segment of two faces
+  UnionFind joined;
+  const auto add = [&](std::uint32_t triangle, std::uint32_t from, std::uint32_t to) {
+    segments.push_back({triangle, from, to, point_of(from), point_of(to)});
+    joined.parent.push_back(static_cast<std::uint32_t>(joined.parent.size()));
+    return static_cast<std::uint32_t>(segments.size() - 1);
+  };
+  // A crossing segment bounds a face of A and a face of B: one piece.
+  for (const auto& [k, ends] : crossing_ends) {
     if (ends.size() != 2 || ends[0].start == ends[1].start)
       throw std::logic_error("surface_overlap: a crossing segment without one start and one end");
-    const Vec3 &p = ends[0].start ? ends[0].point : ends[1].point, &q = ends[0].start ? ends[1].point : ends[0].point;
-    cross_a[k >> 32].push_back({p, q});
-    cross_b[k & 0xffffffffu].push_back({q, p});
+    const std::uint32_t p = ends[0].start ? ends[0].id : ends[1].id, q = ends[0].start ? ends[1].id : ends[0].id;
+    links.emplace_back(add(static_cast<std::uint32_t>(k >> 32), p, q), add(triangles_a + static_cast<std::uint32_t>(k), q, p));
   }
-
-  // Each triangle's cycle: its edges' pieces inside the other solid, then its
-  // crossing segments; fans from its first corner.
-  const auto cycles = [&](const View& v, const std::vector<std::vector<std::pair<Vec3, Vec3>>>& crossing, Vec3& area) {
+  // An edge's pieces inside the other solid bound both its triangles' faces.
+  const auto edge_pieces = [&](const View& v, std::uint32_t base_v, std::uint32_t base_c, std::uint32_t base_t) {
     const Surface& s = v.s;
-    for (std::uint32_t t = 0; t < s.triangles.size(); ++t) {
-      const TriangleIndices& tri = s.triangles[t];
-      bool any = !crossing[t].empty() || v.inside[tri[0]] || v.inside[tri[1]] || v.inside[tri[2]];
-      if (!any) continue;
-      const Vec3 apex = s.vertices[tri[0]] - origin;
-      for (const auto& [p, q] : crossing[t]) sums.add(apex, p, q, area);
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t e = s.triangle_edges[t][k];
-        const bool forward = s.edge_triangles[e][0] == t;
-        const Vec3 lo = s.vertices[s.edges[e][0]] - origin, hi = s.vertices[s.edges[e][1]] - origin;
-        bool in = v.inside[s.edges[e][0]];
-        Vec3 from = lo;
-        for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
-          const Crossing& x = v.crossings[c];
-          if (in && x.exits) forward ? sums.add(apex, from, x.point, area) : sums.add(apex, x.point, from, area);
-          in = !x.exits;
-          from = x.point;
-        }
-        if (in) forward ? sums.add(apex, from, hi, area) : sums.add(apex, hi, from, area);
+    for (std::uint32_t e = 0; e < s.edges.size(); ++e) {
+      const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
+      bool in = v.inside[s.edges[e][0]];
+      std::uint32_t from = base_v + s.edges[e][0];
+      const auto piece = [&](std::uint32_t to) { links.emplace_back(add(forward, from, to), add(backward, to, from)); };
+      for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
+        if (in) piece(base_c + c);
+        in = !in;
+        from = base_c + c;
       }
+      if (in) piece(base_v + s.edges[e][1]);
     }
   };
-  cycles(va, cross_a, sums.area_a);
-  cycles(vb, cross_b, sums.area_b);
+  edge_pieces(va, 0, base_ca, 0);
+  edge_pieces(vb, base_b, base_cb, triangles_a);
 
-  // Coplanar faces: the perturbation put the one or both of them inside the
+  // Each triangle's segments close into loops; the loops of one face (an
+  // outer loop and its holes) are one piece, and faces that share a segment
+  // are. (Pieces that touch only along an edge are joined where the
+  // perturbation leaves a tube of no width between them.)
+  std::vector<std::uint32_t> order(segments.size());
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return std::tie(segments[x].triangle, segments[x].from) < std::tie(segments[y].triangle, segments[y].from);
+  });
+  const auto normal_of = [&](std::uint32_t triangle) {
+    const Surface& s = triangle < triangles_a ? a : b;
+    const TriangleIndices& t = s.triangles[triangle < triangles_a ? triangle : triangle - triangles_a];
+    return cross(s.vertices[t[1]] - s.vertices[t[0]], s.vertices[t[2]] - s.vertices[t[0]]);
+  };
+  std::vector<std::vector<const CycleSegment*>> loops;
+  std::vector<std::uint32_t> loop_segment;  // a segment of each loop
+  std::vector<Real> loop_area;
+  std::vector<std::uint8_t> seen(segments.size(), 0);
+  for (std::size_t begin = 0; begin < order.size();) {
+    std::size_t end = begin;
+    const std::uint32_t triangle = segments[order[begin]].triangle;
+    while (end < order.size() && segments[order[end]].triangle == triangle) ++end;
+    const auto next = [&](std::uint32_t at) {  // the segment that starts where `at` ends
+      const auto it = std::lower_bound(order.begin() + begin, order.begin() + end, segments[at].to,
+                                       [&](std::uint32_t x, std::uint32_t id) { return segments[x].from < id; });
+      if (it == order.begin() + end || segments[*it].from != segments[at].to)
+        throw std::logic_error("surface_overlap: a cycle does not close");
+      return *it;
+    };
+    const Vec3 n = normal_of(triangle);
+    const std::size_t first_loop = loops.size();
+    for (std::size_t k = begin; k < end; ++k) {
+      if (seen[order[k]]) continue;
+      loops.emplace_back();
+      loop_segment.push_back(order[k]);
+      Vec3 area;
+      for (std::uint32_t at = order[k]; !seen[at]; at = next(at)) {
+        seen[at] = 1;
+        loops.back().push_back(&segments[at]);
+        area += cross(segments[at].p, segments[at].q);
+        joined.join(at, order[k]);
+      }
+      loop_area.push_back(dot(area, n));
+    }
+    // Holes (loops turning the other way) belong to the smallest outer loop
+    // holding them.
+    const int axis = dominant_axis(n);
+    std::size_t outer = 0, last_outer = first_loop;
+    for (std::size_t l = first_loop; l < loops.size(); ++l)
+      if (loop_area[l] > 0) ++outer, last_outer = l;
+    for (std::size_t l = first_loop; l < loops.size(); ++l) {
+      if (loop_area[l] > 0) continue;
+      std::size_t home = last_outer;
+      if (outer > 1) {
+        Real smallest = std::numeric_limits<Real>::infinity();
+        for (std::size_t m = first_loop; m < loops.size(); ++m)
+          if (loop_area[m] > 0 && loop_area[m] < smallest && loop_holds(loops[m], loops[l][0]->p, axis))
+            smallest = loop_area[m], home = m;
+      }
+      if (outer > 0) joined.join(loop_segment[l], loop_segment[home]);
+    }
+    begin = end;
+  }
+  for (const auto& [g, h] : links)
+    joined.join(g, h);
+
+  // Sums per piece, with the triangle's first corner as the fans' apex.
+  std::vector<Sums> pieces(segments.size());  // by the piece's root segment
+  for (const CycleSegment& g : segments) {
+    const std::uint32_t t = g.triangle;
+    const Surface& s = t < triangles_a ? a : b;
+    const Vec3 apex = s.vertices[s.triangles[t < triangles_a ? t : t - triangles_a][0]] - origin;
+    Sums& sum = pieces[joined.find(static_cast<std::uint32_t>(&g - segments.data()))];
+    const Real v6 = dot(apex, cross(g.p, g.q));
+    sum.volume6 += v6;
+    sum.moment24 += v6 * (apex + g.p + g.q);
+    (t < triangles_a ? sum.area_a : sum.area_b) += 0.5 * cross(g.p - apex, g.q - apex);
+  }
+
+  // Coplanar faces: the perturbation put one or both of them inside the
   // other solid and their cycles counted them, but they bound no volume
   // (facing each other) or lie on both surfaces (facing the same way): the
   // areas count neither (query-format-mesh.md).
+  const auto piece_at = [&](std::uint32_t triangle, const Vec3& x) -> Sums* {
+    const int axis = dominant_axis(normal_of(triangle));
+    Sums* found = nullptr;
+    for (std::size_t l = 0; l < loops.size(); ++l)
+      if (loops[l][0]->triangle == triangle) {
+        Sums* sum = &pieces[joined.find(loop_segment[l])];
+        if (!found || (loop_area[l] > 0 && loop_holds(loops[l], x, axis))) found = sum;
+      }
+    return found;
+  };
   for (const auto& [s, t] : pairs) {
     const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
     const Vec3 pa[3] = {a.vertices[ts[0]] - origin, a.vertices[ts[1]] - origin, a.vertices[ts[2]] - origin};
     const Vec3 pb[3] = {b.vertices[tt[0]] - origin, b.vertices[tt[1]] - origin, b.vertices[tt[2]] - origin};
     const Vec3 na = cross(pa[1] - pa[0], pa[2] - pa[0]), nb = cross(pb[1] - pb[0], pb[2] - pb[0]);
-    if (length(cross(na, nb)) > 1e-6 * length(na) * length(nb)) continue;  // far from parallel: never coplanar
+    if (length(cross(na, nb)) > kCoplanarScreenSin * length(na) * length(nb)) continue;
     const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];
     const Vec3 &b0 = b.vertices[tt[0]], &b1 = b.vertices[tt[1]], &b2 = b.vertices[tt[2]];
     if (orient3d(a0, a1, a2, b0) || orient3d(a0, a1, a2, b1) || orient3d(a0, a1, a2, b2)) continue;
-    const Real area = coplanar_overlap_area(pa, pb, na);
+    Vec3 middle;
+    const Real area = coplanar_overlap_area(pa, pb, na, middle);
     if (area == 0) continue;
-    if (perturbed_orient3d(b0, b1, b2, a0, Side::B) < 0) sums.area_a -= area / length(na) * na;  // a's face inside B
-    if (perturbed_orient3d(a0, a1, a2, b0, Side::A) < 0) sums.area_b -= area / length(nb) * nb;  // b's face inside A
+    if (perturbed_orient3d(b0, b1, b2, a0, Side::B) < 0)  // a's face inside B
+      if (Sums* sum = piece_at(s, middle)) sum->area_a -= area / length(na) * na;
+    if (perturbed_orient3d(a0, a1, a2, b0, Side::A) < 0)  // b's face inside A
+      if (Sums* sum = piece_at(triangles_a + t, middle)) sum->area_b -= area / length(nb) * nb;
   }
 
-  out.volume = sums.volume6 / 6;
-  out.area_a = sums.area_a;
-  out.area_b = sums.area_b;
+  // Pieces without volume (the slivers of faces that only touch) are no patches.
+  Sums total;
+  for (const Sums& sum : pieces) {
+    total.volume6 += sum.volume6;
+    total.moment24 += sum.moment24;
+    total.area_a += sum.area_a;
+    total.area_b += sum.area_b;
+  }
+  out.volume = total.volume6 / 6;
+  out.area_a = total.area_a;
+  out.area_b = total.area_b;
   if (out.volume > 0) {
-    out.centroid = origin + sums.moment24 / (24 * out.volume);
+    out.centroid = origin + total.moment24 / (24 * out.volume);
     out.intersect = true;
   } else {
     out.volume = 0;
   }
+  const Real smallest = kPatchMinRelVolume * std::fmin(mass_properties(a).volume, mass_properties(b).volume);
+  for (std::uint32_t root = 0; root < pieces.size(); ++root) {
+    const Sums& sum = pieces[root];
+    if (joined.find(root) != root || !(sum.volume6 / 6 > smallest)) continue;
+    SurfacePatch patch;
+    patch.volume = sum.volume6 / 6;
+    patch.centroid = origin + sum.moment24 / (24 * patch.volume);
+    patch.area_a = sum.area_a;
+    patch.area_b = sum.area_b;
+    out.patches.push_back(patch);
+  }
+  std::sort(out.patches.begin(), out.patches.end(), [](const SurfacePatch& x, const SurfacePatch& y) {
+    return x.volume > y.volume || (x.volume == y.volume && std::tie(x.centroid.x, x.centroid.y, x.centroid.z) <
+                                                               std::tie(y.centroid.x, y.centroid.y, y.centroid.z));
+  });
   return out;
 }
 

@@ -312,8 +312,10 @@ std::string format_result(const std::string& id_json, const PenetrationResult& r
 }
 
 std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& o, const SurfaceDistance* d) {
-  const bool finite = std::isfinite(o.volume) && is_finite(o.centroid) && is_finite(o.area_a) && is_finite(o.area_b) &&
+  bool finite = std::isfinite(o.volume) && is_finite(o.centroid) && is_finite(o.area_a) && is_finite(o.area_b) &&
                       (!d || (std::isfinite(d->distance) && is_finite(d->witness_a) && is_finite(d->witness_b)));
+  for (const SurfacePatch& p : o.patches)
+    finite = finite && std::isfinite(p.volume) && is_finite(p.centroid) && is_finite(p.area_a) && is_finite(p.area_b);
   if (!finite) return format_error(id_json, "the answer is not finite (the pair is beyond what double precision resolves)");
   std::string s;
   s.reserve(400);
@@ -334,7 +336,22 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
   const Vec3 n = o.area_a - o.area_b;
   if (o.volume > 0 && length(n) > 0) append_vec(s, n / length(n));
   else s += "null";
-  s += "}";
+  s += ",\"patches\":[";
+  for (std::size_t k = 0; k < o.patches.size(); ++k) {
+    const SurfacePatch& p = o.patches[k];
+    const Vec3 m = p.area_a - p.area_b;
+    s += k ? ",{\"volume\":" : "{\"volume\":";
+    append_number(s, p.volume);
+    s += ",\"centroid\":";
+    append_vec(s, p.centroid);
+    s += ",\"normal\":";
+    if (length(m) > 0) append_vec(s, m / length(m));
+    else s += "null";
+    s += ",\"area\":";
+    append_number(s, 0.5 * length(m));
+    s += "}";
+  }
+  s += "]}";
   return s;
 }
 

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "gjkdem/collide/surface_distance.hpp"
 #include "gjkdem/contact/overlap.hpp"
@@ -129,6 +131,31 @@ TEST(SurfaceOverlap, TouchingAndSharedFaces) {
   EXPECT_NEAR(n.x, 0.5 + 0.5, 1e-15);  // +x 0.5 from A's wall x = 1 (its lower half), minus -x 0.5 from B's wall x = 0.5
   EXPECT_NEAR(n.y, 0, 1e-15);
   EXPECT_NEAR(n.z, -0.5, 1e-15);  // minus B's top, 0.5 facing +z
+}
+
+TEST(SurfaceOverlap, ABarAcrossAUsArmsGivesTwoPatches) {
+  const Surface u = surface_of(test::u_prism(1));
+  EXPECT_NEAR(mass_properties(u).volume, 5, 1e-14);
+  const SurfaceOverlap o = surface_overlap(u, surface_of(box_surface({-0.5, 1.25, 0.25}, {3.5, 1.75, 0.75})));
+  EXPECT_NEAR(o.volume, 0.5, 1e-14);
+  ASSERT_EQ(o.patches.size(), 2u);
+  std::vector<Real> xs;
+  for (const SurfacePatch& p : o.patches) {
+    EXPECT_NEAR(p.volume, 0.25, 1e-14);
+    EXPECT_NEAR(p.centroid.y, 1.5, 1e-14);
+    EXPECT_NEAR(p.centroid.z, 0.5, 1e-14);
+    xs.push_back(p.centroid.x);
+  }
+  std::sort(xs.begin(), xs.end());
+  EXPECT_NEAR(xs[0], 0.5, 1e-14);
+  EXPECT_NEAR(xs[1], 2.5, 1e-14);
+  // Pushed down onto the base: one piece (the base joins the arms), whose
+  // contact surface faces up from the U into the bar (the bar's bottom face).
+  const SurfaceOverlap low = surface_overlap(u, surface_of(box_surface({-0.5, 0.5, 0.25}, {3.5, 1.75, 0.75})));
+  ASSERT_EQ(low.patches.size(), 1u);
+  EXPECT_NEAR(low.patches[0].volume, 0.5 * (3 * 0.5 + 2 * 0.75), 1e-14);
+  // Apart: no patch.
+  EXPECT_TRUE(surface_overlap(u, surface_of(box_surface({1.25, 1.25, 0.25}, {1.75, 1.75, 0.75}))).patches.empty());
 }
 
 TEST(SurfaceDistance, SeparatedBoxesGiveTheirGapAndWitnesses) {

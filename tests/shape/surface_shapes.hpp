@@ -41,6 +41,12 @@ inline Mesh l_prism(Real height) {
   return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}, 0, height);
 }
 
+/// The U of [0,3]x[0,1] and the arms [0,1]x[1,2] and [2,3]x[1,2], from z = 0 to `height`.
+inline Mesh u_prism(Real height) {
+  return prism({{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
+               {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 5}, {0, 5, 7}, {5, 6, 7}}, 0, height);
+}
+
 /// Adds b's triangles to a (b's vertices appended; with `weld`, b's
 /// vertices equal to one of a's are taken as a's).
 inline void append(Mesh& a, const Mesh& b, bool weld = false) {

@@ -14,9 +14,19 @@
 // normal, query-format-mesh.md). Only triangle pairs whose boxes meet are
 // looked at, besides a walk over the vertices near the overlap that carries
 // the inside/outside status along the edges.
+#include <vector>
+
 #include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem {
+
+/// A connected piece of A ∩ B (pieces that touch only along an edge or at a
+/// point may come out as one or two).
+struct SurfacePatch {
+  Real volume = 0;
+  Vec3 centroid;
+  Vec3 area_a, area_b;  ///< S_A(P), S_B(P): as SurfaceOverlap's, over this piece
+};
 
 struct SurfaceOverlap {
   bool intersect = false;  ///< the solids share a point (touching counts; exact)
@@ -27,6 +37,10 @@ struct SurfaceOverlap {
   /// area_a = -area_b, and normalize(area_a - area_b) is the contact normal
   /// from A towards B.
   Vec3 area_a, area_b;
+  /// The pieces of A ∩ B, largest first; pieces smaller than
+  /// kPatchMinRelVolume of the smaller solid are left out (slivers of faces
+  /// that only touch).
+  std::vector<SurfacePatch> patches;
 };
 
 /// Both surfaces in one frame. Throws std::logic_error if the exact
