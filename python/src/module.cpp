@@ -21,6 +21,7 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<py_bind::RunError>(m, "RunError", PyExc_RuntimeError);
   py_bind::bind_shapes(m);
   py_bind::bind_queries(m);
+  py_bind::bind_surfaces(m);
   py_bind::bind_world(m);
   py_bind::bind_scenes(m);
 }

@@ -1,0 +1,118 @@
+// gjkdem.Surface (a closed triangle surface, convex or not), its overlap
+// and distance with another (docs/contact.md, "Surfaces").
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "bindings.hpp"
+#include "gjkdem/collide/surface_distance.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
+
+namespace gjkdem::py_bind {
+namespace {
+
+std::shared_ptr<const Surface> surface_from_arrays(const py::handle& vertices, const py::handle& triangles) {
+  const auto v = to_matrix(vertices, 3, "vertices");
+  const auto t = to_matrix(triangles, 3, "triangles");
+  std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    const double* row = v.data(i, 0);
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(row[k])) fail("vertices[" + std::to_string(i) + "]", "must be finite numbers");
+    points[static_cast<std::size_t>(i)] = {row[0], row[1], row[2]};
+  }
+  std::vector<TriangleIndices> corners(static_cast<std::size_t>(t.shape(0)));
+  for (py::ssize_t i = 0; i < t.shape(0); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = *t.data(i, k);
+      if (!(x >= 0 && x < static_cast<double>(points.size()) && x == std::floor(x)))
+        fail("triangles[" + std::to_string(i) + "]",
+             "must hold indices of vertices (integers from 0 to " + std::to_string(points.size()) + " - 1)");
+      corners[static_cast<std::size_t>(i)][k] = static_cast<std::uint32_t>(x);
+    }
+  try {
+    py::gil_scoped_release unlocked;  // the self-intersection check can take a while on big surfaces
+    return std::make_shared<const Surface>(make_surface(std::move(points), std::move(corners)));
+  } catch (const SurfaceError& e) {
+    throw py::value_error(std::string("not a closed surface: ") + e.what());
+  }
+}
+
+py::dict patch_dict(const SurfacePatch& p) {
+  py::dict d;
+  const Vec3 m = p.area_a - p.area_b;
+  d["volume"] = p.volume;
+  d["centroid"] = from_vec3(p.centroid);
+  d["normal"] = length(m) > 0 ? py::object(from_vec3(m / length(m))) : py::object(py::none());
+  d["area"] = 0.5 * length(m);
+  return d;
+}
+
+}  // namespace
+
+void bind_surfaces(py::module_& m) {
+  py::class_<Surface, std::shared_ptr<Surface>>(m, "Surface",
+                                                "A closed triangle surface, convex or not: the solid it bounds "
+                                                "(vertices (N, 3), triangles (M, 3) counter-clockwise from outside).")
+      .def(py::init([](const py::handle& vertices, const py::handle& triangles) {
+             return std::const_pointer_cast<Surface>(surface_from_arrays(vertices, triangles));
+           }),
+           py::arg("vertices"), py::arg("triangles"))
+      .def_property_readonly("volume", [](const Surface& s) { return mass_properties(s).volume; })
+      .def_property_readonly("centroid", [](const Surface& s) { return from_vec3(mass_properties(s).centroid); })
+      .def_property_readonly("triangle_count", [](const Surface& s) { return s.triangles.size(); })
+      .def_property_readonly("vertex_count", [](const Surface& s) { return s.vertices.size(); })
+      .def("__repr__", [](const Surface& s) {
+        return "<gjkdem.Surface " + std::to_string(s.vertices.size()) + " vertices, " +
+               std::to_string(s.triangles.size()) + " triangles>";
+      });
+
+  py::class_<SurfaceOverlap>(m, "SurfaceOverlap", "surface_overlap(): A ∩ B of two surfaces and its pieces.")
+      .def_readonly("intersect", &SurfaceOverlap::intersect)
+      .def_readonly("volume", &SurfaceOverlap::volume)
+      .def_property_readonly("centroid", [](const SurfaceOverlap& o) {
+        return o.volume > 0 ? py::object(from_vec3(o.centroid)) : py::object(py::none());
+      })
+      .def_property_readonly("area_a", [](const SurfaceOverlap& o) { return from_vec3(o.area_a); })
+      .def_property_readonly("area_b", [](const SurfaceOverlap& o) { return from_vec3(o.area_b); })
+      .def_property_readonly("contact_normal", [](const SurfaceOverlap& o) {
+        const Vec3 n = o.area_a - o.area_b;
+        return o.volume > 0 && length(n) > 0 ? py::object(from_vec3(n / length(n))) : py::object(py::none());
+      })
+      .def_property_readonly("patches", [](const SurfaceOverlap& o) {
+        py::list list;
+        for (const SurfacePatch& p : o.patches) list.append(patch_dict(p));
+        return list;
+      })
+      .def("__repr__", [](const SurfaceOverlap& o) {
+        return "<gjkdem.SurfaceOverlap volume=" + std::to_string(o.volume) + " patches=" +
+               std::to_string(o.patches.size()) + ">";
+      });
+
+  m.def(
+      "surface_overlap",
+      [](const Surface& a, const Surface& b) {
+        py::gil_scoped_release unlocked;
+        return surface_overlap(a, b);
+      },
+      py::arg("a"), py::arg("b"), "The overlap of two surfaces given in one frame (docs/contact.md, \"Surfaces\").");
+  m.def(
+      "surface_distance",
+      [](const Surface& a, const Surface& b) {
+        SurfaceDistance d;
+        {
+          py::gil_scoped_release unlocked;
+          d = surface_distance(a, b);
+        }
+        py::dict out;
+        out["distance"] = d.distance;
+        out["witness_a"] = from_vec3(d.witness_a);
+        out["witness_b"] = from_vec3(d.witness_b);
+        return out;
+      },
+      py::arg("a"), py::arg("b"),
+      "The least distance between the two surfaces' triangles and a closest pair of points (of separated solids: "
+      "their distance).");
+}
+
+}  // namespace gjkdem::py_bind

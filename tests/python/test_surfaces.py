@@ -1,0 +1,57 @@
+"""gjkdem.Surface from NumPy arrays: the overlap and distance of two closed
+triangle surfaces, answers against closed forms and the swap property, and
+bad arrays refused with ValueError (never a crash)."""
+import numpy as np
+import pytest
+
+import gjkdem
+
+CUBE_V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+CUBE_T = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+                   [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
+
+
+def test_a_cube_has_its_mass_properties():
+    s = gjkdem.Surface(CUBE_V * 2, CUBE_T)
+    assert s.volume == pytest.approx(8, abs=1e-14)
+    assert np.allclose(s.centroid, [1, 1, 1], atol=1e-14)
+    assert s.triangle_count == 12 and s.vertex_count == 8
+
+
+def test_two_cubes_overlap_in_a_corner_cube_both_ways():
+    a = gjkdem.Surface(CUBE_V, CUBE_T)
+    b = gjkdem.Surface(CUBE_V + [0.5, 0.25, 0.75], CUBE_T)
+    o = gjkdem.surface_overlap(a, b)
+    assert o.intersect
+    assert o.volume == pytest.approx(0.5 * 0.75 * 0.25, abs=1e-15)
+    assert np.allclose(o.centroid, [0.75, 0.625, 0.875], atol=1e-15)
+    assert len(o.patches) == 1 and o.patches[0]["volume"] == pytest.approx(o.volume, abs=1e-15)
+    s = gjkdem.surface_overlap(b, a)
+    assert s.volume == pytest.approx(o.volume, abs=1e-15)
+    assert np.allclose(s.area_a, o.area_b, atol=1e-15) and np.allclose(s.contact_normal, -o.contact_normal)
+
+
+def test_apart_cubes_give_their_distance():
+    a = gjkdem.Surface(CUBE_V, CUBE_T)
+    b = gjkdem.Surface(CUBE_V + [3, 0, 0], CUBE_T)
+    assert not gjkdem.surface_overlap(a, b).intersect
+    d = gjkdem.surface_distance(a, b)
+    assert d["distance"] == pytest.approx(2, abs=1e-14)
+    assert d["witness_a"][0] == pytest.approx(1) and d["witness_b"][0] == pytest.approx(3)
+
+
+@pytest.mark.parametrize("vertices, triangles, message", [
+    (CUBE_V, CUBE_T[:-1], "only one triangle"),
+    (CUBE_V, CUBE_T[:, ::-1], "face inward"),
+    (CUBE_V, CUBE_T + 0.5, "indices of vertices"),
+    (CUBE_V, -CUBE_T, "indices of vertices"),
+    (CUBE_V, CUBE_T + 2**40, "indices of vertices"),
+    (CUBE_V[:, :2], CUBE_T, r"shape \(N, 3\)"),
+    (np.full((8, 3), np.inf), CUBE_T, "finite"),
+    ("not an array", CUBE_T, "array"),
+    (CUBE_V, [[0, 1]], r"shape \(N, 3\)"),
+    (np.empty((0, 3)), np.empty((0, 3)), "at least 4 triangles"),
+])
+def test_bad_arrays_are_refused(vertices, triangles, message):
+    with pytest.raises(ValueError, match=message):
+        gjkdem.Surface(vertices, triangles)
