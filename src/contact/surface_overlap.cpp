@@ -222,21 +222,21 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   SurfaceOverlap out;
   if (!overlaps(a.box, b.box)) return out;
   const Vec3 origin = 0.5 * (max(a.box.lo, b.box.lo) + min(a.box.hi, b.box.hi));
+  // Triangle pairs whose own boxes meet, and the edges of each that may pass
+  // through the other (their boxes meet the triangle's).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, edges_a, edges_b;
+  const auto edge_box = [](const Surface& s, std::uint32_t e) {
+    const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
+    return Aabb{min(p, q), max(p, q)};
+  };
   overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
+    if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
     pairs.emplace_back(s, t);
-    for (const std::uint32_t e : a.triangle_edges[s]) edges_a.emplace_back(e, t);
-    for (const std::uint32_t e : b.triangle_edges[t]) edges_b.emplace_back(e, s);
+    for (const std::uint32_t e : a.triangle_edges[s])
+      if (overlaps(edge_box(a, e), b.triangle_boxes[t])) edges_a.emplace_back(e, t);
+    for (const std::uint32_t e : b.triangle_edges[t])
+      if (overlaps(edge_box(b, e), a.triangle_boxes[s])) edges_b.emplace_back(e, s);
   });
-  // Touching counts as intersecting: decided on the closed triangles, unmoved.
-  for (const auto& [s, t] : pairs) {
-    const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
-    if (triangles_meet(a.vertices[ts[0]], a.vertices[ts[1]], a.vertices[ts[2]], b.vertices[tt[0]], b.vertices[tt[1]],
-                       b.vertices[tt[2]])) {
-      out.intersect = true;
-      break;
-    }
-  }
   View va{a, Side::A, {}, {}, {}}, vb{b, Side::B, {}, {}, {}};
   find_crossings(va, b, edges_a, origin);
   find_crossings(vb, a, edges_b, origin);
@@ -431,13 +431,18 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   out.volume = total.volume6 / 6;
   out.area_a = total.area_a;
   out.area_b = total.area_b;
-  if (out.volume > 0) {
-    out.centroid = origin + total.moment24 / (24 * out.volume);
-    out.intersect = true;
-  } else {
-    out.volume = 0;
+  if (out.volume > 0) out.centroid = origin + total.moment24 / (24 * out.volume);
+  else out.volume = 0;
+  // Touching counts as intersecting: an edge through a triangle of the moved
+  // pair meets it in the unmoved one too; without any, decided on the closed
+  // triangles (exact, unmoved).
+  out.intersect = !va.crossings.empty() || !vb.crossings.empty() || out.volume > 0;
+  for (std::size_t k = 0; k < pairs.size() && !out.intersect; ++k) {
+    const TriangleIndices &ts = a.triangles[pairs[k].first], &tt = b.triangles[pairs[k].second];
+    out.intersect = triangles_meet(a.vertices[ts[0]], a.vertices[ts[1]], a.vertices[ts[2]], b.vertices[tt[0]],
+                                   b.vertices[tt[1]], b.vertices[tt[2]]);
   }
-  const Real smallest = kPatchMinRelVolume * std::fmin(mass_properties(a).volume, mass_properties(b).volume);
+  const Real smallest = kPatchMinRelVolume * std::fmin(a.volume, b.volume);
   for (std::uint32_t root = 0; root < pieces.size(); ++root) {
     const Sums& sum = pieces[root];
     if (joined.find(root) != root || !(sum.volume6 / 6 > smallest)) continue;

@@ -69,6 +69,11 @@ bool edge_enters_corner(const Vec3& v, const Vec3& x, const Vec3& c, const Vec3&
 }  // namespace
 
 bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f) {
+  // Most pairs lie wholly on one side of the other's plane: three signs each.
+  const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
+  if ((sd > 0 && se > 0 && sf > 0) || (sd < 0 && se < 0 && sf < 0)) return false;
+  const int sa = orient3d(d, e, f, a), sb = orient3d(d, e, f, b), sc = orient3d(d, e, f, c);
+  if ((sa > 0 && sb > 0 && sc > 0) || (sa < 0 && sb < 0 && sc < 0)) return false;
   return segment_meets_triangle(a, b, d, e, f) || segment_meets_triangle(b, c, d, e, f) ||
          segment_meets_triangle(c, a, d, e, f) || segment_meets_triangle(d, e, a, b, c) ||
          segment_meets_triangle(e, f, a, b, c) || segment_meets_triangle(f, d, a, b, c);
@@ -222,7 +227,8 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
                          " intersect: the surface crosses itself");
   });
-  if (!(mass_properties(s).volume > 0))
+  s.volume = mass_properties(s).volume;
+  if (!(s.volume > 0))
     throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
                        "the other way round");
   return s;

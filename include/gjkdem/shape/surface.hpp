@@ -35,6 +35,7 @@ struct Surface {
   std::vector<Aabb> triangle_boxes;
   TriangleTree tree;
   Aabb box;
+  Real volume = 0;  ///< of the solid (mass_properties)
 };
 
 /// A surface that breaks a rule: the message names the edge, vertex or
