@@ -5,7 +5,6 @@
 #include <limits>
 #include <tuple>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 #include "gjkdem/shape/predicates.hpp"
@@ -49,10 +48,8 @@ bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const V
 }
 
 // Crossings of v's edges through the triangles of `solid` listed per pair.
-void find_crossings(View& v, const Surface& solid, std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+void find_crossings(View& v, const Surface& solid, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
                     const Vec3& origin) {
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   for (const auto& [e, t] : pairs) {
     const Vec3& p = v.s.vertices[v.s.edges[e][0]];
     const Vec3& q = v.s.vertices[v.s.edges[e][1]];
@@ -223,19 +220,17 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   if (!overlaps(a.box, b.box)) return out;
   const Vec3 origin = 0.5 * (max(a.box.lo, b.box.lo) + min(a.box.hi, b.box.hi));
   // Triangle pairs whose own boxes meet, and the edges of each that may pass
-  // through the other (their boxes meet the triangle's).
+  // through the other (their boxes meet the triangle's). An edge is listed
+  // by the triangle that runs it forward only: its other triangle's box
+  // holds it too, so each edge and triangle come once.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, edges_a, edges_b;
-  const auto edge_box = [](const Surface& s, std::uint32_t e) {
-    const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
-    return Aabb{min(p, q), max(p, q)};
-  };
   overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
     if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
     pairs.emplace_back(s, t);
     for (const std::uint32_t e : a.triangle_edges[s])
-      if (overlaps(edge_box(a, e), b.triangle_boxes[t])) edges_a.emplace_back(e, t);
+      if (a.edge_triangles[e][0] == s && overlaps(a.edge_boxes[e], b.triangle_boxes[t])) edges_a.emplace_back(e, t);
     for (const std::uint32_t e : b.triangle_edges[t])
-      if (overlaps(edge_box(b, e), a.triangle_boxes[s])) edges_b.emplace_back(e, s);
+      if (b.edge_triangles[e][0] == t && overlaps(b.edge_boxes[e], a.triangle_boxes[s])) edges_b.emplace_back(e, s);
   });
   View va{a, Side::A, {}, {}, {}}, vb{b, Side::B, {}, {}, {}};
   find_crossings(va, b, edges_a, origin);
@@ -259,20 +254,20 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
 
   // The crossing segments of each pair of triangles that cross, oriented for
   // A's triangle's cycle (B's runs it the other way).
-  std::unordered_map<std::uint64_t, std::vector<Endpoint>> crossing_ends;
+  std::vector<std::pair<std::uint64_t, Endpoint>> crossing_ends;  // by pair of triangles
   const auto key = [](std::uint32_t s, std::uint32_t t) { return (std::uint64_t{s} << 32) | t; };
   for (std::uint32_t k = 0; k < va.crossings.size(); ++k)
     for (int side = 0; side < 2; ++side) {
       const Crossing& c = va.crossings[k];
       const std::uint32_t s = a.edge_triangles[c.edge][side];  // runs the edge forward for side 0
-      crossing_ends[key(s, c.triangle)].push_back({base_ca + k, c.exits != (side == 1)});
+      crossing_ends.push_back({key(s, c.triangle), {base_ca + k, c.exits != (side == 1)}});
     }
   for (std::uint32_t k = 0; k < vb.crossings.size(); ++k)
     for (int side = 0; side < 2; ++side) {
       const Crossing& c = vb.crossings[k];
       const std::uint32_t t = b.edge_triangles[c.edge][side];
       const bool exits = c.exits != (side == 1);  // in t's cycle: an exit starts the segment
-      crossing_ends[key(c.triangle, t)].push_back({base_cb + k, !exits});
+      crossing_ends.push_back({key(c.triangle, t), {base_cb + k, !exits}});
     }
 
   std::vector<CycleSegment> segments;
@@ -284,9 +279,14 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
     return static_cast<std::uint32_t>(segments.size() - 1);
   };
   // A crossing segment bounds a face of A and a face of B: one piece.
-  for (const auto& [k, ends] : crossing_ends) {
-    if (ends.size() != 2 || ends[0].start == ends[1].start)
+  std::sort(crossing_ends.begin(), crossing_ends.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second.id < y.second.id); });
+  for (std::size_t i = 0; i < crossing_ends.size(); i += 2) {
+    const std::uint64_t k = crossing_ends[i].first;
+    if (i + 1 == crossing_ends.size() || crossing_ends[i + 1].first != k || (i + 2 < crossing_ends.size() && crossing_ends[i + 2].first == k) ||
+        crossing_ends[i].second.start == crossing_ends[i + 1].second.start)
       throw std::logic_error("surface_overlap: a crossing segment without one start and one end");
+    const Endpoint ends[2] = {crossing_ends[i].second, crossing_ends[i + 1].second};
     const std::uint32_t p = ends[0].start ? ends[0].id : ends[1].id, q = ends[0].start ? ends[1].id : ends[0].id;
     links.emplace_back(add(static_cast<std::uint32_t>(k >> 32), p, q), add(triangles_a + static_cast<std::uint32_t>(k), q, p));
   }

@@ -258,6 +258,33 @@ PlacedInput parse_shape(std::string_view json_text, ShapeFrame frame) {
   return shape_from_json(j, "shape");
 }
 
+namespace {
+
+// A polytope or box without margin as a closed surface in world
+// coordinates (its hull's triangles), to pair it with a mesh.
+Surface surface_of_polyhedron(const PlacedInput& in) {
+  const Shape& shape = in.shape;
+  Polytope hull;
+  if (const auto* p = std::get_if<Polytope>(&shape.core)) {
+    hull = *p;
+  } else if (const auto* box = std::get_if<Box>(&shape.core)) {
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 8; ++k)
+      corners.push_back({k & 1 ? box->half_extents.x : -box->half_extents.x, k & 2 ? box->half_extents.y : -box->half_extents.y,
+                         k & 4 ? box->half_extents.z : -box->half_extents.z});
+    hull = make_polytope(corners);
+  } else {
+    throw std::invalid_argument("a mesh pairs only with another mesh, a polytope or a box (solids bounded by flat faces) in this version");
+  }
+  if (shape.margin > 0) throw std::invalid_argument("a mesh pairs with shapes without margin");
+  if (hull.data->triangles.empty()) throw std::invalid_argument("a flat polytope bounds no solid to pair with a mesh");
+  std::vector<Vec3> vertices;
+  for (const Vec3& v : hull.data->vertices) vertices.push_back(apply(in.pose, v));
+  return make_surface(std::move(vertices), {hull.data->triangles.begin(), hull.data->triangles.end()});
+}
+
+}  // namespace
+
 PairInput parse_pair(std::string_view line, std::string& id_json) {
   check_depth(line);
   Json j = Json::parse(line, nullptr, false);
@@ -275,8 +302,15 @@ PairInput parse_pair(std::string_view line, std::string& id_json) {
   } catch (const std::invalid_argument& e) {
     fail(e.what());
   }
-  if (!pair.a.surface != !pair.b.surface)
-    fail(std::string(pair.a.surface ? "a" : "b") + " is a mesh: a mesh pairs only with another mesh in this version");
+  if (!pair.a.surface != !pair.b.surface) {
+    PlacedInput& other = pair.a.surface ? pair.b : pair.a;
+    const std::string name = pair.a.surface ? "b" : "a";
+    try {
+      other.surface = std::make_shared<const Surface>(surface_of_polyhedron(other));
+    } catch (const std::invalid_argument& e) {
+      fail(name + ": " + e.what());
+    }
+  }
   return pair;
 }
 

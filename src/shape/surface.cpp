@@ -219,6 +219,11 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
     const Vec3 &a = s.vertices[s.triangles[t][0]], &b = s.vertices[s.triangles[t][1]], &c = s.vertices[s.triangles[t][2]];
     s.triangle_boxes[t] = {min(a, min(b, c)), max(a, max(b, c))};
   }
+  s.edge_boxes.resize(s.edges.size());
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
+    s.edge_boxes[e] = {min(p, q), max(p, q)};
+  }
   s.tree = build_triangle_tree(s.triangle_boxes);
   s.box = s.tree.nodes[0].box;
 

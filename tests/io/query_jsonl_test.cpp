@@ -33,6 +33,26 @@ TEST(QueryJsonl, ParsesEveryShapeType) {
     EXPECT_NO_THROW(parse_shape(s)) << s;
 }
 
+TEST(QueryJsonl, MeshesAreCheckedSurfacesAndPairWithFlatFacedSolids) {
+  const std::string tet = R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"triangles":[[0,2,1],[0,1,3],[0,3,2],[1,2,3]]})";
+  std::string id;
+  const PairInput two = parse_pair(R"({"id":1,"a":)" + tet + R"(,"b":)" + tet + "}", id);
+  ASSERT_TRUE(two.a.surface && two.b.surface);
+  EXPECT_NEAR(two.a.surface->volume, 1.0 / 6, 1e-15);
+  // A box becomes its hull's surface, where it is.
+  const PairInput box = parse_pair(R"({"id":2,"a":)" + tet + R"(,"b":{"type":"box","center":[5,0,0],"half_extents":[1,2,3]}})", id);
+  ASSERT_TRUE(box.b.surface);
+  EXPECT_NEAR(box.b.surface->volume, 48, 1e-12);
+  EXPECT_NEAR(box.b.surface->box.lo.x, 4, 1e-15);
+  EXPECT_NE(error_of(R"({"id":3,"a":)" + tet + R"(,"b":{"type":"sphere","center":[0,0,0],"radius":1}})").find("flat faces"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"id":4,"a":{"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"triangles":[[0,2,1],[0,1,3],[0,3,2],[1,3,2]]},"b":)" + tet + "}")
+                .find("a is not a closed surface: triangles"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"id":5,"a":)" + tet + R"(,"b":{"type":"mesh","vertices":[[0,0,0]],"triangles":[[0,0,1]]}})").find("b.triangles[0]"),
+            std::string::npos);
+}
+
 TEST(QueryJsonl, PolytopesAreRecentredForPrecision) {
   const PlacedInput p = parse_shape(R"({"type":"polytope","vertices":[[1e6,1e6,1e6],[1000001,1e6,1e6]]})");
   EXPECT_EQ(p.pose.translation, (Vec3{1e6 + 0.5, 1e6, 1e6}));

@@ -32,7 +32,7 @@ struct Surface {
   std::vector<std::array<std::uint32_t, 2>> edge_triangles;
   /// The edges at each vertex: vertex_edges[vertex_edge_begin[v] .. vertex_edge_begin[v + 1]).
   std::vector<std::uint32_t> vertex_edge_begin, vertex_edges;
-  std::vector<Aabb> triangle_boxes;
+  std::vector<Aabb> triangle_boxes, edge_boxes;
   TriangleTree tree;
   Aabb box;
   Real volume = 0;  ///< of the solid (mass_properties)
