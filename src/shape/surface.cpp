@@ -57,13 +57,17 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
   return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
 }
 
+// Direction x - v, on the plane of the triangle (v, c, d) seen down `axis`,
+// lies in the triangle's closed corner at v.
+bool in_corner(const Vec3& v, const Vec3& c, const Vec3& d, const Vec3& x, int axis) {
+  const int o = orient2d(v, c, d, axis);
+  return o * orient2d(v, c, x, axis) >= 0 && o * orient2d(v, x, d, axis) >= 0;
+}
+
 // Edge v->x of one triangle, lying in the plane of triangle (v, c, d) that
 // shares corner v, points into that triangle's corner.
 bool edge_enters_corner(const Vec3& v, const Vec3& x, const Vec3& c, const Vec3& d) {
-  if (orient3d(v, c, d, x) != 0) return false;
-  const int axis = flat_axis(v, c, d);
-  const int o = orient2d(v, c, d, axis);
-  return o * orient2d(v, c, x, axis) >= 0 && o * orient2d(v, x, d, axis) >= 0;
+  return orient3d(v, c, d, x) == 0 && in_corner(v, c, d, x, flat_axis(v, c, d));
 }
 
 }  // namespace
@@ -93,6 +97,16 @@ bool triangles_clash(const Surface& surface, std::uint32_t s, std::uint32_t t) {
   if (shared == 1) {
     const Vec3 &p = corner(ts, ks), &a = corner(ts, ks + 1), &b = corner(ts, ks + 2);
     const Vec3 &c = corner(tt, kt + 1), &d = corner(tt, kt + 2);
+    // One wholly on one side of the other's plane: they meet at p only.
+    const int sa = orient3d(p, c, d, a), sb = orient3d(p, c, d, b);
+    if (sa * sb > 0) return false;
+    const int sc = orient3d(p, a, b, c), sd = orient3d(p, a, b, d);
+    if (sc * sd > 0) return false;
+    if (sa == 0 && sb == 0) {  // one plane: each lies in its corner at p, so they overlap where the corners do
+      const int axis = flat_axis(p, c, d);
+      return in_corner(p, c, d, a, axis) || in_corner(p, c, d, b, axis) || in_corner(p, a, b, c, axis) ||
+             in_corner(p, a, b, d, axis);
+    }
     return segment_meets_triangle(a, b, p, c, d) || segment_meets_triangle(c, d, p, a, b) ||
            edge_enters_corner(p, a, c, d) || edge_enters_corner(p, b, c, d) || edge_enters_corner(p, c, a, b) ||
            edge_enters_corner(p, d, a, b);
