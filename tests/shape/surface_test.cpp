@@ -2,7 +2,9 @@
 // the fault), and their exact mass properties.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "gjkdem/shape/surface.hpp"
 #include "surface_shapes.hpp"
@@ -89,6 +91,27 @@ TEST(Surface, RefusalsNameTheFault) {
   Mesh two = box_surface({0, 0, 0}, {1, 1, 1});
   test::append(two, box_surface({2, 0, 0}, {3, 1, 1}));
   EXPECT_EQ(refusal(two), "");
+}
+
+TEST(Surface, ACylinderWithFannedCapsIsAcceptedWithItsVolume) {
+  const int n = 64;
+  std::vector<std::pair<Real, Real>> rim;
+  std::vector<TriangleIndices> cap;
+  for (int k = 0; k < n; ++k) rim.push_back({std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n)});
+  for (std::uint32_t k = 1; k + 1 < n; ++k) cap.push_back({0, k, k + 1});  // a fan from rim point 0
+  const MassProperties p = mass_properties(test::surface_of(test::prism(rim, cap, 0, 2)));
+  EXPECT_NEAR(p.volume, 2 * n / 2.0 * std::sin(2 * kPi / n), 1e-13);
+}
+
+TEST(Surface, TrianglesSharingACornerClashOnlyWhereTheyOverlap) {
+  Surface s;
+  s.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.5, 0.1, 0}, {2, 2, 0}, {-1, 0, 0}, {-1, -1, 0}, {1, 1, 1}, {0.8, 0.2, 0}};
+  s.triangles = {{0, 1, 2}, {0, 3, 4}, {0, 5, 6}, {0, 7, 2}, {2, 0, 8}};
+  EXPECT_TRUE(triangles_clash(s, 0, 1));   // one plane, corners overlapping
+  EXPECT_FALSE(triangles_clash(s, 0, 2));  // one plane, corners apart
+  EXPECT_FALSE(triangles_clash(s, 2, 3));  // apart
+  EXPECT_FALSE(triangles_clash(s, 0, 3));  // sharing the edge (0, 2), standing up from it
+  EXPECT_TRUE(triangles_clash(s, 0, 4));   // sharing it, folded back onto the first
 }
 
 TEST(Surface, TouchingTrianglesMeetAndApartOnesDoNot) {
