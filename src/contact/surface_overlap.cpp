@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <tuple>
 #include <stdexcept>
 #include <vector>
@@ -213,6 +214,77 @@ struct Endpoint {
   bool start;
 };
 
+// The solid's wedge at an edge of its surface, seen down the line d (from
+// p): the angle (about d, from `ref`) where it starts and its width,
+// counter-clockwise, between the rays of the edge's two faces.
+struct Wedge {
+  Real start, width;
+};
+
+Wedge wedge_at(const Surface& s, std::uint32_t e, const Vec3& d, const Vec3& ref) {
+  const Vec3& p = s.vertices[s.edges[e][0]];
+  const Vec3 side = cross(d, ref);
+  const auto angle = [&](const Vec3& u) { return std::atan2(dot(u, side), dot(u, ref)); };
+  Real rays[2];
+  Vec3 inward[2];
+  for (int k = 0; k < 2; ++k) {
+    const TriangleIndices& t = s.triangles[s.edge_triangles[e][k]];
+    Vec3 w;  // the triangle's corner off the edge
+    for (const std::uint32_t i : t)
+      if (i != s.edges[e][0] && i != s.edges[e][1]) w = s.vertices[i];
+    rays[k] = angle(w - p);
+    inward[k] = -cross(s.vertices[t[1]] - s.vertices[t[0]], s.vertices[t[2]] - s.vertices[t[0]]);
+  }
+  // The solid lies on the inward side of the first face's ray: counter-
+  // clockwise from it when the inward normal points that way.
+  const Real turn = angle(inward[0]) - rays[0];
+  const bool ccw = std::sin(turn) > 0;
+  const Real from = ccw ? rays[0] : rays[1], to = ccw ? rays[1] : rays[0];
+  Real width = to - from;
+  while (width <= 0) width += 2 * kPi;
+  while (width > 2 * kPi) width -= 2 * kPi;
+  return {from, width};
+}
+
+// Whether the intersection of two wedges about one line is two sectors that
+// touch along the line only: their gaps (the complements) do not meet.
+bool wedges_pinch(const Wedge& x, const Wedge& y) {
+  const auto wrap = [](Real a) {
+    while (a < 0) a += 2 * kPi;
+    while (a >= 2 * kPi) a -= 2 * kPi;
+    return a;
+  };
+  // Gaps: from start + width, of length 2 pi - width; disjoint when the
+  // other gap's start lies outside this one and this one's outside that.
+  const Real gx = wrap(x.start + x.width), lx = 2 * kPi - x.width;
+  const Real gy = wrap(y.start + y.width), ly = 2 * kPi - y.width;
+  const bool y_starts_in_x = wrap(gy - gx) <= lx, x_starts_in_y = wrap(gx - gy) <= ly;
+  return !y_starts_in_x && !x_starts_in_y;
+}
+
+// Edge e of v's surface lies along an edge of `solid`'s (among the
+// triangles `near`) where the two solids' wedges pinch: A ∩ B is two pieces
+// touching along the line there, and e's faces belong one to each.
+bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::span<const std::uint32_t> near) {
+  const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
+  const Vec3 d = q - p;
+  for (const std::uint32_t t : near)
+    for (const std::uint32_t f : solid.triangle_edges[t]) {
+      const Vec3 &r = solid.vertices[solid.edges[f][0]], &w = solid.vertices[solid.edges[f][1]];
+      const Real scale = dot(d, d) * (dot(r - p, r - p) + dot(w - p, w - p)) + 1e-300;
+      if (dot(cross(d, r - p), cross(d, r - p)) + dot(cross(d, w - p), cross(d, w - p)) > 1e-20 * scale) continue;
+      bool collinear = true;
+      for (int axis = 0; axis < 3 && collinear; ++axis)
+        collinear = cross_sign(p, q, p, r, axis) == 0 && cross_sign(p, q, p, w, axis) == 0;
+      if (!collinear) continue;
+      const Real lo = std::fmin(dot(r - p, d), dot(w - p, d)), hi = std::fmax(dot(r - p, d), dot(w - p, d));
+      if (!(std::fmin(hi, dot(d, d)) > std::fmax(lo, Real(0)))) continue;  // they share no length
+      const Vec3 ref = std::fabs(d.x) < std::fabs(d.y) ? cross(d, Vec3{1, 0, 0}) : cross(d, Vec3{0, 1, 0});
+      if (wedges_pinch(wedge_at(s, e, d, ref), wedge_at(solid, f, d, ref))) return true;
+    }
+  return false;
+}
+
 }  // namespace
 
 SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
@@ -291,13 +363,30 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
     links.emplace_back(add(static_cast<std::uint32_t>(k >> 32), p, q), add(triangles_a + static_cast<std::uint32_t>(k), q, p));
   }
   // An edge's pieces inside the other solid bound both its triangles' faces.
-  const auto edge_pieces = [&](const View& v, std::uint32_t base_v, std::uint32_t base_c, std::uint32_t base_t) {
+  // Where the edge lies along an edge of the other surface and the two
+  // solids' wedges there pinch (two pieces touching along the line), its
+  // pieces do not join its faces.
+  const auto edge_pieces = [&](const View& v, const Surface& solid,
+                               std::vector<std::pair<std::uint32_t, std::uint32_t>>& near, std::uint32_t base_v,
+                               std::uint32_t base_c, std::uint32_t base_t) {
     const Surface& s = v.s;
+    std::sort(near.begin(), near.end());
+    std::vector<std::uint32_t> triangles;
     for (std::uint32_t e = 0; e < s.edges.size(); ++e) {
       const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
       bool in = v.inside[s.edges[e][0]];
       std::uint32_t from = base_v + s.edges[e][0];
-      const auto piece = [&](std::uint32_t to) { links.emplace_back(add(forward, from, to), add(backward, to, from)); };
+      int join = -1;  // decided at the first piece
+      const auto piece = [&](std::uint32_t to) {
+        const std::uint32_t g = add(forward, from, to), h = add(backward, to, from);
+        if (join < 0) {
+          triangles.clear();
+          for (auto it = std::lower_bound(near.begin(), near.end(), std::pair{e, 0u}); it != near.end() && it->first == e; ++it)
+            triangles.push_back(it->second);
+          join = !pinched(s, e, solid, triangles);
+        }
+        if (join) links.emplace_back(g, h);
+      };
       for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
         if (in) piece(base_c + c);
         in = !in;
@@ -306,13 +395,12 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       if (in) piece(base_v + s.edges[e][1]);
     }
   };
-  edge_pieces(va, 0, base_ca, 0);
-  edge_pieces(vb, base_b, base_cb, triangles_a);
+  edge_pieces(va, b, edges_a, 0, base_ca, 0);
+  edge_pieces(vb, a, edges_b, base_b, base_cb, triangles_a);
 
   // Each triangle's segments close into loops; the loops of one face (an
   // outer loop and its holes) are one piece, and faces that share a segment
-  // are. (Pieces that touch only along an edge are joined where the
-  // perturbation leaves a tube of no width between them.)
+  // are.
   std::vector<std::uint32_t> order(segments.size());
   for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
@@ -372,8 +460,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
     }
     begin = end;
   }
+  // A segment of no length (its ends the same point) joins nothing: faces
+  // that meet at a point only are not one piece.
   for (const auto& [g, h] : links)
-    joined.join(g, h);
+    if (!(segments[g].p == segments[g].q)) joined.join(g, h);
 
   // Sums per piece, with the triangle's first corner as the fans' apex.
   std::vector<Sums> pieces(segments.size());  // by the piece's root segment

@@ -158,6 +158,26 @@ TEST(SurfaceOverlap, ABarAcrossAUsArmsGivesTwoPatches) {
   EXPECT_TRUE(surface_overlap(u, surface_of(box_surface({1.25, 1.25, 0.25}, {1.75, 1.75, 0.75}))).patches.empty());
 }
 
+TEST(SurfaceOverlap, PiecesTouchingAlongAnEdgeAreTwoPatches) {
+  // The L and the L turned half way about (1, 1): two unit squares of
+  // overlap meeting along the line x = y = 1 only.
+  const Surface l = surface_of(test::l_prism(1));
+  const Surface turned = surface_of(test::prism({{2, 2}, {0, 2}, {0, 1}, {1, 1}, {1, 0}, {2, 0}},
+                                                {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}, 0.25, 0.75));
+  const SurfaceOverlap o = surface_overlap(l, turned);
+  EXPECT_NEAR(o.volume, 1, 1e-14);
+  ASSERT_EQ(o.patches.size(), 2u);
+  std::vector<Real> xs;
+  for (const SurfacePatch& p : o.patches) {
+    EXPECT_NEAR(p.volume, 0.5, 1e-14);
+    EXPECT_NEAR(p.centroid.x + p.centroid.y, 2, 1e-14);
+    xs.push_back(p.centroid.x);
+  }
+  std::sort(xs.begin(), xs.end());
+  EXPECT_NEAR(xs[0], 0.5, 1e-14);
+  EXPECT_NEAR(xs[1], 1.5, 1e-14);
+}
+
 TEST(SurfaceDistance, SeparatedBoxesGiveTheirGapAndWitnesses) {
   const Surface a = surface_of(box_surface({0, 0, 0}, {1, 1, 1}));
   const Surface b = surface_of(box_surface({1.5, 0.25, 0.25}, {2, 0.75, 0.75}));
