@@ -53,6 +53,8 @@ TEST(SurfaceOverlap, MatchesConvexClippingOnRandomHulls) {
     ASSERT_NEAR(got.volume, expected.volume, 1e-10 * scale) << n;
     if (expected.volume > 1e-6) {
       ++overlapping;
+      ASSERT_EQ(got.patches.size(), 1u) << n;  // convex: one piece
+      EXPECT_NEAR(got.patches[0].volume, got.volume, 1e-12 * scale) << n;
       EXPECT_NEAR(length(got.centroid - expected.centroid), 0, 1e-9) << n;
       EXPECT_NEAR(length(got.area_a - expected.area_a), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
       EXPECT_NEAR(length(got.area_a + got.area_b), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
@@ -92,8 +94,12 @@ TEST(SurfaceOverlap, PropertiesHoldOnAnLPrismAndARotatedBox) {
   EXPECT_NEAR(s.volume, o.volume, 1e-14);
   EXPECT_NEAR(length(s.centroid - o.centroid), 0, 1e-14);
   EXPECT_NEAR(length(s.area_a - o.area_b), 0, 1e-14);
-  // Never more than either body's volume; the areas opposite (no shared faces).
+  // Never more than either body's volume; the patches add up to the whole;
+  // the areas opposite (no shared faces).
   EXPECT_LE(o.volume, 0.6 * 0.4 * 0.8);
+  Real patches = 0;
+  for (const SurfacePatch& p : o.patches) patches += p.volume;
+  EXPECT_NEAR(patches, o.volume, 1e-14);
   EXPECT_NEAR(length(o.area_a + o.area_b), 0, 1e-13);
   // Translated by 1e5 and scaled by 1e-3 and 1e3.
   const Vec3 far{1e5, -1e5, 1e5};
