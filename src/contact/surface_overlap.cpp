@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
 #include <tuple>
 #include <stdexcept>
 #include <vector>
@@ -30,6 +29,7 @@ struct View {
   std::vector<Crossing> crossings;           // sorted by edge, then t
   std::vector<std::uint32_t> first_crossing;  // per edge, into crossings (size edges + 1)
   std::vector<std::int8_t> inside;           // per vertex: 1 inside the other solid, 0 outside
+  std::vector<std::uint32_t> in_plane;       // edges lying in the plane of a triangle of the other surface
 };
 
 Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
@@ -48,27 +48,44 @@ bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const V
   return true;
 }
 
-// Crossings of v's edges through the triangles of `solid` listed per pair.
-void find_crossings(View& v, const Surface& solid, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
-                    const Vec3& origin) {
-  for (const auto& [e, t] : pairs) {
-    const Vec3& p = v.s.vertices[v.s.edges[e][0]];
-    const Vec3& q = v.s.vertices[v.s.edges[e][1]];
-    const TriangleIndices& tri = solid.triangles[t];
-    const Vec3 &a = solid.vertices[tri[0]], &b = solid.vertices[tri[1]], &c = solid.vertices[tri[2]];
-    bool exits = false;
-    if (!crosses(p, q, a, b, c, v.side, exits)) continue;
-    const Vec3 n = cross(b - a, c - a);
-    const Real dp = dot(n, p - a), dq = dot(n, q - a);
-    const Real t_on = dp == dq ? Real(0.5) : std::clamp(dp / (dp - dq), Real(0), Real(1));
-    const Vec3 po = p - origin, qo = q - origin;
-    v.crossings.push_back({e, t, t_on, po + t_on * (qo - po), exits});
-  }
+// Edge pq of v's surface (its lower vertex p, on side `sp` of the plane of
+// triangle t = abc of the other surface, q on the other side) through that
+// triangle, if it passes through it.
+void add_crossing(View& v, std::uint32_t e, std::uint32_t t, const Vec3& p, const Vec3& q, int sp, const Vec3& a,
+                  const Vec3& b, const Vec3& c, const Vec3& origin) {
+  const int o1 = perturbed_orient3d_edges(p, q, a, b, v.side);
+  if (perturbed_orient3d_edges(p, q, b, c, v.side) != o1 || perturbed_orient3d_edges(p, q, c, a, v.side) != o1) return;
+  const Vec3 n = cross(b - a, c - a);
+  const Real dp = dot(n, p - a), dq = dot(n, q - a);
+  const Real t_on = dp == dq ? Real(0.5) : std::clamp(dp / (dp - dq), Real(0), Real(1));
+  const Vec3 po = p - origin, qo = q - origin;
+  v.crossings.push_back({e, t, t_on, po + t_on * (qo - po), sp < 0});
+}
+
+// The crossings sorted along each edge, and where each edge's begin.
+void index_crossings(View& v) {
   std::sort(v.crossings.begin(), v.crossings.end(),
             [](const Crossing& x, const Crossing& y) { return x.edge < y.edge || (x.edge == y.edge && x.t < y.t); });
   v.first_crossing.assign(v.s.edges.size() + 1, 0);
   for (const Crossing& c : v.crossings) ++v.first_crossing[c.edge + 1];
   for (std::size_t e = 0; e < v.s.edges.size(); ++e) v.first_crossing[e + 1] += v.first_crossing[e];
+}
+
+// The edges of triangle s of v's surface through triangle t of `solid`,
+// from the sides of the plane of t its corners lie on (`sides`); each edge
+// is taken by the triangle that runs it forward only, as its other triangle
+// meets the same triangles.
+void edges_through(View& v, std::uint32_t s, const int (&sides)[3], const Surface& solid, std::uint32_t t,
+                   const Vec3& origin) {
+  if (sides[0] == sides[1] && sides[1] == sides[2]) return;
+  const TriangleIndices& corners = v.s.triangles[s];
+  const TriangleIndices& tri = solid.triangles[t];
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t e = v.s.triangle_edges[s][k];
+    if (v.s.edge_triangles[e][0] != s || sides[k] == sides[(k + 1) % 3]) continue;
+    add_crossing(v, e, t, v.s.vertices[corners[k]], v.s.vertices[corners[(k + 1) % 3]], sides[k],
+                 solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], origin);
+  }
 }
 
 // Whether vertex x of v's surface lies inside `solid`: the parity of the
@@ -265,7 +282,9 @@ bool wedges_pinch(const Wedge& x, const Wedge& y) {
 // Edge e of v's surface lies along an edge of `solid`'s (among the
 // triangles `near`) where the two solids' wedges pinch: A ∩ B is two pieces
 // touching along the line there, and e's faces belong one to each.
-bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::span<const std::uint32_t> near) {
+bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vector<std::uint32_t>& near) {
+  near.clear();
+  query_triangle_tree(solid.tree, s.edge_boxes[e], near);
   const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
   const Vec3 d = q - p;
   for (const std::uint32_t t : near)
@@ -291,22 +310,41 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   SurfaceOverlap out;
   if (!overlaps(a.box, b.box)) return out;
   const Vec3 origin = 0.5 * (max(a.box.lo, b.box.lo) + min(a.box.hi, b.box.hi));
-  // Triangle pairs whose own boxes meet, and the edges of each that may pass
-  // through the other (their boxes meet the triangle's). An edge is listed
-  // by the triangle that runs it forward only: its other triangle's box
-  // holds it too, so each edge and triangle come once.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, edges_a, edges_b;
+  // Triangle pairs whose own boxes meet, and the edges of each through the
+  // other, from the sides of the other's plane their corners lie on.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  View va{a, Side::A, {}, {}, {}, {}}, vb{b, Side::B, {}, {}, {}, {}};
   overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
     if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
     pairs.emplace_back(s, t);
-    for (const std::uint32_t e : a.triangle_edges[s])
-      if (a.edge_triangles[e][0] == s && overlaps(a.edge_boxes[e], b.triangle_boxes[t])) edges_a.emplace_back(e, t);
-    for (const std::uint32_t e : b.triangle_edges[t])
-      if (b.edge_triangles[e][0] == t && overlaps(b.edge_boxes[e], a.triangle_boxes[s])) edges_b.emplace_back(e, s);
+    const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
+    const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];
+    const Vec3 &b0 = b.vertices[tt[0]], &b1 = b.vertices[tt[1]], &b2 = b.vertices[tt[2]];
+    bool on_a[3], on_b[3];  // corners on the other's plane exactly: edges there may lie along the other's edges
+    const int sides_a[3] = {perturbed_orient3d(b0, b1, b2, a0, Side::B, on_a[0]),
+                            perturbed_orient3d(b0, b1, b2, a1, Side::B, on_a[1]),
+                            perturbed_orient3d(b0, b1, b2, a2, Side::B, on_a[2])};
+    for (int k = 0; k < 3; ++k)
+      if (on_a[k] && on_a[(k + 1) % 3]) {  // an edge of s in t's plane: t's edges may lie along it
+        va.in_plane.push_back(a.triangle_edges[s][k]);
+        vb.in_plane.insert(vb.in_plane.end(), b.triangle_edges[t].begin(), b.triangle_edges[t].end());
+      }
+    if (sides_a[0] == sides_a[1] && sides_a[1] == sides_a[2]) return;  // s wholly on one side of t's plane
+    const int sides_b[3] = {perturbed_orient3d(a0, a1, a2, b0, Side::A, on_b[0]),
+                            perturbed_orient3d(a0, a1, a2, b1, Side::A, on_b[1]),
+                            perturbed_orient3d(a0, a1, a2, b2, Side::A, on_b[2])};
+    for (int k = 0; k < 3; ++k)
+      if (on_b[k] && on_b[(k + 1) % 3]) vb.in_plane.push_back(b.triangle_edges[t][k]);
+    if (sides_b[0] == sides_b[1] && sides_b[1] == sides_b[2]) return;  // t wholly on one side of s's plane
+    edges_through(va, s, sides_a, b, t, origin);
+    edges_through(vb, t, sides_b, a, s, origin);
   });
-  View va{a, Side::A, {}, {}, {}}, vb{b, Side::B, {}, {}, {}};
-  find_crossings(va, b, edges_a, origin);
-  find_crossings(vb, a, edges_b, origin);
+  index_crossings(va);
+  index_crossings(vb);
+  for (View* v : {&va, &vb}) {
+    std::sort(v->in_plane.begin(), v->in_plane.end());
+    v->in_plane.erase(std::unique(v->in_plane.begin(), v->in_plane.end()), v->in_plane.end());
+  }
   find_status(va, b);
   find_status(vb, a);
   order_crossings(va);
@@ -366,12 +404,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   // Where the edge lies along an edge of the other surface and the two
   // solids' wedges there pinch (two pieces touching along the line), its
   // pieces do not join its faces.
-  const auto edge_pieces = [&](const View& v, const Surface& solid,
-                               std::vector<std::pair<std::uint32_t, std::uint32_t>>& near, std::uint32_t base_v,
-                               std::uint32_t base_c, std::uint32_t base_t) {
+  std::vector<std::uint32_t> near;
+  const auto edge_pieces = [&](const View& v, const Surface& solid, std::uint32_t base_v, std::uint32_t base_c,
+                               std::uint32_t base_t) {
     const Surface& s = v.s;
-    std::sort(near.begin(), near.end());
-    std::vector<std::uint32_t> triangles;
     for (std::uint32_t e = 0; e < s.edges.size(); ++e) {
       const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
       bool in = v.inside[s.edges[e][0]];
@@ -379,12 +415,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       int join = -1;  // decided at the first piece
       const auto piece = [&](std::uint32_t to) {
         const std::uint32_t g = add(forward, from, to), h = add(backward, to, from);
-        if (join < 0) {
-          triangles.clear();
-          for (auto it = std::lower_bound(near.begin(), near.end(), std::pair{e, 0u}); it != near.end() && it->first == e; ++it)
-            triangles.push_back(it->second);
-          join = !pinched(s, e, solid, triangles);
-        }
+        if (join < 0)
+          join = !std::binary_search(v.in_plane.begin(), v.in_plane.end(), e) || !pinched(s, e, solid, near);
         if (join) links.emplace_back(g, h);
       };
       for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
@@ -395,8 +427,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       if (in) piece(base_v + s.edges[e][1]);
     }
   };
-  edge_pieces(va, b, edges_a, 0, base_ca, 0);
-  edge_pieces(vb, a, edges_b, base_b, base_cb, triangles_a);
+  edge_pieces(va, b, 0, base_ca, 0);
+  edge_pieces(vb, a, base_b, base_cb, triangles_a);
 
   // Each triangle's segments close into loops; the loops of one face (an
   // outer loop and its holes) are one piece, and faces that share a segment

@@ -65,7 +65,14 @@ int cross_sign(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, int a
 }
 
 int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc) {
+  bool on_plane = false;
+  return perturbed_orient3d(a, b, c, d, abc, on_plane);
+}
+
+int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc, bool& on_plane) {
+  on_plane = false;
   if (const int s = orient3d(a, b, c, d)) return s;
+  on_plane = true;
   // det[b - a, c - a, d -/+ delta - a] = det - / + n . delta, n = (b - a) x (c - a).
   const int n = delta_sign([&](int axis) { return cross_sign(a, b, a, c, axis); });
   return abc == Side::B ? -n : n;

@@ -34,6 +34,8 @@ enum class Side : unsigned char { A, B };
 /// says which surface the triangle comes from; d comes from the other one.
 /// Never 0 for a triangle with area.
 int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc);
+/// The same, and whether d lies on the plane abc exactly (before the move).
+int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc, bool& on_plane);
 
 /// orient3d(p, q, r, s) with edge pq from one surface and edge rs from the
 /// other (`pq` says which), B's moved by delta. 0 only when the two edges
