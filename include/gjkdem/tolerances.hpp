@@ -111,10 +111,6 @@ inline constexpr Real kOverlapRelTol = 1e-12;
 /// perturbation leaves slivers of rounding size where faces only touch).
 /// Relative to a volume; the shared samples' volume tolerance is 1e-9.
 inline constexpr Real kPatchMinRelVolume = 1e-11;
-/// Two triangles are tested exactly for lying on one plane only when the
-/// sine of the angle between their normals is below this (a screen: the
-/// exact test decides).
-inline constexpr Real kCoplanarScreenSin = 1e-6;
 
 /// The area-weighted contact normal is reported only when |S_A - S_B| exceeds
 /// kContactNormalRelTol times the overlap's total surface area (relative): below

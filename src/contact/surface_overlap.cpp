@@ -312,7 +312,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   const Vec3 origin = 0.5 * (max(a.box.lo, b.box.lo) + min(a.box.hi, b.box.hi));
   // Triangle pairs whose own boxes meet, and the edges of each through the
   // other, from the sides of the other's plane their corners lie on.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, coplanar;
   View va{a, Side::A, {}, {}, {}, {}}, vb{b, Side::B, {}, {}, {}, {}};
   overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
     if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
@@ -329,6 +329,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
         va.in_plane.push_back(a.triangle_edges[s][k]);
         vb.in_plane.insert(vb.in_plane.end(), b.triangle_edges[t].begin(), b.triangle_edges[t].end());
       }
+    if (on_a[0] && on_a[1] && on_a[2]) coplanar.emplace_back(s, t);
     if (sides_a[0] == sides_a[1] && sides_a[1] == sides_a[2]) return;  // s wholly on one side of t's plane
     const int sides_b[3] = {perturbed_orient3d(a0, a1, a2, b0, Side::A, on_b[0]),
                             perturbed_orient3d(a0, a1, a2, b1, Side::A, on_b[1]),
@@ -524,15 +525,13 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       }
     return found;
   };
-  for (const auto& [s, t] : pairs) {
+  for (const auto& [s, t] : coplanar) {  // (found exactly on the walk)
     const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
     const Vec3 pa[3] = {a.vertices[ts[0]] - origin, a.vertices[ts[1]] - origin, a.vertices[ts[2]] - origin};
     const Vec3 pb[3] = {b.vertices[tt[0]] - origin, b.vertices[tt[1]] - origin, b.vertices[tt[2]] - origin};
     const Vec3 na = cross(pa[1] - pa[0], pa[2] - pa[0]), nb = cross(pb[1] - pb[0], pb[2] - pb[0]);
-    if (length(cross(na, nb)) > kCoplanarScreenSin * length(na) * length(nb)) continue;
     const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];
     const Vec3 &b0 = b.vertices[tt[0]], &b1 = b.vertices[tt[1]], &b2 = b.vertices[tt[2]];
-    if (orient3d(a0, a1, a2, b0) || orient3d(a0, a1, a2, b1) || orient3d(a0, a1, a2, b2)) continue;
     Vec3 middle;
     const Real area = coplanar_overlap_area(pa, pb, na, middle);
     if (area == 0) continue;
