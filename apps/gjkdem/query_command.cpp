@@ -29,6 +29,7 @@ int run_query(const QueryOptions& opt) {
   std::istream& in = open_input(opt.in, in_file);
   std::ostream& out = open_output(opt.out, out_file);
   OverlapWorkspace work;
+  SurfaceOverlapWorkspace surface_work;
   long written = 0;
   auto emit = [&](const std::string& line) {
     out << line << '\n';
@@ -41,7 +42,7 @@ int run_query(const QueryOptions& opt) {
         in,
         [&](const io::PairInput& p) {
           if (p.a.surface) {  // and b: pairs of meshes only (parse_pair)
-            const SurfaceOverlap o = surface_overlap(*p.a.surface, *p.b.surface);
+            const SurfaceOverlap o = surface_overlap(*p.a.surface, *p.b.surface, surface_work);
             SurfaceDistance d;
             if (!o.intersect) d = surface_distance(*p.a.surface, *p.b.surface);
             emit(io::format_surface_result(p.id_json, o, o.intersect ? nullptr : &d));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <span>
 #include <tuple>
 #include <stdexcept>
 #include <vector>
@@ -11,7 +13,7 @@
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
-namespace {
+namespace surface_overlap_detail {
 
 // An edge of one surface passing through a triangle of the other.
 struct Crossing {
@@ -24,12 +26,20 @@ struct Crossing {
 // One surface seen against the other solid: its side in the perturbation,
 // the crossings of its edges, the status of its vertices.
 struct View {
-  const Surface& s;
-  Side side;
+  const Surface* s = nullptr;
+  Side side = Side::A;
   std::vector<Crossing> crossings;           // sorted by edge, then t
   std::vector<std::uint32_t> first_crossing;  // per edge, into crossings (size edges + 1)
   std::vector<std::int8_t> inside;           // per vertex: 1 inside the other solid, 0 outside
   std::vector<std::uint32_t> in_plane;       // edges lying in the plane of a triangle of the other surface
+  std::vector<std::uint32_t> queue, hits;    // find_status's
+
+  void reset(const Surface& surface, Side which) {
+    s = &surface;
+    side = which;
+    crossings.clear();
+    in_plane.clear();
+  }
 };
 
 Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
@@ -66,9 +76,9 @@ void add_crossing(View& v, std::uint32_t e, std::uint32_t t, const Vec3& p, cons
 void index_crossings(View& v) {
   std::sort(v.crossings.begin(), v.crossings.end(),
             [](const Crossing& x, const Crossing& y) { return x.edge < y.edge || (x.edge == y.edge && x.t < y.t); });
-  v.first_crossing.assign(v.s.edges.size() + 1, 0);
+  v.first_crossing.assign(v.s->edges.size() + 1, 0);
   for (const Crossing& c : v.crossings) ++v.first_crossing[c.edge + 1];
-  for (std::size_t e = 0; e < v.s.edges.size(); ++e) v.first_crossing[e + 1] += v.first_crossing[e];
+  for (std::size_t e = 0; e < v.s->edges.size(); ++e) v.first_crossing[e + 1] += v.first_crossing[e];
 }
 
 // The edges of triangle s of v's surface through triangle t of `solid`,
@@ -78,22 +88,23 @@ void index_crossings(View& v) {
 void edges_through(View& v, std::uint32_t s, const int (&sides)[3], const Surface& solid, std::uint32_t t,
                    const Vec3& origin) {
   if (sides[0] == sides[1] && sides[1] == sides[2]) return;
-  const TriangleIndices& corners = v.s.triangles[s];
+  const TriangleIndices& corners = v.s->triangles[s];
   const TriangleIndices& tri = solid.triangles[t];
   for (int k = 0; k < 3; ++k) {
-    const std::uint32_t e = v.s.triangle_edges[s][k];
-    if (v.s.edge_triangles[e][0] != s || sides[k] == sides[(k + 1) % 3]) continue;
-    add_crossing(v, e, t, v.s.vertices[corners[k]], v.s.vertices[corners[(k + 1) % 3]], sides[k],
+    const std::uint32_t e = v.s->triangle_edges[s][k];
+    if (v.s->edge_triangles[e][0] != s || sides[k] == sides[(k + 1) % 3]) continue;
+    add_crossing(v, e, t, v.s->vertices[corners[k]], v.s->vertices[corners[(k + 1) % 3]], sides[k],
                  solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], origin);
   }
 }
 
 // Whether vertex x of v's surface lies inside `solid`: the parity of the
 // crossings of a segment from x to a point beyond the solid's box.
-bool inside_by_ray(const View& v, std::uint32_t x, const Surface& solid) {
-  const Vec3& p = v.s.vertices[x];
+bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
+  const Vec3& p = v.s->vertices[x];
   const Vec3 far{solid.box.hi.x + std::fabs(solid.box.hi.x) + 1, p.y, p.z};
-  std::vector<std::uint32_t> hits;
+  std::vector<std::uint32_t>& hits = v.hits;
+  hits.clear();
   query_triangle_tree(solid.tree, Aabb{p, far}, hits);
   int count = 0;
   for (const std::uint32_t t : hits) {
@@ -107,9 +118,10 @@ bool inside_by_ray(const View& v, std::uint32_t x, const Surface& solid) {
 // Every vertex's status: outside where it lies beyond the solid's box,
 // carried along the edges (a crossing flips it), a ray where nothing reaches.
 void find_status(View& v, const Surface& solid) {
-  const Surface& s = v.s;
+  const Surface& s = *v.s;
   v.inside.assign(s.vertices.size(), -1);
-  std::vector<std::uint32_t> queue;
+  std::vector<std::uint32_t>& queue = v.queue;
+  queue.clear();
   for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {
     const Vec3& p = s.vertices[i];
     if (p.x < solid.box.lo.x || p.y < solid.box.lo.y || p.z < solid.box.lo.z || p.x > solid.box.hi.x ||
@@ -144,8 +156,8 @@ void find_status(View& v, const Surface& solid) {
 // positions: put each run of them in the order the exact statuses imply,
 // an entry where the edge is outside, an exit where it is inside.
 void order_crossings(View& v) {
-  for (std::size_t e = 0; e < v.s.edges.size(); ++e) {
-    bool in = v.inside[v.s.edges[e][0]];
+  for (std::size_t e = 0; e < v.s->edges.size(); ++e) {
+    bool in = v.inside[v.s->edges[e][0]];
     for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
       if (v.crossings[c].exits != in) {
         std::uint32_t d = c + 1;  // the next crossing that fits
@@ -155,7 +167,7 @@ void order_crossings(View& v) {
       }
       in = !in;
     }
-    if (in != static_cast<bool>(v.inside[v.s.edges[e][1]]))
+    if (in != static_cast<bool>(v.inside[v.s->edges[e][1]]))
       throw std::logic_error("surface_overlap: an edge's crossings disagree with its ends");
   }
 }
@@ -186,11 +198,12 @@ struct UnionFind {
 
 // Whether point x lies inside the closed polygon of the loop's segments,
 // seen down `axis` (crossings of a ray along the first remaining axis).
-bool loop_holds(const std::vector<const CycleSegment*>& loop, const Vec3& x, int axis) {
+bool loop_holds(const std::vector<CycleSegment>& segments, std::span<const std::uint32_t> loop, const Vec3& x,
+                int axis) {
   const int i = (axis + 1) % 3, j = (axis + 2) % 3;
   bool in = false;
-  for (const CycleSegment* g : loop) {
-    const Vec3 &p = g->p, &q = g->q;
+  for (const std::uint32_t g : loop) {
+    const Vec3 &p = segments[g].p, &q = segments[g].q;
     if ((p[j] > x[j]) != (q[j] > x[j]) && x[i] < p[i] + (x[j] - p[j]) / (q[j] - p[j]) * (q[i] - p[i])) in = !in;
   }
   return in;
@@ -304,16 +317,45 @@ bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vecto
   return false;
 }
 
-}  // namespace
+}  // namespace surface_overlap_detail
+
+using namespace surface_overlap_detail;
+
+struct SurfaceOverlapWorkspace::Scratch {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, coplanar, links;
+  View va, vb;
+  std::vector<std::pair<std::uint64_t, Endpoint>> crossing_ends;
+  std::vector<CycleSegment> segments;
+  UnionFind joined;
+  std::vector<std::uint32_t> near, order, loop_members, loop_begin, loop_segment;
+  std::vector<Real> loop_area;
+  std::vector<std::uint8_t> seen;
+  std::vector<Sums> pieces;
+};
+
+SurfaceOverlapWorkspace::SurfaceOverlapWorkspace() : scratch(std::make_unique<Scratch>()) {}
+SurfaceOverlapWorkspace::~SurfaceOverlapWorkspace() = default;
+SurfaceOverlapWorkspace::SurfaceOverlapWorkspace(SurfaceOverlapWorkspace&&) noexcept = default;
+SurfaceOverlapWorkspace& SurfaceOverlapWorkspace::operator=(SurfaceOverlapWorkspace&&) noexcept = default;
 
 SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
+  SurfaceOverlapWorkspace work;
+  return surface_overlap(a, b, work);
+}
+
+SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverlapWorkspace& work) {
   SurfaceOverlap out;
   if (!overlaps(a.box, b.box)) return out;
+  SurfaceOverlapWorkspace::Scratch& w = *work.scratch;
   const Vec3 origin = 0.5 * (max(a.box.lo, b.box.lo) + min(a.box.hi, b.box.hi));
   // Triangle pairs whose own boxes meet, and the edges of each through the
   // other, from the sides of the other's plane their corners lie on.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, coplanar;
-  View va{a, Side::A, {}, {}, {}, {}}, vb{b, Side::B, {}, {}, {}, {}};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs = w.pairs;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& coplanar = w.coplanar;
+  pairs.clear(), coplanar.clear();
+  View& va = w.va;
+  View& vb = w.vb;
+  va.reset(a, Side::A), vb.reset(b, Side::B);
   overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
     if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
     pairs.emplace_back(s, t);
@@ -365,7 +407,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
 
   // The crossing segments of each pair of triangles that cross, oriented for
   // A's triangle's cycle (B's runs it the other way).
-  std::vector<std::pair<std::uint64_t, Endpoint>> crossing_ends;  // by pair of triangles
+  std::vector<std::pair<std::uint64_t, Endpoint>>& crossing_ends = w.crossing_ends;  // by pair of triangles
+  crossing_ends.clear();
   const auto key = [](std::uint32_t s, std::uint32_t t) { return (std::uint64_t{s} << 32) | t; };
   for (std::uint32_t k = 0; k < va.crossings.size(); ++k)
     for (int side = 0; side < 2; ++side) {
@@ -381,9 +424,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       crossing_ends.push_back({key(c.triangle, t), {base_cb + k, !exits}});
     }
 
-  std::vector<CycleSegment> segments;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> links;  // one boundary segment of two faces
-  UnionFind joined;
+  std::vector<CycleSegment>& segments = w.segments;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& links = w.links;  // one boundary segment of two faces
+  UnionFind& joined = w.joined;
+  segments.clear(), links.clear(), joined.parent.clear();
   const auto add = [&](std::uint32_t triangle, std::uint32_t from, std::uint32_t to) {
     segments.push_back({triangle, from, to, point_of(from), point_of(to)});
     joined.parent.push_back(static_cast<std::uint32_t>(joined.parent.size()));
@@ -405,10 +449,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   // Where the edge lies along an edge of the other surface and the two
   // solids' wedges there pinch (two pieces touching along the line), its
   // pieces do not join its faces.
-  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t>& near = w.near;
   const auto edge_pieces = [&](const View& v, const Surface& solid, std::uint32_t base_v, std::uint32_t base_c,
                                std::uint32_t base_t) {
-    const Surface& s = v.s;
+    const Surface& s = *v.s;
     for (std::uint32_t e = 0; e < s.edges.size(); ++e) {
       const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
       bool in = v.inside[s.edges[e][0]];
@@ -434,7 +478,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   // Each triangle's segments close into loops; the loops of one face (an
   // outer loop and its holes) are one piece, and faces that share a segment
   // are.
-  std::vector<std::uint32_t> order(segments.size());
+  std::vector<std::uint32_t>& order = w.order;
+  order.resize(segments.size());
   for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
     return std::tie(segments[x].triangle, segments[x].from) < std::tie(segments[y].triangle, segments[y].from);
@@ -444,10 +489,17 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
     const TriangleIndices& t = s.triangles[triangle < triangles_a ? triangle : triangle - triangles_a];
     return cross(s.vertices[t[1]] - s.vertices[t[0]], s.vertices[t[2]] - s.vertices[t[0]]);
   };
-  std::vector<std::vector<const CycleSegment*>> loops;
-  std::vector<std::uint32_t> loop_segment;  // a segment of each loop
-  std::vector<Real> loop_area;
-  std::vector<std::uint8_t> seen(segments.size(), 0);
+  // Loop l is loop_members[loop_begin[l] .. loop_begin[l + 1]).
+  std::vector<std::uint32_t>& loop_members = w.loop_members;
+  std::vector<std::uint32_t>& loop_begin = w.loop_begin;
+  std::vector<std::uint32_t>& loop_segment = w.loop_segment;  // a segment of each loop
+  std::vector<Real>& loop_area = w.loop_area;
+  std::vector<std::uint8_t>& seen = w.seen;
+  loop_members.clear(), loop_begin.assign(1, 0), loop_segment.clear(), loop_area.clear();
+  seen.assign(segments.size(), 0);
+  const auto loop = [&](std::size_t l) {
+    return std::span<const std::uint32_t>(loop_members).subspan(loop_begin[l], loop_begin[l + 1] - loop_begin[l]);
+  };
   for (std::size_t begin = 0; begin < order.size();) {
     std::size_t end = begin;
     const std::uint32_t triangle = segments[order[begin]].triangle;
@@ -460,33 +512,33 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
       return *it;
     };
     const Vec3 n = normal_of(triangle);
-    const std::size_t first_loop = loops.size();
+    const std::size_t first_loop = loop_segment.size();
     for (std::size_t k = begin; k < end; ++k) {
       if (seen[order[k]]) continue;
-      loops.emplace_back();
       loop_segment.push_back(order[k]);
       Vec3 area;
       for (std::uint32_t at = order[k]; !seen[at]; at = next(at)) {
         seen[at] = 1;
-        loops.back().push_back(&segments[at]);
+        loop_members.push_back(at);
         area += cross(segments[at].p, segments[at].q);
         joined.join(at, order[k]);
       }
+      loop_begin.push_back(static_cast<std::uint32_t>(loop_members.size()));
       loop_area.push_back(dot(area, n));
     }
     // Holes (loops turning the other way) belong to the smallest outer loop
     // holding them.
     const int axis = dominant_axis(n);
     std::size_t outer = 0, last_outer = first_loop;
-    for (std::size_t l = first_loop; l < loops.size(); ++l)
+    for (std::size_t l = first_loop; l < loop_segment.size(); ++l)
       if (loop_area[l] > 0) ++outer, last_outer = l;
-    for (std::size_t l = first_loop; l < loops.size(); ++l) {
+    for (std::size_t l = first_loop; l < loop_segment.size(); ++l) {
       if (loop_area[l] > 0) continue;
       std::size_t home = last_outer;
       if (outer > 1) {
         Real smallest = std::numeric_limits<Real>::infinity();
-        for (std::size_t m = first_loop; m < loops.size(); ++m)
-          if (loop_area[m] > 0 && loop_area[m] < smallest && loop_holds(loops[m], loops[l][0]->p, axis))
+        for (std::size_t m = first_loop; m < loop_segment.size(); ++m)
+          if (loop_area[m] > 0 && loop_area[m] < smallest && loop_holds(segments, loop(m), segments[loop(l)[0]].p, axis))
             smallest = loop_area[m], home = m;
       }
       if (outer > 0) joined.join(loop_segment[l], loop_segment[home]);
@@ -499,7 +551,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
     if (!(segments[g].p == segments[g].q)) joined.join(g, h);
 
   // Sums per piece, with the triangle's first corner as the fans' apex.
-  std::vector<Sums> pieces(segments.size());  // by the piece's root segment
+  std::vector<Sums>& pieces = w.pieces;  // by the piece's root segment
+  pieces.assign(segments.size(), Sums{});
   for (const CycleSegment& g : segments) {
     const std::uint32_t t = g.triangle;
     const Surface& s = t < triangles_a ? a : b;
@@ -518,10 +571,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   const auto piece_at = [&](std::uint32_t triangle, const Vec3& x) -> Sums* {
     const int axis = dominant_axis(normal_of(triangle));
     Sums* found = nullptr;
-    for (std::size_t l = 0; l < loops.size(); ++l)
-      if (loops[l][0]->triangle == triangle) {
+    for (std::size_t l = 0; l < loop_segment.size(); ++l)
+      if (segments[loop_segment[l]].triangle == triangle) {
         Sums* sum = &pieces[joined.find(loop_segment[l])];
-        if (!found || (loop_area[l] > 0 && loop_holds(loops[l], x, axis))) found = sum;
+        if (!found || (loop_area[l] > 0 && loop_holds(segments, loop(l), x, axis))) found = sum;
       }
     return found;
   };

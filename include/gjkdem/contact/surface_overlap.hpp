@@ -14,6 +14,7 @@
 // normal, query-format-mesh.md). Only triangle pairs whose boxes meet are
 // looked at, besides a walk over the vertices near the overlap that carries
 // the inside/outside status along the edges.
+#include <memory>
 #include <vector>
 
 #include "gjkdem/shape/surface.hpp"
@@ -43,8 +44,21 @@ struct SurfaceOverlap {
   std::vector<SurfacePatch> patches;
 };
 
+/// Scratch of surface_overlap, kept between calls so that its memory is
+/// reused (one per thread; nothing in it outlives a call).
+struct SurfaceOverlapWorkspace {
+  SurfaceOverlapWorkspace();
+  ~SurfaceOverlapWorkspace();
+  SurfaceOverlapWorkspace(SurfaceOverlapWorkspace&&) noexcept;
+  SurfaceOverlapWorkspace& operator=(SurfaceOverlapWorkspace&&) noexcept;
+  struct Scratch;
+  std::unique_ptr<Scratch> scratch;
+};
+
 /// Both surfaces in one frame. Throws std::logic_error if the exact
 /// decisions ever fail to close a cycle (a defect, never bad input).
+SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverlapWorkspace& work);
+/// The same with a workspace of its own.
 SurfaceOverlap surface_overlap(const Surface& a, const Surface& b);
 
 }  // namespace gjkdem
