@@ -1,5 +1,6 @@
 // gjkdem bench: load every pair, then time only the queries (contact = the
-// overlap region: volume, centroid, area-weighted normal): one untimed warm-up
+// overlap region: volume, centroid, area-weighted normal; for mesh pairs the
+// surface overlap with its patches, and distance the surfaces'): one untimed warm-up
 // pass, then `repeat` timed passes over all pairs; prints one JSON object with
 // the median, min and max time per query over the passes.
 #include <algorithm>
@@ -48,11 +49,23 @@ int run_bench(const BenchOptions& opt) {
     std::cerr << "gjkdem bench: no pairs in the input\n";
     return 1;
   }
+  const bool meshes = std::any_of(pairs.begin(), pairs.end(), [](const io::PairInput& p) { return p.a.surface != nullptr; });
+  if (meshes && q == "penetration") {
+    std::cerr << "gjkdem bench: penetration is not defined for mesh pairs (intersect, distance, contact)\n";
+    return 2;
+  }
   OverlapWorkspace work;
+  SurfaceOverlapWorkspace surface_work;
   auto pass = [&] {
     double acc = 0;
     for (const auto& p : pairs) {
-      if (q == "intersect") acc += intersect(p.a.shape, p.a.pose, p.b.shape, p.b.pose);
+      if (p.a.surface) {  // a mesh pair (both surfaces: parse_pair)
+        if (q == "distance") acc += surface_distance(*p.a.surface, *p.b.surface).distance;
+        else {
+          const SurfaceOverlap o = surface_overlap(*p.a.surface, *p.b.surface, surface_work);
+          acc += q == "intersect" ? o.intersect : o.volume;
+        }
+      } else if (q == "intersect") acc += intersect(p.a.shape, p.a.pose, p.b.shape, p.b.pose);
       else if (q == "distance") acc += distance(p.a.shape, p.a.pose, p.b.shape, p.b.pose).distance;
       else if (q == "penetration") acc += penetration(p.a.shape, p.a.pose, p.b.shape, p.b.pose).depth;
       else acc += overlap(p.a.shape, p.a.pose, p.b.shape, p.b.pose, work).volume;  // contact
