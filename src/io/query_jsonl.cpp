@@ -249,6 +249,9 @@ PlacedInput parse_shape(std::string_view json_text, ShapeFrame frame) {
   check_depth(json_text);
   Json j = Json::parse(json_text, nullptr, false);
   if (j.is_discarded()) fail("shape is not valid JSON");
+  if (j.is_object() && j.contains("type") && j["type"] == "mesh")
+    fail("shape: a mesh is a surface, not a convex shape (in Python: gjkdem.Surface(vertices, triangles); scenes read "
+         "meshes from files)");
   if (frame == ShapeFrame::Own && j.is_object() && !j.contains("center")) {
     const Json* type = j.contains("type") ? &j["type"] : nullptr;
     const bool by_points = type && type->is_string() &&

@@ -53,6 +53,13 @@ TEST(QueryJsonl, MeshesAreCheckedSurfacesAndPairWithFlatFacedSolids) {
             std::string::npos);
 }
 
+TEST(QueryJsonl, AMeshIsNoConvexShape) {
+  for (const ShapeFrame frame : {ShapeFrame::World, ShapeFrame::Own})
+    EXPECT_THROW(parse_shape(R"({"type":"mesh","vertices":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],"triangles":[[0,2,1],[0,1,3],[0,3,2],[1,2,3]]})",
+                             frame),
+                 QueryFormatError);
+}
+
 TEST(QueryJsonl, PolytopesAreRecentredForPrecision) {
   const PlacedInput p = parse_shape(R"({"type":"polytope","vertices":[[1e6,1e6,1e6],[1000001,1e6,1e6]]})");
   EXPECT_EQ(p.pose.translation, (Vec3{1e6 + 0.5, 1e6, 1e6}));

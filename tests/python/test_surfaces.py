@@ -55,3 +55,9 @@ def test_apart_cubes_give_their_distance():
 def test_bad_arrays_are_refused(vertices, triangles, message):
     with pytest.raises(ValueError, match=message):
         gjkdem.Surface(vertices, triangles)
+
+
+def test_a_mesh_is_no_convex_shape():
+    mesh = {"type": "mesh", "vertices": CUBE_V.tolist(), "triangles": CUBE_T.tolist()}
+    with pytest.raises(ValueError, match="a mesh is a surface"):
+        gjkdem.Shape.from_json(mesh)

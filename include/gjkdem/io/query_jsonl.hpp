@@ -50,7 +50,8 @@ inline constexpr int kMaxJsonDepth = 64;
 /// their points).
 enum class ShapeFrame { World, Own };
 
-/// Parses one SHAPE object given as JSON text.
+/// Parses one SHAPE object given as JSON text (a convex shape: a `mesh` is
+/// refused, as it is a surface, read only in pairs).
 PlacedInput parse_shape(std::string_view json_text, ShapeFrame frame = ShapeFrame::World);
 
 /// Optional volume-based fields; absent ones are written as null.
