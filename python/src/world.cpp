@@ -273,7 +273,8 @@ void bind_world(py::module_& m) {
       .def_readonly("outputs", &dem::RunState::outputs)
       .def_readonly("initial_energy", &dem::RunState::initial_energy);
 
-  py::class_<dem::WorldBuilder>(m, "WorldBuilder", "Makes a World: materials, bodies, walls, generated regions.")
+  py::class_<dem::WorldBuilder>(m, "WorldBuilder", py::dynamic_attr(),
+                                "Makes a World: materials, bodies, walls, generated regions.")
       .def(py::init<const dem::WorldSettings&>(), py::arg("settings") = dem::WorldSettings{})
       .def(
           "add_material",
@@ -290,18 +291,32 @@ void bind_world(py::module_& m) {
           "Returns the material's index (the defaults are a scene's: dem::Material).")
       .def(
           "add_body",
-          [](dem::WorldBuilder& b, const PyShape& shape, const py::object& material, const py::object& position,
+          [](py::object self, const py::object& shape_object, const py::object& material, const py::object& position,
              const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
              std::uint32_t motion, const std::string& label) {
-            return b.add_body({.shape = {shape.shape, shape.offset, shape.parts},
-                               .material = material_index(b, material),
-                               .position = to_vec3(position, "position"),
-                               .rotation = to_quat(rotation, "rotation"),
-                               .velocity = to_vec3(velocity, "velocity"),
-                               .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
-                               .fixed = fixed,
-                               .motion = motion,
-                               .label = label});
+            dem::WorldBuilder& b = self.cast<dem::WorldBuilder&>();
+            const PyShape& shape = shape_object.cast<const PyShape&>();
+            dem::BodyDef def{.shape = {shape.shape, shape.offset, shape.parts},
+                             .material = material_index(b, material),
+                             .position = to_vec3(position, "position"),
+                             .rotation = to_quat(rotation, "rotation"),
+                             .velocity = to_vec3(velocity, "velocity"),
+                             .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
+                             .fixed = fixed,
+                             .motion = motion,
+                             .label = label};
+            // Moving bodies given one Shape object share one template, as a
+            // scene's do: the builder keeps, per Shape object (held alive
+            // here, so its id stays its own), the shared shape it made.
+            if (!fixed && shape.parts.empty()) {
+              if (!py::hasattr(self, "_shared_shapes")) self.attr("_shared_shapes") = py::dict();
+              py::dict shared = self.attr("_shared_shapes");
+              const py::int_ key(reinterpret_cast<std::uintptr_t>(shape_object.ptr()));
+              if (!shared.contains(key))
+                shared[key] = py::make_tuple(shape_object, b.add_shape(def.shape, label.empty() ? "shape" : label));
+              def.shared_shape = shared[key].cast<py::tuple>()[1].cast<std::int64_t>();
+            }
+            return b.add_body(def);
           },
           py::arg("shape"), py::arg("material"), py::arg("position") = std::array<double, 3>{0, 0, 0},
           py::arg("rotation") = std::array<double, 4>{1, 0, 0, 0},
@@ -476,6 +491,8 @@ void bind_world(py::module_& m) {
           "the contacts' stress (compression positive) by component")
       .def_property_readonly("settings", [](const World& w) { return w.settings; })
       .def_property_readonly("body_count", [](const World& w) { return w.bodies.size(); })
+      .def_property_readonly("template_count", [](const World& w) { return w.templates.size(); },
+                             "Shape templates: moving bodies given one Shape object share one.")
       .def(
           "angular_velocities",
           [](const World& w) {

@@ -346,3 +346,24 @@ def test_a_deforming_cell_from_python():
     assert cell["strain_rate"]["x"] == 0.5
     assert cell["strain_rate"]["xz"] == 0.0
     assert w.velocities[0][0] == pytest.approx(0.0, abs=1e-12)  # at the centre the field is still
+
+
+def test_bodies_given_one_shape_object_share_one_template():
+    def pile(shape_for):
+        b = gjkdem.WorldBuilder()
+        b.add_material("rock", density=2600, youngs_modulus=1e7)
+        b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+        for k in range(30):
+            b.add_body(shape_for(k), "rock", position=[0.05 * (k % 6), 0.05 * (k // 6), 0.1])
+        b.add_body(shape_for(99), "rock", position=[1, 1, 1], fixed=True)  # a fixed one: a wall template
+        return b.build()
+
+    cube = gjkdem.Shape("box", half_extents=[0.02, 0.02, 0.02])
+    shared = pile(lambda k: cube)
+    apart = pile(lambda k: gjkdem.Shape("box", half_extents=[0.02, 0.02, 0.02]))
+    assert shared.template_count == 2
+    assert apart.template_count == 31
+    # The same world either way.
+    for w in (shared, apart):
+        w.run(duration=0.01, dt=1e-4)
+    assert np.array_equal(shared.positions, apart.positions)
