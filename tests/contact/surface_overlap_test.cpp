@@ -63,6 +63,48 @@ TEST(SurfaceOverlap, MatchesConvexClippingOnRandomHulls) {
   EXPECT_GT(overlapping, 50);
 }
 
+TEST(SurfaceOverlap, BoxesOnAnIntegerGridMatchTheirClosedForms) {
+  // Small integer corners: faces on one plane, edges on edges, corners on
+  // corners everywhere. A ∩ B is the box of the overlaps; its faces on one
+  // body only count in that body's area, faces on both facing the same way
+  // in neither.
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> corner(0, 4), size(1, 3);
+  for (int n = 0; n < 2000; ++n) {
+    Vec3 la, ha, lb, hb;
+    for (int k = 0; k < 3; ++k) la[k] = corner(rng), ha[k] = la[k] + size(rng), lb[k] = corner(rng), hb[k] = lb[k] + size(rng);
+    const SurfaceOverlap o = surface_overlap(surface_of(box_surface(la, ha)), surface_of(box_surface(lb, hb)));
+    Vec3 lo, hi, area_a, area_b;
+    bool apart = false, touching = true;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::fmax(la[k], lb[k]), hi[k] = std::fmin(ha[k], hb[k]);
+      apart |= hi[k] <= lo[k];
+      touching &= hi[k] >= lo[k];
+    }
+    ASSERT_EQ(o.intersect, touching) << n;
+    if (apart) {
+      EXPECT_EQ(o.volume, 0) << n;
+      EXPECT_TRUE(o.patches.empty()) << n;
+      continue;
+    }
+    const Vec3 w = hi - lo;
+    EXPECT_NEAR(o.volume, w.x * w.y * w.z, 1e-12) << n;
+    EXPECT_NEAR(length(o.centroid - 0.5 * (lo + hi)), 0, 1e-12) << n;
+    ASSERT_EQ(o.patches.size(), 1u) << n;
+    for (int k = 0; k < 3; ++k) {
+      const Real face = w.x * w.y * w.z / w[k];
+      Vec3 e;
+      e[k] = 1;
+      if (ha[k] == hi[k] && hb[k] != hi[k]) area_a += face * e;
+      if (hb[k] == hi[k] && ha[k] != hi[k]) area_b += face * e;
+      if (la[k] == lo[k] && lb[k] != lo[k]) area_a -= face * e;
+      if (lb[k] == lo[k] && la[k] != lo[k]) area_b -= face * e;
+    }
+    EXPECT_NEAR(length(o.area_a - area_a), 0, 1e-12) << n;
+    EXPECT_NEAR(length(o.area_b - area_b), 0, 1e-12) << n;
+  }
+}
+
 TEST(SurfaceOverlap, LPrismAgainstABoxInItsCorner) {
   // The box [0.5,1.5]^2 x [0.25,0.75] less the L's notch [1,1.5]^2.
   const Surface l = surface_of(test::l_prism(1));
