@@ -61,3 +61,59 @@ def test_a_mesh_is_no_convex_shape():
     mesh = {"type": "mesh", "vertices": CUBE_V.tolist(), "triangles": CUBE_T.tolist()}
     with pytest.raises(ValueError, match="a mesh is a surface"):
         gjkdem.Shape.from_json(mesh)
+
+
+def _prism(outline, cap, z0, z1):
+    n = len(outline)
+    v = [[x, y, z0] for x, y in outline] + [[x, y, z1] for x, y in outline]
+    t = []
+    for a, b, c in cap:
+        t += [[a, c, b], [a + n, b + n, c + n]]
+    for i in range(n):
+        j = (i + 1) % n
+        t += [[i, j, j + n], [i, j + n, i + n]]
+    return np.array(v, float), np.array(t)
+
+
+def _l_prism(rng):
+    """An L-shaped prism on the integer grid, turned by a multiple of 90
+    degrees, and the two boxes it is the union of."""
+    a = rng.randint(2, 4); b = rng.randint(1, a - 1); d = rng.randint(2, 4); c = rng.randint(1, d - 1)
+    x0, y0, z0 = rng.randint(0, 5), rng.randint(0, 5), rng.randint(0, 3)
+    z1 = z0 + rng.randint(1, 3)
+    turns = rng.randint(0, 3)
+
+    def turned(p):
+        x, y = p
+        for _ in range(turns):
+            x, y = -y, x
+        return x0 + x, y0 + y
+
+    outline = [turned(p) for p in [(0, 0), (a, 0), (a, c), (b, c), (b, d), (0, d)]]
+    boxes = []
+    for lo, hi in [((0, 0), (a, c)), ((0, c), (b, d))]:
+        p, q = turned(lo), turned(hi)
+        boxes.append(((min(p[0], q[0]), min(p[1], q[1]), z0), (max(p[0], q[0]), max(p[1], q[1]), z1)))
+    v, t = _prism(outline, [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5)], z0, z1)
+    return gjkdem.Surface(v, t), boxes
+
+
+def test_l_prisms_on_an_integer_grid_match_their_boxes():
+    """Non-convex pairs full of coincidences (faces on one plane, edges on
+    edges): the overlap is the sum of the overlaps of the boxes each L is
+    made of."""
+    import random
+    rng = random.Random(3)
+    for _ in range(600):
+        (a, boxes_a), (b, boxes_b) = _l_prism(rng), _l_prism(rng)
+        volume, moment = 0.0, np.zeros(3)
+        for la, ha in boxes_a:
+            for lb, hb in boxes_b:
+                lo = np.maximum(la, lb); hi = np.minimum(ha, hb)
+                v = float(np.prod(np.maximum(hi - lo, 0)))
+                volume += v; moment += v * (lo + hi) / 2
+        o = gjkdem.surface_overlap(a, b)
+        assert o.volume == pytest.approx(volume, abs=1e-12)
+        if volume > 0:
+            assert np.allclose(o.centroid, moment / volume, atol=1e-12)
+            assert sum(p["volume"] for p in o.patches) == pytest.approx(volume, abs=1e-12)
