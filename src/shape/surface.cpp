@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <string>
 
 #include "gjkdem/shape/predicates.hpp"
@@ -250,6 +251,35 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
   if (!(s.volume > 0))
     throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
                        "the other way round");
+  return s;
+}
+
+Surface moved(const Surface& surface, const Transform& pose) {
+  Surface s = surface;
+  for (Vec3& v : s.vertices) v = apply(pose, v);
+  const auto box_of = [&](std::initializer_list<std::uint32_t> corners) {
+    Aabb box{s.vertices[*corners.begin()], s.vertices[*corners.begin()]};
+    for (const std::uint32_t i : corners) box.lo = min(box.lo, s.vertices[i]), box.hi = max(box.hi, s.vertices[i]);
+    return box;
+  };
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    s.triangle_boxes[t] = box_of({s.triangles[t][0], s.triangles[t][1], s.triangles[t][2]});
+  for (std::size_t e = 0; e < s.edges.size(); ++e) s.edge_boxes[e] = box_of({s.edges[e][0], s.edges[e][1]});
+  // Refit the tree: children come after their parent.
+  for (std::size_t k = s.tree.nodes.size(); k-- > 0;) {
+    TriangleTree::Node& n = s.tree.nodes[k];
+    if (n.count) {
+      n.box = s.triangle_boxes[s.tree.items[n.first]];
+      for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i) {
+        const Aabb& b = s.triangle_boxes[s.tree.items[i]];
+        n.box = {min(n.box.lo, b.lo), max(n.box.hi, b.hi)};
+      }
+    } else {
+      const Aabb &l = s.tree.nodes[n.first].box, &r = s.tree.nodes[n.right].box;
+      n.box = {min(l.lo, r.lo), max(l.hi, r.hi)};
+    }
+  }
+  s.box = s.tree.nodes[0].box;
   return s;
 }
 

@@ -156,6 +156,25 @@ TEST(SurfaceOverlap, PropertiesHoldOnAnLPrismAndARotatedBox) {
   }
 }
 
+TEST(SurfaceOverlap, BothMovedAlikeGiveTheSameOverlapMoved) {
+  Mesh bar = box_surface({-0.3, -0.2, -0.4}, {0.3, 0.2, 0.4});
+  for (Vec3& v : bar.vertices) v = rotate(normalized(Quat{0.9, 0.2, 0.1, 0.3}), v) + Vec3{1.1, 0.9, 0.5};
+  const Surface l = surface_of(test::l_prism(1)), b = surface_of(bar);
+  const SurfaceOverlap o = surface_overlap(l, b);
+  const Transform pose = Transform::from({3, -2, 7}, normalized(Quat{0.3, -0.5, 0.7, 0.2}));
+  const Surface lm = moved(l, pose), bm = moved(b, pose);
+  EXPECT_NEAR(mass_properties(lm).volume, mass_properties(l).volume, 1e-14);
+  const SurfaceOverlap m = surface_overlap(lm, bm);
+  EXPECT_NEAR(m.volume, o.volume, 1e-12 * o.volume);
+  EXPECT_NEAR(length(m.centroid - apply(pose, o.centroid)), 0, 1e-12);
+  EXPECT_NEAR(length(m.area_a - apply_rotation(pose, o.area_a)), 0, 1e-12);
+  EXPECT_EQ(m.patches.size(), o.patches.size());
+  // Moved by nothing: the same bits.
+  const SurfaceOverlap same = surface_overlap(moved(l, Transform{}), moved(b, Transform{}));
+  EXPECT_EQ(same.volume, o.volume);
+  EXPECT_EQ(same.centroid, o.centroid);
+}
+
 TEST(SurfaceOverlap, TouchingAndSharedFaces) {
   const Surface unit = surface_of(box_surface({0, 0, 0}, {1, 1, 1}));
   // Face to face: touching, no volume.

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/triangle_tree.hpp"
@@ -47,6 +48,11 @@ struct SurfaceError : std::invalid_argument {
 /// Checks the surface (file comment) and builds its edges and tree. Throws
 /// SurfaceError. Coordinates must be finite.
 Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> triangles);
+
+/// The surface moved rigidly by `pose` (its vertices, boxes and tree's
+/// boxes in the new frame; the tree's shape and everything checked kept):
+/// to compare two surfaces posed apart, move one into the other's frame.
+Surface moved(const Surface& surface, const Transform& pose);
 
 /// Volume, centroid and inertia (per unit density) of the solid, exactly
 /// from its triangles (the divergence theorem).
