@@ -401,7 +401,7 @@ void bind_world(py::module_& m) {
           "fill_region",
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
-             const py::object& weights, const std::string& label) {
+             const py::object& weights, const std::string& label, bool fixed) {
             dem::RegionFill f;
             f.variants = body_shapes(shapes);
             if (!weights.is_none()) f.weights = weights.cast<std::vector<double>>();
@@ -409,13 +409,14 @@ void bind_world(py::module_& m) {
             f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
             f.material = material_index(b, material);
             f.velocity = to_vec3(velocity, "velocity");
+            f.fixed = fixed;
             f.label = label.empty() ? "region" : label;
             std::mt19937_64 rng(seed);
             return b.fill_region(f, rng);
           },
           py::arg("shapes"), py::arg("count"), py::arg("lo"), py::arg("hi"), py::arg("material"),
           py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1, py::arg("weights") = py::none(),
-          py::arg("label") = "",
+          py::arg("label") = "", py::arg("fixed") = false,
           "Places `count` bodies, each one of `shapes` at random (number probabilities `weights`, default\n"
           "equal), without overlap in [lo, hi]; returns their indices.")
       .def(

@@ -421,10 +421,12 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   }
   if (!is_finite(f.lo) || !is_finite(f.hi) || !(f.hi.x > f.lo.x && f.hi.y > f.lo.y && f.hi.z > f.lo.z))
     throw BuildError(label + ": the region's max must exceed its min on every axis");
+  if (f.fixed && length(f.velocity) > 0)
+    throw BuildError(label, "velocity", "must be zero for fixed bodies (fixed = true)");
   const std::uint32_t first_template = static_cast<std::uint32_t>(world_.templates.size());
   Real diameter = 0;  // of a sphere about each shape frame's origin holding every variant
   for (const BodyShape& s : f.variants) {
-    add_template(s, false, label);
+    add_template(s, f.fixed, label);
     diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + bounding_radius(given_shapes_.back())));
   }
   // Cells of at least one diameter, the slack spread evenly.
@@ -523,6 +525,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     const std::size_t v = f.weights.empty() ? pick(rng) : pick_weighted(cumulative, uniform(rng));
     b.shape = first_template + static_cast<std::uint32_t>(v);
     b.material = f.material;
+    b.fixed = f.fixed;
     place(b, f.variants[v], centre - rotate(q, f.variants[v].pose.translation), q, f.velocity, {});
     world_.bodies.push_back(b);
     labels_.push_back(label + " body " + std::to_string(placed.size()));

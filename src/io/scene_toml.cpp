@@ -608,6 +608,7 @@ class SceneBuilder {
     fill.material = material_of(r);
     std::tie(fill.lo, fill.hi) = read_region(r, true);
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
+    fill.fixed = r.boolean("fixed", false);
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
     Mix mix = read_mix(r, count, rng);
     fill.variants = std::move(mix.variants);
@@ -616,6 +617,7 @@ class SceneBuilder {
     warn_of_bodies_outside_containers(r.where(), placed);
     Json j = {{"count", count}, {"material", r.required_string("material")},
               {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}}, {"velocity", to_json(fill.velocity)}};
+    if (fill.fixed) j["fixed"] = true;
     j.update(mix.resolved);
     resolved_["generator"].push_back(j);
   }

@@ -165,5 +165,51 @@ TEST(WorldBuilderRules, ASceneNamesTheBuildersRuleAtTheLineOfTheField) {
   }
 }
 
+TEST(WorldBuilder, AGeneratorMakesFixedBodiesThatStayPut) {
+  // A rough floor of fixed cubes from a generator, and a ball dropped on it.
+  const std::string scene = R"([simulation]
+duration = 0.01
+[[material]]
+name = "m"
+density = 2500.0
+youngs_modulus = 1.0e7
+[[generator]]
+count = 10
+fixed = true
+material = "m"
+shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
+region = { min = [0.0, 0.0, 0.0], max = [0.2, 0.1, 0.04] }
+[[body]]
+material = "m"
+position = [0.1, 0.05, 0.1]
+shape = { type = "sphere", radius = 0.01 }
+)";
+  io::Scene s = io::load_scene(scene, "scene.toml", ".");
+  World& w = s.world;
+  ASSERT_EQ(w.bodies.size(), 11u);
+  std::vector<Vec3> before;
+  std::size_t fixed = 0, ball = 0;
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    before.push_back(w.bodies[i].position);
+    if (w.bodies[i].fixed) ++fixed;
+    else ball = i;
+  }
+  EXPECT_EQ(fixed, 10u);
+  for (int k = 0; k < 200; ++k) ASSERT_EQ(step(w, 5e-5).status, StepStatus::Ok);
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    if (i == ball) continue;
+    EXPECT_EQ(w.bodies[i].position, before[i]);
+  }
+  EXPECT_LT(w.bodies[ball].position.z, 0.1);  // the ball fell
+  // Fixed bodies cannot be given a velocity.
+  const std::string moving = std::string(scene).replace(scene.find("fixed = true"), 12, "fixed = true\nvelocity = [0.0, 0.0, -1.0]");
+  try {
+    io::load_scene(moving, "scene.toml", ".");
+    ADD_FAILURE() << "a moving fixed generator was accepted";
+  } catch (const io::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("velocity must be zero for fixed bodies"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gjkdem::dem

@@ -109,6 +109,7 @@ struct RegionFill {
   Vec3 lo, hi;
   std::uint32_t material = 0;
   Vec3 velocity;
+  bool fixed = false;               ///< fixed bodies (a rough floor, an obstacle field): no velocity
   std::string label;                ///< e.g. "generator[0]"
 };
 
