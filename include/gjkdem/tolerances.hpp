@@ -112,6 +112,12 @@ inline constexpr Real kOverlapRelTol = 1e-12;
 /// Relative to a volume; the shared samples' volume tolerance is 1e-9.
 inline constexpr Real kPatchMinRelVolume = 1e-11;
 
+/// Surface overlaps: an edge of the other surface is tested exactly for
+/// lying along an edge's line only when the squared sines of its ends'
+/// angles off the line sum below this (a screen: rounding gives ~1e-32 for
+/// points on the line; the exact test decides).
+inline constexpr Real kCollinearScreenRel2 = 1e-20;
+
 /// The area-weighted contact normal is reported only when |S_A - S_B| exceeds
 /// kContactNormalRelTol times the overlap's total surface area (relative): below
 /// it the normal is undefined (one shape inside the other, shared faces).

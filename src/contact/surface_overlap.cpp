@@ -303,8 +303,9 @@ bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vecto
   for (const std::uint32_t t : near)
     for (const std::uint32_t f : solid.triangle_edges[t]) {
       const Vec3 &r = solid.vertices[solid.edges[f][0]], &w = solid.vertices[solid.edges[f][1]];
-      const Real scale = dot(d, d) * (dot(r - p, r - p) + dot(w - p, w - p)) + 1e-300;
-      if (dot(cross(d, r - p), cross(d, r - p)) + dot(cross(d, w - p), cross(d, w - p)) > 1e-20 * scale) continue;
+      const Real scale = dot(d, d) * (dot(r - p, r - p) + dot(w - p, w - p));
+      if (dot(cross(d, r - p), cross(d, r - p)) + dot(cross(d, w - p), cross(d, w - p)) > kCollinearScreenRel2 * scale)
+        continue;  // clearly off the line (the exact test below decides the rest)
       bool collinear = true;
       for (int axis = 0; axis < 3 && collinear; ++axis)
         collinear = cross_sign(p, q, p, r, axis) == 0 && cross_sign(p, q, p, w, axis) == 0;
