@@ -29,12 +29,13 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
   while (!stack.empty()) {
     const auto [i, j] = stack.back();
     stack.pop_back();
-    const TriangleTree::Node& n = a.tree.nodes[i];
-    const TriangleTree::Node& m = b.tree.nodes[j];
+    const BoxTree::Node& n = a.tree.nodes[i];
+    const BoxTree::Node& m = b.tree.nodes[j];
     if (box_distance(n.box, m.box) >= best.distance) continue;
     if (n.count && m.count) {
       for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
         for (std::uint32_t t = m.first; t < m.first + m.count; ++t) {
+          if (box_distance(a.tree.item_boxes[s], b.tree.item_boxes[t]) >= best.distance) continue;
           const std::uint32_t ta = a.tree.items[s], tb = b.tree.items[t];
           const TriangleContact c = triangle_contact(corner(a, ta, 0), corner(a, ta, 1), corner(a, ta, 2),
                                                      corner(b, tb, 0), corner(b, tb, 1), corner(b, tb, 2), 0);
@@ -45,7 +46,7 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
     const Vec3 sn = n.box.hi - n.box.lo, sm = m.box.hi - m.box.lo;
     const bool split_a = !n.count && (m.count || sn.x + sn.y + sn.z >= sm.x + sm.y + sm.z);
     // The nearer child last, so that it is looked at first.
-    std::pair<std::uint32_t, std::uint32_t> c1 = split_a ? std::pair{n.first, j} : std::pair{i, m.first};
+    std::pair<std::uint32_t, std::uint32_t> c1 = split_a ? std::pair{n.left, j} : std::pair{i, m.left};
     std::pair<std::uint32_t, std::uint32_t> c2 = split_a ? std::pair{n.right, j} : std::pair{i, m.right};
     const auto gap = [&](const std::pair<std::uint32_t, std::uint32_t>& c) {
       return box_distance(a.tree.nodes[c.first].box, b.tree.nodes[c.second].box);

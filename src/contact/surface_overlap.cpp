@@ -44,18 +44,18 @@ struct View {
 
 Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
 
-// Edge pq of surface `pq_side` through triangle abc of the other: whether
-// it crosses and, if so, whether it goes from inside to outside.
-bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side, bool& exits) {
-  const Side abc = other(pq_side);
-  const int sp = perturbed_orient3d(a, b, c, p, abc), sq = perturbed_orient3d(a, b, c, q, abc);
-  if (sp == sq) return false;
+// Line pq (an edge of surface `pq_side`, its ends on either side of the
+// plane abc of the other's triangle) passes through the triangle.
+bool passes_through(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
   const int o1 = perturbed_orient3d_edges(p, q, a, b, pq_side);
-  const int o2 = perturbed_orient3d_edges(p, q, b, c, pq_side);
-  const int o3 = perturbed_orient3d_edges(p, q, c, a, pq_side);
-  if (o1 != o2 || o2 != o3) return false;
-  exits = sp < 0;
-  return true;
+  return perturbed_orient3d_edges(p, q, b, c, pq_side) == o1 && perturbed_orient3d_edges(p, q, c, a, pq_side) == o1;
+}
+
+// Segment pq of surface `pq_side` through triangle abc of the other.
+bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
+  const Side abc = other(pq_side);
+  return perturbed_orient3d(a, b, c, p, abc) != perturbed_orient3d(a, b, c, q, abc) &&
+         passes_through(p, q, a, b, c, pq_side);
 }
 
 // Edge pq of v's surface (its lower vertex p, on side `sp` of the plane of
@@ -63,8 +63,7 @@ bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const V
 // triangle, if it passes through it.
 void add_crossing(View& v, std::uint32_t e, std::uint32_t t, const Vec3& p, const Vec3& q, int sp, const Vec3& a,
                   const Vec3& b, const Vec3& c, const Vec3& origin) {
-  const int o1 = perturbed_orient3d_edges(p, q, a, b, v.side);
-  if (perturbed_orient3d_edges(p, q, b, c, v.side) != o1 || perturbed_orient3d_edges(p, q, c, a, v.side) != o1) return;
+  if (!passes_through(p, q, a, b, c, v.side)) return;
   const Vec3 n = cross(b - a, c - a);
   const Real dp = dot(n, p - a), dq = dot(n, q - a);
   const Real t_on = dp == dq ? Real(0.5) : std::clamp(dp / (dp - dq), Real(0), Real(1));
@@ -105,12 +104,11 @@ bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
   const Vec3 far{solid.box.hi.x + std::fabs(solid.box.hi.x) + 1, p.y, p.z};
   std::vector<std::uint32_t>& hits = v.hits;
   hits.clear();
-  query_triangle_tree(solid.tree, Aabb{p, far}, hits);
+  query_box_tree(solid.tree, Aabb{p, far}, hits);
   int count = 0;
   for (const std::uint32_t t : hits) {
     const TriangleIndices& tri = solid.triangles[t];
-    bool exits = false;
-    count += crosses(p, far, solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], v.side, exits);
+    count += crosses(p, far, solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], v.side);
   }
   return count % 2 == 1;
 }
@@ -297,7 +295,7 @@ bool wedges_pinch(const Wedge& x, const Wedge& y) {
 // touching along the line there, and e's faces belong one to each.
 bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vector<std::uint32_t>& near) {
   near.clear();
-  query_triangle_tree(solid.tree, s.edge_boxes[e], near);
+  query_box_tree(solid.tree, s.edge_boxes[e], near);
   const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
   const Vec3 d = q - p;
   for (const std::uint32_t t : near)
@@ -357,8 +355,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
   View& va = w.va;
   View& vb = w.vb;
   va.reset(a, Side::A), vb.reset(b, Side::B);
-  overlapping_triangles(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
-    if (!overlaps(a.triangle_boxes[s], b.triangle_boxes[t])) return;
+  overlapping_items(a.tree, b.tree, [&](std::uint32_t s, std::uint32_t t) {
     pairs.emplace_back(s, t);
     const TriangleIndices &ts = a.triangles[s], &tt = b.triangles[t];
     const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];

@@ -20,7 +20,7 @@ Aabb body_box(const ShapeTemplate& t, const Body& b, Real pad) noexcept {
   Aabb box = aabb(t.parts[0].shape, compose(pose, t.parts[0].pose), pad);
   for (std::size_t k = 1; k < t.parts.size(); ++k) {
     const Aabb part = aabb(t.parts[k].shape, compose(pose, t.parts[k].pose), pad);
-    box = {min(box.lo, part.lo), max(box.hi, part.hi)};
+    box = enclose(box, part);
   }
   return box;
 }

@@ -24,7 +24,7 @@ void find_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, 
         work.moving.push_back(i);
       }
     }
-    build_static_tree(fixed_boxes, fixed, work.fixed_tree);
+    build_box_tree(fixed_boxes, fixed, work.fixed_tree);
     work.static_ready = true;
   }
   work.moving_boxes.resize(work.moving.size());
@@ -43,7 +43,7 @@ void find_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, 
   for (const std::uint32_t i : work.moving) {
     if (bodies[i].fixed) continue;
     found.clear();
-    query_static_tree(work.fixed_tree, boxes[i], found);
+    query_box_tree(work.fixed_tree, boxes[i], found);
     for (const std::uint32_t f : found) pairs.emplace_back(std::min(i, f), std::max(i, f));
   }
   std::sort(pairs.begin(), pairs.end());

@@ -287,7 +287,7 @@ void find_periodic_candidates(std::span<const Body> bodies, std::span<const Aabb
     if (bodies[i].fixed) continue;
     images(boxes[i], [&](const Aabb& box, std::uint8_t code) {  // i at `code` meets static f
       hits.clear();
-      query_static_tree(work.fixed_tree, box, hits);
+      query_box_tree(work.fixed_tree, box, hits);
       for (const std::uint32_t f : hits) add(f, i, code);
     });
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <string>
 
 #include "gjkdem/shape/predicates.hpp"
@@ -69,6 +68,20 @@ bool in_corner(const Vec3& v, const Vec3& c, const Vec3& d, const Vec3& x, int a
 // shares corner v, points into that triangle's corner.
 bool edge_enters_corner(const Vec3& v, const Vec3& x, const Vec3& c, const Vec3& d) {
   return orient3d(v, c, d, x) == 0 && in_corner(v, c, d, x, flat_axis(v, c, d));
+}
+
+// The boxes of the triangles and edges, where the vertices are now.
+void fit_boxes(Surface& s) {
+  s.triangle_boxes.resize(s.triangles.size());
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const Vec3 &a = s.vertices[s.triangles[t][0]], &b = s.vertices[s.triangles[t][1]], &c = s.vertices[s.triangles[t][2]];
+    s.triangle_boxes[t] = {min(a, min(b, c)), max(a, max(b, c))};
+  }
+  s.edge_boxes.resize(s.edges.size());
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
+    s.edge_boxes[e] = {min(p, q), max(p, q)};
+  }
 }
 
 }  // namespace
@@ -229,20 +242,13 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       for (const std::uint32_t v : s.edges[e]) s.vertex_edges[next[v]++] = e;
   }
 
-  s.triangle_boxes.resize(nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const Vec3 &a = s.vertices[s.triangles[t][0]], &b = s.vertices[s.triangles[t][1]], &c = s.vertices[s.triangles[t][2]];
-    s.triangle_boxes[t] = {min(a, min(b, c)), max(a, max(b, c))};
-  }
-  s.edge_boxes.resize(s.edges.size());
-  for (std::size_t e = 0; e < s.edges.size(); ++e) {
-    const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
-    s.edge_boxes[e] = {min(p, q), max(p, q)};
-  }
-  s.tree = build_triangle_tree(s.triangle_boxes);
+  fit_boxes(s);
+  std::vector<std::uint32_t> ids(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) ids[t] = t;
+  build_box_tree(s.triangle_boxes, ids, s.tree);
   s.box = s.tree.nodes[0].box;
 
-  overlapping_triangles(s.tree, s.tree, [&](std::uint32_t i, std::uint32_t j) {
+  overlapping_items(s.tree, s.tree, [&](std::uint32_t i, std::uint32_t j) {
     if (i < j && triangles_clash(s, i, j))
       throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
                          " intersect: the surface crosses itself");
@@ -257,28 +263,8 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
 Surface moved(const Surface& surface, const Transform& pose) {
   Surface s = surface;
   for (Vec3& v : s.vertices) v = apply(pose, v);
-  const auto box_of = [&](std::initializer_list<std::uint32_t> corners) {
-    Aabb box{s.vertices[*corners.begin()], s.vertices[*corners.begin()]};
-    for (const std::uint32_t i : corners) box.lo = min(box.lo, s.vertices[i]), box.hi = max(box.hi, s.vertices[i]);
-    return box;
-  };
-  for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    s.triangle_boxes[t] = box_of({s.triangles[t][0], s.triangles[t][1], s.triangles[t][2]});
-  for (std::size_t e = 0; e < s.edges.size(); ++e) s.edge_boxes[e] = box_of({s.edges[e][0], s.edges[e][1]});
-  // Refit the tree: children come after their parent.
-  for (std::size_t k = s.tree.nodes.size(); k-- > 0;) {
-    TriangleTree::Node& n = s.tree.nodes[k];
-    if (n.count) {
-      n.box = s.triangle_boxes[s.tree.items[n.first]];
-      for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i) {
-        const Aabb& b = s.triangle_boxes[s.tree.items[i]];
-        n.box = {min(n.box.lo, b.lo), max(n.box.hi, b.hi)};
-      }
-    } else {
-      const Aabb &l = s.tree.nodes[n.first].box, &r = s.tree.nodes[n.right].box;
-      n.box = {min(l.lo, r.lo), max(l.hi, r.hi)};
-    }
-  }
+  fit_boxes(s);
+  refit_box_tree(s.tree, s.triangle_boxes);
   s.box = s.tree.nodes[0].box;
   return s;
 }

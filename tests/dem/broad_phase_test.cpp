@@ -113,13 +113,13 @@ TEST(BroadPhase, StaticTreeMatchesBruteForce) {
       ids[k] = static_cast<std::uint32_t>(1000 + 3 * k);
     }
     StaticTree tree;
-    build_static_tree(boxes, ids, tree);
+    build_box_tree(boxes, ids, tree);
     int hits = 0;
     for (int q = 0; q < 200; ++q) {
       const Vec3 c{u(rng), u(rng), u(rng)}, h{0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng)};
       const Aabb query{c - h, c + h};
       std::vector<std::uint32_t> found, expected;
-      query_static_tree(tree, query, found);
+      query_box_tree(tree, query, found);
       for (int k = 0; k < n; ++k)
         if (overlaps(boxes[k], query)) expected.push_back(ids[k]);
       std::sort(found.begin(), found.end());

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gjkdem/shape/aabb.hpp"
+#include "gjkdem/shape/box_tree.hpp"
 
 namespace gjkdem::dem {
 
@@ -35,24 +36,8 @@ struct SweepWorkspace {
   std::vector<std::vector<BodyPair>> found;  ///< per thread
 };
 
-/// A bounding-volume tree over boxes that never move (median splits on the
-/// longest axis, two children per node).
-struct StaticTree {
-  struct Node {
-    Aabb box;
-    std::uint32_t first = 0, count = 0;  ///< leaf: items[first .. first + count); inner: count = 0
-    std::uint32_t left = 0, right = 0;   ///< children (inner nodes)
-  };
-  std::vector<Node> nodes;             ///< nodes[0] is the root (empty tree: no nodes)
-  std::vector<Aabb> item_boxes;
-  std::vector<std::uint32_t> items;    ///< the ids given to build, leaf by leaf
-};
-
-/// Builds the tree of `boxes`, each with the id at the same position in `ids`.
-void build_static_tree(std::span<const Aabb> boxes, std::span<const std::uint32_t> ids, StaticTree& tree);
-
-/// Appends to `found` the id of every box of the tree that overlaps `box`.
-void query_static_tree(const StaticTree& tree, const Aabb& box, std::vector<std::uint32_t>& found);
+/// The tree of the fixed bodies' boxes, which never move (shape/box_tree.hpp).
+using StaticTree = BoxTree;
 
 /// Every pair (i < j) of overlapping boxes (touching counts), sorted, on up
 /// to `threads` OpenMP threads (the same result for any count).

@@ -16,6 +16,9 @@ inline bool overlaps(const Aabb& a, const Aabb& b) noexcept {
          b.lo.z <= a.hi.z;
 }
 
+/// The smallest box holding both.
+inline Aabb enclose(const Aabb& a, const Aabb& b) noexcept { return {min(a.lo, b.lo), max(a.hi, b.hi)}; }
+
 /// The smallest axis-aligned box holding the placed shape (six support calls),
 /// grown by `pad` (m) on every side (the contact margin, or a skin for reuse).
 Aabb aabb(const Shape& shape, const Transform& pose, Real pad = 0) noexcept;

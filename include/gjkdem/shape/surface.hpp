@@ -8,7 +8,7 @@
 // solid), no triangle without area, no unused vertex, no two triangles
 // meeting anywhere but in their shared edge or vertex (decided exactly:
 // predicates.hpp). It keeps its edges and a tree of its triangles' boxes
-// (triangle_tree.hpp), all in its own frame.
+// (box_tree.hpp), all in its own frame.
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -17,7 +17,7 @@
 #include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
-#include "gjkdem/shape/triangle_tree.hpp"
+#include "gjkdem/shape/box_tree.hpp"
 
 namespace gjkdem {
 
@@ -34,7 +34,7 @@ struct Surface {
   /// The edges at each vertex: vertex_edges[vertex_edge_begin[v] .. vertex_edge_begin[v + 1]).
   std::vector<std::uint32_t> vertex_edge_begin, vertex_edges;
   std::vector<Aabb> triangle_boxes, edge_boxes;
-  TriangleTree tree;
+  BoxTree tree;  ///< of triangle_boxes, ids the triangles
   Aabb box;
   Real volume = 0;  ///< of the solid (mass_properties)
 };
