@@ -112,6 +112,13 @@ inline constexpr Real kOverlapRelTol = 1e-12;
 /// Relative to a volume; the shared samples' volume tolerance is 1e-9.
 inline constexpr Real kPatchMinRelVolume = 1e-11;
 
+/// Surface grains in the DEM (surface_contact.hpp): a patch keeps the slot
+/// (and springs) of last step's patch of the pair whose centroid lies within
+/// kPatchMatchRel of the smaller body's equivalent radius (the sphere of
+/// equal volume). Patches move far less in a step; distinct patches of one
+/// pair (the two hooks of interlocked C's) lie about a body's size apart.
+inline constexpr Real kPatchMatchRel = 0.25;
+
 /// Surface overlaps: an edge of the other surface is tested exactly for
 /// lying along an edge's line only when the squared sines of its ends'
 /// angles off the line sum below this (a screen: rounding gives ~1e-32 for

@@ -183,6 +183,7 @@ struct Sums {
   Real volume6 = 0;  // six times the volume
   Vec3 moment24;     // 24 times the first moment
   Vec3 area_a, area_b;
+  Vec3 area_moment_a;  // first moment of area_a: sum of (fan centroid) x (fan's vector area)
 };
 
 struct UnionFind {
@@ -213,7 +214,7 @@ int dominant_axis(const Vec3& n) {
 }
 
 // The area of the overlap of two triangles on one plane (abc's, whose
-// normal is n), by clipping abc with def's three sides, and a point inside it.
+// normal is n), by clipping abc with def's three sides, and its centroid.
 Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec3& n, Vec3& inside) {
   std::vector<Vec3> poly(abc, abc + 3), next;
   const Vec3 m = cross(def[1] - def[0], def[2] - def[0]);  // def's own normal: its corners run ccw about it
@@ -228,11 +229,15 @@ Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec
     }
     poly.swap(next);
   }
-  Vec3 area;
-  inside = {};
-  for (std::size_t i = 1; i + 1 < poly.size(); ++i) area += cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
-  for (const Vec3& p : poly) inside += p / static_cast<Real>(poly.size());
-  return 0.5 * std::fabs(dot(area, n)) / length(n);
+  Vec3 area, weighted;
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
+    const Vec3 fan = cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
+    area += fan;
+    weighted += dot(fan, n) * (poly[0] + poly[i] + poly[i + 1]);
+  }
+  const Real twice = dot(area, n);
+  inside = poly.empty() ? Vec3{} : twice != 0 ? weighted / (3 * twice) : poly[0];
+  return 0.5 * std::fabs(twice) / length(n);
 }
 
 // An end of a crossing segment: a crossing, where A's triangle's cycle
@@ -334,6 +339,9 @@ struct SurfaceOverlapWorkspace::Scratch {
 
 SurfaceOverlapWorkspace::SurfaceOverlapWorkspace() : scratch(std::make_unique<Scratch>()) {}
 SurfaceOverlapWorkspace::~SurfaceOverlapWorkspace() = default;
+SurfaceOverlapWorkspace::SurfaceOverlapWorkspace(const SurfaceOverlapWorkspace&)
+    : scratch(std::make_unique<Scratch>()) {}
+SurfaceOverlapWorkspace& SurfaceOverlapWorkspace::operator=(const SurfaceOverlapWorkspace&) { return *this; }
 SurfaceOverlapWorkspace::SurfaceOverlapWorkspace(SurfaceOverlapWorkspace&&) noexcept = default;
 SurfaceOverlapWorkspace& SurfaceOverlapWorkspace::operator=(SurfaceOverlapWorkspace&&) noexcept = default;
 
@@ -559,7 +567,13 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     const Real v6 = dot(apex, cross(g.p, g.q));
     sum.volume6 += v6;
     sum.moment24 += v6 * (apex + g.p + g.q);
-    (t < triangles_a ? sum.area_a : sum.area_b) += 0.5 * cross(g.p - apex, g.q - apex);
+    const Vec3 fan = 0.5 * cross(g.p - apex, g.q - apex);
+    if (t < triangles_a) {
+      sum.area_a += fan;
+      sum.area_moment_a += cross((apex + g.p + g.q) / 3, fan);
+    } else {
+      sum.area_b += fan;
+    }
   }
 
   // Coplanar faces: the perturbation put one or both of them inside the
@@ -587,7 +601,10 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     const Real area = coplanar_overlap_area(pa, pb, na, middle);
     if (area == 0) continue;
     if (perturbed_orient3d(b0, b1, b2, a0, Side::B) < 0)  // a's face inside B
-      if (Sums* sum = piece_at(s, middle)) sum->area_a -= area / length(na) * na;
+      if (Sums* sum = piece_at(s, middle)) {
+        sum->area_a -= area / length(na) * na;
+        sum->area_moment_a -= cross(middle, area / length(na) * na);
+      }
     if (perturbed_orient3d(a0, a1, a2, b0, Side::A) < 0)  // b's face inside A
       if (Sums* sum = piece_at(triangles_a + t, middle)) sum->area_b -= area / length(nb) * nb;
   }
@@ -599,10 +616,12 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     total.moment24 += sum.moment24;
     total.area_a += sum.area_a;
     total.area_b += sum.area_b;
+    total.area_moment_a += sum.area_moment_a;
   }
   out.volume = total.volume6 / 6;
   out.area_a = total.area_a;
   out.area_b = total.area_b;
+  out.area_moment_a = total.area_moment_a + cross(origin, total.area_a);
   if (out.volume > 0) out.centroid = origin + total.moment24 / (24 * out.volume);
   else out.volume = 0;
   // Touching counts as intersecting: an edge through a triangle of the moved
@@ -623,6 +642,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     patch.centroid = origin + sum.moment24 / (24 * patch.volume);
     patch.area_a = sum.area_a;
     patch.area_b = sum.area_b;
+    patch.area_moment_a = sum.area_moment_a + cross(origin, sum.area_a);
     out.patches.push_back(patch);
   }
   std::sort(out.patches.begin(), out.patches.end(), [](const SurfacePatch& x, const SurfacePatch& y) {

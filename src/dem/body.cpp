@@ -66,6 +66,21 @@ ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fi
   return t;
 }
 
+ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed) {
+  const Shape hull{make_polytope(surface->vertices)};
+  ShapeTemplate t = fixed ? make_wall_template(hull) : make_template(hull);
+  if (!fixed) {
+    t.unit_mass = mass_properties(*surface);
+    t.principal = principal_axes(t.unit_mass.inertia);
+    t.curvature_radius = std::cbrt(3 * t.unit_mass.volume / (4 * kPi));
+    t.reach = 0;
+    for (const Vec3& v : surface->vertices) t.reach = std::fmax(t.reach, length(v - t.unit_mass.centroid));
+  }
+  t.surface_grain = true;
+  t.surface = std::move(surface);
+  return t;
+}
+
 PartPose part_pose(const ShapeTemplate& t, const Body& b, std::uint32_t part) noexcept {
   const Transform pose = shape_pose(t, b);
   if (t.parts.empty()) return {&t.shape, pose};

@@ -18,7 +18,7 @@ void align_pair_states(std::span<const PairKey> keys, std::vector<PairState>& st
   // that is not sorted (a damaged checkpoint): memory stays safe.
   states.resize(keys.size());
   for (std::size_t j = keys.size(), from = kept; j-- > 0;)
-    states[j] = from > 0 && states[from - 1].key == keys[j] ? states[--from] : PairState{keys[j], {}, {}};
+    states[j] = from > 0 && states[from - 1].key == keys[j] ? states[--from] : PairState{keys[j], {}, {}, {}};
 }
 
 }  // namespace gjkdem::dem

@@ -32,6 +32,15 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
                    std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
                    const DomainRole* domain, StepWorkspace& work);
 
+/// surface_contacts.cpp: each listed contact of a surface grain replaced by
+/// one per patch (its geometry found, its slot matched against `last`, the
+/// pair store of the last evaluation, keys kept in order); a pair the model
+/// cannot take, or a body through a plane wall, stays one contact with that
+/// status. Nothing happens in a world without surface grains.
+void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
+                             std::span<const PairState> last, int threads, StepWorkspace& work);
+
 /// contact_sides.cpp: what the contact laws see of each side of a contact,
 /// from the bodies' make-up, the driven motions' frames at this step's time
 /// and a deforming cell's velocity gradient.

@@ -54,14 +54,19 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
                             work);
   }
   detail::list_contacts(w.bodies, w.templates, w.planes, boxes, w.cell, domain, work);
+  const ContactModel model = w.settings.model;
+  detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell, model, w.pairs, threads, work);
   align_pair_states(work.keys, w.pairs);
 
   std::vector<StepContact>& contacts = work.contacts;
-  const ContactModel model = w.settings.model;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
+    if (c.surface) {  // found by expand_surface_contacts
+      w.pairs[k].anchor = c.anchor;
+      continue;
+    }
     const Body& b = w.bodies[c.b];
     PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
     pb.pose.translation += image_shift_of(w.cell, c);

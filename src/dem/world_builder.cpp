@@ -6,6 +6,7 @@
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/contact/half_space.hpp"
+#include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/shape/tessellate.hpp"
@@ -189,7 +190,9 @@ std::size_t WorldBuilder::moving_count() const noexcept {
 std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, const std::string& label) {
   ShapeTemplate t;
   try {
-    if (!shape.parts.empty()) {
+    if (shape.surface) {
+      t = make_surface_template(shape.surface, fixed);
+    } else if (!shape.parts.empty()) {
       check_compound(shape.parts, label);
       t = make_compound_template(shape.parts, fixed);
     } else {
@@ -562,6 +565,8 @@ void WorldBuilder::check_explicit_bodies() const {
   SweepWorkspace sweep;
   std::vector<BodyPair> pairs;
   overlapping_pairs(boxes, sweep, pairs);
+  SurfaceScratch surface_scratch;
+  std::vector<SurfacePatchContact> patches;
   for (const auto& [i, j] : pairs) {  // i < j; reported as the explicit one of smaller index first
     if (!is_explicit[i] && !is_explicit[j]) continue;
     const Body& a = w.bodies[i];
@@ -570,10 +575,19 @@ void WorldBuilder::check_explicit_bodies() const {
     const Shape& sa = given_shapes_[a.shape];
     const Shape& sb = given_shapes_[b.shape];
     const Real tol = kStartOverlapRelTol * bounding_radius(is_explicit[i] ? sa : sb);
-    const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
-    if (pr.intersect && pr.depth > tol) {
+    const ShapeTemplate &ta = w.templates[a.shape], &tb = w.templates[b.shape];
+    Real depth = 0;
+    if (ta.surface_grain || tb.surface_grain) {  // the surfaces' patches (hulls may overlap: hooked rings)
+      if (!ta.surface || !tb.surface) continue;  // no volume: the run reports the pair
+      surface_patches(*ta.surface, poses[i], *tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches);
+      for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
+    } else {
+      const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
+      if (pr.intersect) depth = pr.depth;
+    }
+    if (depth > tol) {
       const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;
-      throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(pr.depth) +
+      throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(depth) +
                            " m at the start",
                        {first, second});
     }
@@ -590,10 +604,51 @@ void WorldBuilder::prepare_shapes() {
   for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
   for (std::size_t t = prepared_templates_; t < world_.templates.size(); ++t) {
     const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[t]];
+    if (world_.templates[t].surface_grain) continue;  // its hull only bounds it
     if (world_.templates[t].parts.empty()) {
       prepare_for_volume_law(world_.templates[t].shape, who, user[t]);
     } else {  // the hull stays: it only bounds the parts
       for (TemplatePart& part : world_.templates[t].parts) prepare_for_volume_law(part.shape, who, user[t]);
+    }
+  }
+}
+
+// In a world with surface grains every other template gets the closed
+// surface their contacts take: a solid polytope's hull triangles, a curved
+// shape's inscribed tessellation. Shapes without volume get none (their
+// contacts with surface grains stop the run as unsupported pairs), nor do
+// compounds, refused here.
+void WorldBuilder::prepare_surfaces() {
+  std::vector<ShapeTemplate>& templates = world_.templates;
+  if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return t.surface_grain; })) return;
+  std::vector<std::size_t> user(templates.size(), 0);
+  for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
+  for (std::size_t k = 0; k < templates.size(); ++k) {
+    ShapeTemplate& t = templates[k];
+    if (t.surface) continue;
+    const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[k]];
+    if (!t.parts.empty())
+      throw BuildError(who + ": compounds and surface grains cannot be in one world yet (make the compound a surface)",
+                       {static_cast<std::uint32_t>(user[k])});
+    Shape s = t.shape;
+    if (const auto* box = std::get_if<Box>(&s.core); box && solid_polytope(s)) {
+      std::vector<Vec3> corners;
+      for (int c = 0; c < 8; ++c)
+        corners.push_back({c & 1 ? box->half_extents.x : -box->half_extents.x,
+                           c & 2 ? box->half_extents.y : -box->half_extents.y,
+                           c & 4 ? box->half_extents.z : -box->half_extents.z});
+      s = Shape{make_polytope(corners)};
+    } else if (!solid_polytope(s)) {
+      if (s.margin == 0 && !std::holds_alternative<Ellipsoid>(s.core) && !std::holds_alternative<Cylinder>(s.core) &&
+          !std::holds_alternative<Cone>(s.core) && !std::holds_alternative<Superellipsoid>(s.core))
+        continue;  // no volume
+      s = Shape{tessellate(s, settings_.tessellation).polytope};
+    }
+    try {
+      t.surface = std::make_shared<const Surface>(polytope_surface(std::get<Polytope>(s.core)));
+    } catch (const SurfaceError& e) {
+      throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(),
+                       {static_cast<std::uint32_t>(user[k])});
     }
   }
 }
@@ -694,9 +749,10 @@ World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
   check_periodic_cell();
+  prepare_shapes();
+  prepare_surfaces();
   check_explicit_bodies();
   check_inflow_regions();
-  prepare_shapes();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);
   // Room for every body the inflows can insert: the bodies never move in memory.
   std::size_t room = world_.bodies.size();

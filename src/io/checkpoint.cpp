@@ -15,14 +15,14 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 5. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 6. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
     "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
     "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); BODY count, per body id(u64) shape(u32) "
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
-    "spring(3) twist roll(3); LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
+    "spring(3) twist roll(3) patch anchor(3); LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
     "length, bytes) time.";
 
 class Out {
@@ -182,7 +182,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
     for (const Vec3& d : p.gjk.dirs) o.vec(d);
     o.u32(static_cast<std::uint32_t>(p.gjk.size)), o.u32(static_cast<std::uint32_t>(p.gjk.hint_a));
     o.u32(static_cast<std::uint32_t>(p.gjk.hint_b));
-    o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll);
+    o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll), o.vec(p.anchor);
   }
   o.end(s);
   s = o.begin("LOGS");
@@ -306,14 +306,14 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   }
   in.close(end, "BOXS");
   end = in.section("PAIR");
-  std::vector<dem::PairState> pairs(in.count(2 * 8 + 4 + 12 * 8 + 3 * 4 + 7 * 8));
+  std::vector<dem::PairState> pairs(in.count(2 * 8 + 4 + 12 * 8 + 3 * 4 + 10 * 8));
   for (dem::PairState& p : pairs) {
     p.key.lo = in.u64(), p.key.hi = in.u64(), p.key.parts = in.u32();
     for (Vec3& d : p.gjk.dirs) d = in.vec();
     p.gjk.size = static_cast<int>(in.u32()), p.gjk.hint_a = static_cast<int>(in.u32());
     p.gjk.hint_b = static_cast<int>(in.u32());
     if (p.gjk.size < 0 || p.gjk.size > 4) in.fail("a warm start out of range");
-    p.history.spring = in.vec(), p.history.twist = in.real(), p.history.roll = in.vec();
+    p.history.spring = in.vec(), p.history.twist = in.real(), p.history.roll = in.vec(), p.anchor = in.vec();
   }
   for (std::size_t k = 1; k < pairs.size(); ++k)
     if (!(pairs[k - 1].key < pairs[k].key)) in.fail("pairs out of order");

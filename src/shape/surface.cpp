@@ -261,12 +261,24 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
 }
 
 Surface moved(const Surface& surface, const Transform& pose) {
-  Surface s = surface;
+  Surface s;
+  move_into(surface, pose, s);
+  return s;
+}
+
+void move_into(const Surface& surface, const Transform& pose, Surface& s) {
+  s = surface;
   for (Vec3& v : s.vertices) v = apply(pose, v);
   fit_boxes(s);
   refit_box_tree(s.tree, s.triangle_boxes);
   s.box = s.tree.nodes[0].box;
-  return s;
+}
+
+Surface polytope_surface(const Polytope& polytope) {
+  const PolytopeData& d = *polytope.data;
+  if (d.triangles.empty()) throw SurfaceError("a flat polytope bounds no solid");
+  return make_surface(std::vector<Vec3>(d.vertices.begin(), d.vertices.end()),
+                      std::vector<TriangleIndices>(d.triangles.begin(), d.triangles.end()));
 }
 
 MassProperties mass_properties(const Surface& s) {

@@ -58,6 +58,9 @@ TEST(SurfaceOverlap, MatchesConvexClippingOnRandomHulls) {
       EXPECT_NEAR(length(got.centroid - expected.centroid), 0, 1e-9) << n;
       EXPECT_NEAR(length(got.area_a - expected.area_a), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
       EXPECT_NEAR(length(got.area_a + got.area_b), 0, 1e-9 * length(expected.area_a) + 1e-12) << n;
+      // The first moment of S_A (Feng's line of action and couple).
+      EXPECT_NEAR(length(got.area_moment_a - expected.moment_a), 0, 1e-9 * (length(expected.moment_a) + length(expected.area_a)) + 1e-12) << n;
+      EXPECT_NEAR(length(got.patches[0].area_moment_a - got.area_moment_a), 0, 1e-12 * length(expected.area_a) + 1e-15) << n;
     }
   }
   EXPECT_GT(overlapping, 50);

@@ -1,6 +1,7 @@
 #pragma once
 // Closed surfaces for tests: boxes and an L-shaped prism, as vertex and
 // triangle lists (outward, counter-clockwise from outside).
+#include <cmath>
 #include <vector>
 
 #include "gjkdem/shape/surface.hpp"
@@ -45,6 +46,26 @@ inline Mesh l_prism(Real height) {
 inline Mesh u_prism(Real height) {
   return prism({{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
                {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {0, 4, 5}, {0, 5, 7}, {5, 6, 7}}, 0, height);
+}
+
+/// A torus about the z axis: the circle of radius `major` in the xy-plane
+/// swept by a tube of radius `minor`, `around` by `across` quads.
+inline Mesh torus(Real major, Real minor, int around, int across) {
+  Mesh m;
+  const Real tau = 6.283185307179586;
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      const Real u = tau * i / around, v = tau * j / across;
+      m.vertices.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
+                            minor * std::sin(v)});
+    }
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>((i % around) * across + j % across); };
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return m;
 }
 
 /// Adds b's triangles to a (b's vertices appended; with `weld`, b's

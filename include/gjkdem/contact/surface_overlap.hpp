@@ -27,6 +27,7 @@ struct SurfacePatch {
   Real volume = 0;
   Vec3 centroid;
   Vec3 area_a, area_b;  ///< S_A(P), S_B(P): as SurfaceOverlap's, over this piece
+  Vec3 area_moment_a;   ///< M_A(P): as SurfaceOverlap's, over this piece
 };
 
 struct SurfaceOverlap {
@@ -38,6 +39,11 @@ struct SurfaceOverlap {
   /// area_a = -area_b, and normalize(area_a - area_b) is the contact normal
   /// from A towards B.
   Vec3 area_a, area_b;
+  /// The first moment of area_a about the frame's origin, the integral of
+  /// x cross n over A's part of the boundary: a uniform pressure on it pushes
+  /// with area_a and turns with area_moment_a (Feng's line of action and
+  /// twisting couple, overlap.hpp).
+  Vec3 area_moment_a;
   /// The pieces of A ∩ B, largest first; pieces smaller than
   /// kPatchMinRelVolume of the smaller solid are left out (slivers of faces
   /// that only touch).
@@ -45,10 +51,13 @@ struct SurfaceOverlap {
 };
 
 /// Scratch of surface_overlap, kept between calls so that its memory is
-/// reused (one per thread; nothing in it outlives a call).
+/// reused (one per thread; nothing in it outlives a call, so a copy starts
+/// empty).
 struct SurfaceOverlapWorkspace {
   SurfaceOverlapWorkspace();
   ~SurfaceOverlapWorkspace();
+  SurfaceOverlapWorkspace(const SurfaceOverlapWorkspace&);
+  SurfaceOverlapWorkspace& operator=(const SurfaceOverlapWorkspace&);
   SurfaceOverlapWorkspace(SurfaceOverlapWorkspace&&) noexcept;
   SurfaceOverlapWorkspace& operator=(SurfaceOverlapWorkspace&&) noexcept;
   struct Scratch;

@@ -5,6 +5,7 @@
 // between MPI ranks as it is. What a contact remembers between
 // steps lives in the world's pair store (pair_state.hpp), not in the bodies.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 #include <type_traits>
@@ -12,6 +13,7 @@
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
+#include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::dem {
 
@@ -42,6 +44,15 @@ struct ShapeTemplate {
   /// `shape` is the hull of its parts, used only where a bound will do
   /// (placing bodies, overlap checks).
   std::vector<TemplatePart> parts;
+  /// A surface grain (a closed triangle surface, convex or not): its contacts
+  /// are the patches of the overlap of surfaces (surface_contact.hpp) and
+  /// `shape` is its convex hull, used only where a bound will do.
+  bool surface_grain = false;
+  /// The closed surface contacts with surface grains take: a surface grain's
+  /// own, or a convex template's boundary (its polytope, or its inscribed
+  /// tessellation when curved) in a world with surface grains; null otherwise.
+  /// In the shape's frame.
+  std::shared_ptr<const Surface> surface;
 };
 
 /// A template for a moving particle (throws std::invalid_argument for shapes
@@ -57,6 +68,10 @@ ShapeTemplate make_wall_template(const Shape& shape);
 /// part without volume) or fixed (no mass). Parts must not overlap: the
 /// builder checks it.
 ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fixed);
+
+/// A surface grain, moving (exact mass properties of its solid) or fixed (no
+/// mass: a bowl, a peg).
+ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed);
 
 
 

@@ -16,7 +16,8 @@
 namespace gjkdem::dem {
 
 /// The ids of a pair, smaller first (a plane wall's id is above every body's),
-/// and for compounds the parts in contact: lo's part << 16 | hi's part.
+/// and for compounds the parts in contact: lo's part << 16 | hi's part; for
+/// surface grains the patch's slot (surface_contact.hpp).
 struct PairKey {
   std::uint64_t lo = 0, hi = 0;
   std::uint32_t parts = 0;
@@ -41,6 +42,9 @@ struct PairState {
   PairKey key;
   GjkCache gjk;         ///< warm start (body pairs)
   PairHistory history;  ///< zero while the pair does not touch
+  /// A patch of surface grains: its centroid in the shape frame of the body
+  /// of lower id, where the next step looks for it (surface_contact.hpp).
+  Vec3 anchor;
 };
 
 /// Makes `states` follow the sorted `keys`: entries of pairs still listed

@@ -15,6 +15,7 @@
 #include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/dem/pair_state.hpp"
+#include "gjkdem/dem/surface_contact.hpp"
 
 namespace gjkdem::dem {
 
@@ -26,8 +27,10 @@ struct StepContact {
   std::uint16_t part_a = 0, part_b = 0;  ///< of compounds (0 otherwise)
   std::uint8_t image = kNoImage;  ///< periodic worlds: b's image (periodic.hpp: b moved by image_shift)
   bool a_is_plane = false;
+  bool surface = false;     ///< a surface grain's: one patch, its geometry found by expand_surface_contacts
   bool active = false;      ///< touching, after merging the contacts of a wall
   ContactGeometry geometry;
+  Vec3 anchor;              ///< surface patches: PairState::anchor now
   // Force law.
   Vec3 force;               ///< on b
   Vec3 torque;              ///< on b, about the world origin
@@ -67,6 +70,12 @@ struct StepWorkspace {
   std::vector<StepContact> contacts; ///< sorted by pair key, aligned with World::pairs (outputs read the last evaluation's)
   std::vector<PairKey> keys;         ///< the contacts' keys
   std::vector<OverlapWorkspace> overlap;  ///< clipping buffers, one per thread
+  std::vector<SurfaceScratch> surface;    ///< surface grains' buffers, one per thread
+  std::vector<std::uint32_t> surface_listed;                   ///< contacts of surface grains before expansion
+  std::vector<std::vector<SurfacePatchContact>> surface_found; ///< and their patches
+  std::vector<GeometryStatus> surface_status;                  ///< and whether they could be found
+  std::vector<StepContact> expanded;      ///< the contact list being expanded (swapped with contacts)
+  std::vector<PairKey> expanded_keys;
   std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies
   std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep (and their periodic images)
   std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box

@@ -9,6 +9,7 @@
 // tests, benchmarks and Python all build worlds through it.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <limits>
 #include <optional>
 #include <random>
@@ -78,6 +79,10 @@ struct BodyShape {
   /// in the shape's frame; `shape` is then ignored. Parts may touch, not
   /// overlap (checked); contacts are found part against part.
   std::vector<PlacedShape> parts{};
+  /// Non-null: a surface grain of this closed surface (shape/surface.hpp:
+  /// make_surface checked it), in the shape's frame; `shape` and `parts` are
+  /// then ignored.
+  std::shared_ptr<const Surface> surface{};
 };
 
 /// The most parts of a compound (part indices key the pair store in 16 bits).
@@ -210,6 +215,7 @@ class WorldBuilder {
   void drive(std::uint32_t body, std::uint32_t motion);
   void check_explicit_bodies() const;
   void prepare_shapes();
+  void prepare_surfaces();
   void check_periodic_cell();
   void check_inflow_regions() const;
   void prepare_for_volume_law(Shape& shape, const std::string& who, std::size_t user) const;

@@ -18,6 +18,7 @@
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/box_tree.hpp"
+#include "gjkdem/shape/polytope.hpp"
 
 namespace gjkdem {
 
@@ -53,6 +54,13 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
 /// boxes in the new frame; the tree's shape and everything checked kept):
 /// to compare two surfaces posed apart, move one into the other's frame.
 Surface moved(const Surface& surface, const Transform& pose);
+/// The same into `into`, whose memory is reused (a step's scratch).
+void move_into(const Surface& surface, const Transform& pose, Surface& into);
+
+/// The boundary of a solid polytope (its hull triangles) as a surface: a
+/// convex body as a surface grain's contacts see it. Throws SurfaceError for
+/// a flat polytope.
+Surface polytope_surface(const Polytope& polytope);
 
 /// Volume, centroid and inertia (per unit density) of the solid, exactly
 /// from its triangles (the divergence theorem).

@@ -1,0 +1,62 @@
+#pragma once
+// Contacts of surface grains (body.hpp, ShapeTemplate::surface_grain): the
+// overlap of two closed surfaces, or of one and a plane wall, split into its
+// connected pieces, the patches (contact/surface_overlap.hpp,
+// contact/surface_half_space.hpp). Each patch is a contact of its own, with
+// the convex overlap's geometry restricted to it: the volume, the normal
+// along its vector area S_A, Feng's line of action from S_A and its first
+// moment, and the equivalent depth V / |S_A| (the mean depth over the contact
+// area) that the Hertz and linear laws take (docs/contact.md).
+//
+// A patch keeps its springs from step to step by its slot, the last field of
+// its pair key: each patch found now takes the slot of the nearest patch of
+// the same pair last step (its anchor: its centroid in the shape frame of
+// the body of lower id, kept in the pair store) when that lies within
+// kPatchMatchRel of the smaller body's size; the others take the smallest
+// free slots. Two hooked rings keep two contacts whose springs never swap.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gjkdem/contact/surface_overlap.hpp"
+#include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/contact_geometry.hpp"
+#include "gjkdem/dem/material.hpp"
+
+namespace gjkdem::dem {
+
+/// One thread's scratch for surface contacts (memory reused from call to call).
+struct SurfaceScratch {
+  SurfaceOverlapWorkspace overlap;
+  Surface moved;                       ///< the surface of fewer vertices, in the other's frame
+  std::vector<Real> depth;             ///< per vertex, against a plane
+  std::vector<std::uint32_t> piece;
+};
+
+struct SurfacePatchContact {
+  ContactGeometry geometry;  ///< normal a -> b
+  Vec3 centroid;             ///< of the patch's volume, world
+};
+
+/// The patches of two placed surfaces, largest first.
+void surface_patches(const Surface& a, const Transform& pose_a, const Surface& b, const Transform& pose_b,
+                     ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
+
+/// The patches of a placed surface (b) beyond a plane wall (a), largest
+/// first. Returns false when the whole surface lies beyond the plane (the
+/// body went through: no cut face can push it back).
+bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
+                           SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
+
+/// Slots for one pair's patches: `anchors` of the patches now; `last` the
+/// slots and anchors of its patches last step. Nearest pairs first, a patch
+/// within `reach` of a last anchor takes its slot; the others take the
+/// smallest slots left. `slots` gets one per anchor.
+struct PatchAnchor {
+  std::uint32_t slot;
+  Vec3 anchor;
+};
+void match_patch_slots(std::span<const Vec3> anchors, std::span<const PatchAnchor> last, Real reach,
+                       std::vector<std::uint32_t>& slots);
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,103 @@
+#include "gjkdem/dem/surface_contact.hpp"
+
+#include <algorithm>
+#include <tuple>
+
+#include "gjkdem/contact/surface_half_space.hpp"
+
+namespace gjkdem::dem {
+
+void surface_patches(const Surface& a, const Transform& pose_a, const Surface& b, const Transform& pose_b,
+                     ContactModel model, SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
+  out.clear();
+  // The surface of fewer vertices moves into the other's frame: fewer to move,
+  // and coordinates stay near that frame's origin, far from the world's.
+  const bool move_a = a.vertices.size() < b.vertices.size();
+  const Transform& frame = move_a ? pose_b : pose_a;
+  move_into(move_a ? a : b, move_a ? relative(pose_b, pose_a) : relative(pose_a, pose_b), s.moved);
+  const SurfaceOverlap o = move_a ? surface_overlap(s.moved, b, s.overlap) : surface_overlap(a, s.moved, s.overlap);
+  for (const SurfacePatch& p : o.patches) {
+    const Vec3 area_a = apply_rotation(frame, p.area_a);
+    ContactGeometry g;
+    g.area = length(area_a);
+    if (!(g.area > 0)) continue;  // faces that only lie on each other
+    g.status = GeometryStatus::Touching;
+    g.normal = area_a / g.area;
+    g.volume = p.volume;
+    g.depth = p.volume / g.area;
+    const Vec3 centroid = apply(frame, p.centroid);
+    if (model == ContactModel::Volume) {
+      // Feng's line of action (as for convex overlaps, narrow_phase.cpp),
+      // level with the centroid; the moment keeps the twisting couple.
+      const Vec3 moment_a = apply_rotation(frame, p.area_moment_a) + cross(frame.translation, area_a);
+      const Vec3 line = cross(area_a, moment_a) / dot(area_a, area_a);
+      g.point = line + g.normal * dot(centroid - line, g.normal);
+      g.moment = moment_a / g.area;
+    } else {
+      g.point = centroid;
+      g.moment = cross(g.point, g.normal);
+    }
+    out.push_back({g, centroid});
+  }
+}
+
+bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
+                           SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
+  out.clear();
+  const SurfaceHalfSpace h = surface_half_space(b, apply_inverse(pose_b, wall.point),
+                                                apply_inverse_rotation(pose_b, wall.normal), s.depth, s.piece);
+  if (h.submerged) return false;
+  for (const HalfSpacePiece& p : h.pieces) {
+    if (!(p.cut_area > 0)) continue;
+    ContactGeometry g;
+    g.status = GeometryStatus::Touching;
+    g.normal = wall.normal;
+    g.area = p.cut_area;
+    g.volume = p.volume;
+    g.depth = p.volume / p.cut_area;
+    g.depth_integral = p.depth_integral;
+    const Vec3 centroid = apply(pose_b, p.centroid);
+    // On the wall, below the centroid of the piece (as for convex bodies).
+    g.point = model == ContactModel::Volume ? centroid + wall.normal * dot(wall.point - centroid, wall.normal)
+                                            : centroid;
+    g.moment = cross(g.point, g.normal);
+    out.push_back({g, centroid});
+  }
+  return true;
+}
+
+void match_patch_slots(std::span<const Vec3> anchors, std::span<const PatchAnchor> last, Real reach,
+                       std::vector<std::uint32_t>& slots) {
+  constexpr std::uint32_t kNone = ~0u;
+  slots.assign(anchors.size(), kNone);
+  struct Candidate {
+    Real distance;
+    std::uint32_t now, before;
+  };
+  std::vector<Candidate> near;
+  for (std::uint32_t i = 0; i < anchors.size(); ++i)
+    for (std::uint32_t j = 0; j < last.size(); ++j) {
+      const Real d = length(anchors[i] - last[j].anchor);
+      if (d <= reach) near.push_back({d, i, j});
+    }
+  std::sort(near.begin(), near.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.distance, x.now, x.before) < std::tie(y.distance, y.now, y.before);
+  });
+  std::vector<bool> taken(last.size(), false);
+  std::vector<std::uint32_t> used;
+  for (const Candidate& c : near)
+    if (slots[c.now] == kNone && !taken[c.before]) {
+      slots[c.now] = last[c.before].slot;
+      taken[c.before] = true;
+      used.push_back(last[c.before].slot);
+    }
+  std::sort(used.begin(), used.end());
+  std::uint32_t next = 0;
+  for (std::uint32_t& slot : slots) {
+    if (slot != kNone) continue;
+    while (std::binary_search(used.begin(), used.end(), next)) ++next;
+    slot = next++;
+  }
+}
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,120 @@
+// The contacts of surface grains: one per patch (stages.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "parallel.hpp"
+#include "stages.hpp"
+#include "gjkdem/tolerances.hpp"
+
+namespace gjkdem::dem::detail {
+namespace {
+
+bool of_surface_grain(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
+  return templates[bodies[c.b].shape].surface_grain || (!c.a_is_plane && templates[bodies[c.a].shape].surface_grain);
+}
+
+// The patches of one listed contact, or why there are none to find.
+GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                            std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
+                            const StepContact& c, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
+  out.clear();
+  const Body& b = bodies[c.b];
+  const ShapeTemplate& tb = templates[b.shape];
+  if (!tb.surface) return GeometryStatus::Unsupported;
+  Transform pose_b = shape_pose(tb, b);
+  pose_b.translation += image_shift_of(cell, c);
+  if (c.a_is_plane)
+    return plane_surface_patches(planes[c.a], *tb.surface, pose_b, model, scratch, out) ? GeometryStatus::Touching
+                                                                                        : GeometryStatus::Through;
+  const Body& a = bodies[c.a];
+  const ShapeTemplate& ta = templates[a.shape];
+  if (!ta.surface) return GeometryStatus::Unsupported;
+  surface_patches(*ta.surface, shape_pose(ta, a), *tb.surface, pose_b, model, scratch, out);
+  return GeometryStatus::Touching;
+}
+
+// How far a patch may have moved and still be the same: kPatchMatchRel of
+// the smaller moving body's equivalent radius.
+Real match_reach(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
+  Real size = templates[bodies[c.b].shape].curvature_radius;
+  if (!c.a_is_plane) size = std::fmin(size, templates[bodies[c.a].shape].curvature_radius);
+  return kPatchMatchRel * size;
+}
+
+}  // namespace
+
+void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
+                             std::span<const PairState> last, int threads, StepWorkspace& work) {
+  std::vector<StepContact>& contacts = work.contacts;
+  std::vector<std::uint32_t>& listed = work.surface_listed;
+  listed.clear();
+  for (std::uint32_t k = 0; k < contacts.size(); ++k)
+    if (of_surface_grain(bodies, templates, contacts[k])) listed.push_back(k);
+  if (listed.empty()) return;
+  if (static_cast<int>(work.surface.size()) < threads) work.surface.resize(threads);
+  if (work.surface_found.size() < listed.size()) work.surface_found.resize(listed.size());
+  work.surface_status.resize(listed.size());
+  const std::int64_t n = static_cast<std::int64_t>(listed.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) if (n >= 8)
+  for (std::int64_t i = 0; i < n; ++i)
+    work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
+                                          work.surface[thread_id()], work.surface_found[i]);
+
+  // The list again, each listed contact replaced by its patches in slot order.
+  std::vector<StepContact>& out = work.expanded;
+  std::vector<PairKey>& keys = work.expanded_keys;
+  out.clear(), keys.clear();
+  std::vector<Vec3> anchors;
+  std::vector<PatchAnchor> before;
+  std::vector<std::uint32_t> slots, order;
+  std::size_t next = 0;
+  for (std::uint32_t k = 0; k < contacts.size(); ++k) {
+    const StepContact& c = contacts[k];
+    if (next == listed.size() || listed[next] != k) {
+      out.push_back(c), keys.push_back(work.keys[k]);
+      continue;
+    }
+    const GeometryStatus status = work.surface_status[next];
+    const std::vector<SurfacePatchContact>& patches = work.surface_found[next];
+    ++next;
+    if (status != GeometryStatus::Touching) {
+      StepContact stop = c;
+      stop.surface = true;
+      stop.geometry.status = status;
+      out.push_back(stop), keys.push_back(work.keys[k]);
+      continue;
+    }
+    if (patches.empty()) continue;
+    // Anchors in the shape frame of the body of lower id: a for two bodies
+    // (bodies are in id order, a < b), the body for a plane wall.
+    const Body& lo = c.a_is_plane ? bodies[c.b] : bodies[c.a];
+    const Transform frame = shape_pose(templates[lo.shape], lo);
+    anchors.clear();
+    for (const SurfacePatchContact& p : patches) anchors.push_back(apply_inverse(frame, p.centroid));
+    const PairKey key = work.keys[k];
+    before.clear();
+    for (auto it = std::lower_bound(last.begin(), last.end(), key,
+                                    [](const PairState& s, const PairKey& x) { return s.key < x; });
+         it != last.end() && it->key.lo == key.lo && it->key.hi == key.hi; ++it)
+      before.push_back({it->key.parts, it->anchor});
+    match_patch_slots(anchors, before, match_reach(bodies, templates, c), slots);
+    order.resize(patches.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return slots[x] < slots[y]; });
+    for (std::uint32_t i : order) {
+      StepContact patch = c;
+      patch.surface = true;
+      patch.geometry = patches[i].geometry;
+      patch.active = true;
+      patch.anchor = anchors[i];
+      out.push_back(patch);
+      keys.push_back({key.lo, key.hi, slots[i]});
+    }
+  }
+  contacts.swap(out);
+  work.keys.swap(keys);
+}
+
+}  // namespace gjkdem::dem::detail

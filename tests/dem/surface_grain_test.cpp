@@ -1,0 +1,187 @@
+// Surface grains in the engine (dem/surface_contact.hpp): a closed surface
+// taken as it is, its contacts the patches of the overlap.
+// - A surface cube and a convex cube push the same on a plane and on a
+//   block (no seam: the same solid).
+// - A U-shaped grain stands on both feet: two patches, level and at rest.
+// - A ring threaded on a peg hangs from it and stays.
+// - Two surface grains collide under the potential form with their energy.
+// - Patch slots: a patch keeps its slot as it moves; a new one takes a free one.
+// - The same bits on one thread and two.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "gjkdem/dem/surface_contact.hpp"
+#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
+#include "shape/surface_shapes.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+std::shared_ptr<const Surface> shared(const test::Mesh& m) {
+  return std::make_shared<const Surface>(test::surface_of(m));
+}
+
+test::Mesh scaled(test::Mesh m, Real s, const Vec3& shift = {}) {
+  for (Vec3& v : m.vertices) v = v * s + shift;
+  return m;
+}
+
+WorldSettings volume_settings() {
+  WorldSettings s;
+  s.model = ContactModel::Volume;
+  s.volume_stiffness = 1e9;
+  return s;
+}
+
+TEST(SurfaceGrain, CubePushesAsAConvexCubeOnAPlaneAndABlock) {
+  for (int on_block = 0; on_block < 2; ++on_block) {
+    Vec3 force[2], torque[2];
+    for (int surface = 0; surface < 2; ++surface) {
+      WorldBuilder builder(volume_settings());
+      const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+      if (on_block) builder.add_body({.shape = {Shape{Box{{0.05, 0.05, 0.01}}}, {}}, .material = rock,
+                                      .position = {0, 0, -0.01}, .fixed = true});
+      else builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+      BodyShape cube;
+      if (surface) cube.surface = shared(test::box_surface({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}));
+      else cube.shape = Shape{Box{{0.01, 0.01, 0.01}}};
+      builder.add_body({.shape = cube, .material = rock, .position = {0, 0, 0.011}});
+      World w = builder.build();
+      Body& b = w.bodies.back();  // tilted a little into the floor
+      b.orientation = normalized(Quat{1, 0.02, -0.03, 0.01});
+      b.position = {0.001, 0.002, 0.0095};
+      b.velocity = {0.01, 0, -0.02};
+      ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok);
+      force[surface] = b.force, torque[surface] = b.torque;
+      EXPECT_EQ(w.stats.contacts, 1) << on_block;
+    }
+    EXPECT_GT(length(force[0]), 1e-3);
+    EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0])) << on_block;
+    EXPECT_LT(length(torque[1] - torque[0]), 1e-9 * length(force[0]) * 0.01) << on_block;
+  }
+}
+
+TEST(SurfaceGrain, UStandsOnBothFeet) {
+  WorldSettings settings = volume_settings();
+  WorldBuilder builder(settings);
+  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+  builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  // The U's arms point down (-z): its prism axis along y.
+  test::Mesh u = scaled(test::u_prism(1), 0.01);
+  for (Vec3& v : u.vertices) v = {v.x, v.z, -v.y};
+  BodyShape shape;
+  shape.surface = shared(u);
+  builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.0201}});
+  World w = builder.build();
+  const Real dt = 2e-5;
+  for (int i = 0; i < 20000; ++i) ASSERT_EQ(step(w, dt).status, StepStatus::Ok) << i;
+  const Body& b = w.bodies[0];
+  EXPECT_EQ(w.stats.contacts, 2);  // one patch per foot
+  EXPECT_LT(length(b.velocity), 1e-4);
+  // Level: the U's up axis still up.
+  const Quat q = shape_orientation(w.templates[b.shape], b);
+  EXPECT_GT(rotate(q, Vec3{0, 0, 1}).z, 1 - 1e-6);
+}
+
+TEST(SurfaceGrain, RingHangsOnAPeg) {
+  WorldSettings settings = volume_settings();
+  WorldBuilder builder(settings);
+  const std::uint32_t steel = builder.add_material({"steel", 7800, 1e7, 0.25, 0.3, 0.5});
+  builder.add_body({.shape = {Shape{Box{{0.03, 0.004, 0.004}}}, {}}, .material = steel,
+                    .position = {0, 0, 0}, .fixed = true});
+  BodyShape ring;
+  ring.surface = shared(test::torus(0.02, 0.004, 32, 12));
+  // Threaded on the peg (along x): the ring in the yz-plane, its inner rim
+  // (radius 16 mm) clear of the peg's corners; it falls onto the two top
+  // edges, where it hangs at a centre height of -sqrt(16^2 - 4^2) + 4 mm.
+  const Quat upright = normalized(Quat{1, 0, 1, 0});  // z -> x
+  builder.add_body({.shape = ring, .material = steel, .position = {0, 0, -0.0112}, .rotation = upright});
+  World w = builder.build();
+  const Real dt = 2e-5;
+  for (int i = 0; i < 15000; ++i) ASSERT_EQ(step(w, dt).status, StepStatus::Ok) << i;
+  const Body& b = w.bodies[1];
+  EXPECT_EQ(w.stats.contacts, 2);  // one patch per edge
+  EXPECT_LT(length(b.velocity), 1e-3);
+  // Lower by the polygonal rim (0.08 mm) and the dents the edges make (about
+  // 0.2 mm at this stiffness); a ring that slipped off would be far below.
+  EXPECT_NEAR(b.position.z, 0.004 - std::sqrt(0.016 * 0.016 - 0.004 * 0.004), 5e-4);
+  EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b));  // the peg holds its weight
+  EXPECT_LT(std::fabs(b.position.x), 1e-3);
+}
+
+TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {
+  for (int trial = 0; trial < 3; ++trial) {
+    WorldSettings settings = volume_settings();
+    settings.volume_form = VolumeForm::Potential;
+    settings.rocking_resistance = false;
+    settings.gravity = {};
+    settings.volume_stiffness = 1e10;
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 1.0, 0});
+    BodyShape l;
+    l.surface = shared(scaled(test::l_prism(1), 0.01, {-0.01, -0.01, -0.005}));
+    builder.add_body({.shape = l, .material = rock, .position = {-0.0155, 0, 0}});
+    builder.add_body({.shape = l, .material = rock, .position = {0.0155, 0.001 * trial, 0.002 * trial},
+                      .rotation = normalized(Quat{1, 0.3 * trial, 0.2, 1})});
+    World w = builder.build();
+    w.bodies[0].velocity = {0.5, 0, 0};
+    w.bodies[1].velocity = {-0.5, 0, 0};
+    const Real e0 = kinetic_energy(w);
+    bool touched = false, parted = false;
+    for (int i = 0; i < 400000 && !parted; ++i) {
+      ASSERT_EQ(step(w, 2e-7).status, StepStatus::Ok);
+      touched = touched || w.stats.contacts > 0;
+      parted = touched && w.stats.contacts == 0;
+    }
+    ASSERT_TRUE(parted) << trial;
+    EXPECT_NEAR(kinetic_energy(w) / e0, 1, 1e-6) << trial;
+    std::ostringstream error;
+    error << kinetic_energy(w) / e0 - 1;
+    RecordProperty("energy_error_" + std::to_string(trial), error.str());
+  }
+}
+
+TEST(SurfaceGrain, PatchSlotsFollowThePatches) {
+  std::vector<std::uint32_t> slots;
+  const std::vector<PatchAnchor> last{{0, {0, 0, 0}}, {3, {1, 0, 0}}};
+  // Moved a little and listed the other way round: each keeps its slot.
+  match_patch_slots(std::vector<Vec3>{{1.01, 0, 0}, {0.01, 0, 0}}, last, 0.1, slots);
+  EXPECT_EQ(slots, (std::vector<std::uint32_t>{3, 0}));
+  // A new patch far from both takes the smallest free slot.
+  match_patch_slots(std::vector<Vec3>{{5, 0, 0}, {0, 0.01, 0}}, last, 0.1, slots);
+  EXPECT_EQ(slots, (std::vector<std::uint32_t>{1, 0}));
+  // Two patches near one old one: the nearer keeps it.
+  match_patch_slots(std::vector<Vec3>{{0.05, 0, 0}, {0.02, 0, 0}}, last, 0.1, slots);
+  EXPECT_EQ(slots, (std::vector<std::uint32_t>{1, 0}));
+}
+
+TEST(SurfaceGrain, SameBitsOnOneThreadAndTwo) {
+  Body result[2][4];
+  for (int threads = 1; threads <= 2; ++threads) {
+    WorldSettings settings = volume_settings();
+    settings.threads = threads;
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+    BodyShape l;
+    l.surface = shared(scaled(test::l_prism(1), 0.01, {-0.01, -0.01, -0.005}));
+    for (int k = 0; k < 4; ++k)
+      builder.add_body({.shape = l, .material = rock, .position = {0.004 * (k % 2), 0.003 * k, 0.01 + 0.025 * k},
+                        .rotation = normalized(Quat{1, 0.1 * k, 0.2, 0.3 * k})});
+    World w = builder.build();
+    for (int i = 0; i < 3000; ++i) ASSERT_EQ(step(w, 5e-5).status, StepStatus::Ok);
+    EXPECT_GT(w.stats.contacts, 0);
+    for (int k = 0; k < 4; ++k) result[threads - 1][k] = w.bodies[k];
+  }
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(result[0][k].position, result[1][k].position) << k;
+    EXPECT_EQ(result[0][k].angular_momentum, result[1][k].angular_momentum) << k;
+  }
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
