@@ -226,8 +226,8 @@ ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
   else if (!out.convex)
     out.warnings.push_back(name + ": the mesh is not convex (volume " + std::to_string(std::fabs(mesh_volume)) +
                            ", hull " + std::to_string(hull_volume) + "): using its convex hull" +
-                           (mesh.object_begin.size() <= 1 ? " (for the grain's true shape, split it into convex parts "
-                                                            "and give them as a compound, docs/scenes.md)"
+                           (mesh.object_begin.size() <= 1 ? " (for the grain's true shape give it as type \"surface\", "
+                                                            "docs/scenes.md)"
                                                           : ""));
   return out;
 }

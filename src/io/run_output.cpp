@@ -67,6 +67,16 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
 }
 
 DisplayMesh display_mesh(const dem::ShapeTemplate& t) {
+  if (t.surface_grain) {  // its own triangles, not its hull
+    DisplayMesh m;
+    m.vertices = t.surface->vertices;
+    m.polygon_begin.push_back(0);
+    for (const TriangleIndices& tri : t.surface->triangles) {
+      m.indices.insert(m.indices.end(), tri.begin(), tri.end());
+      m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
+    }
+    return m;
+  }
   if (t.parts.empty()) return display_mesh(t.shape);
   DisplayMesh m;
   for (const dem::TemplatePart& p : t.parts) {

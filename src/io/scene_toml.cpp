@@ -24,6 +24,7 @@
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
+#include "gjkdem/shape/surface.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "container_check.hpp"
 #include "size_mix.hpp"
@@ -324,6 +325,24 @@ class SceneBuilder {
     }
   }
 
+  // A closed mesh as it is (a surface grain), checked by make_surface; one
+  // surface per file and scale, shared by every body that names it.
+  std::shared_ptr<const Surface> mesh_surface(TableReader& r, Real scale) {
+    const std::filesystem::path file = file_of(r, "file");
+    std::shared_ptr<const Surface>& known = surfaces_[{file.string(), scale}];
+    if (known) return known;
+    try {
+      TriangleMesh mesh = read_mesh(file);
+      scale_mesh(r, mesh, scale);
+      known = std::make_shared<const Surface>(make_surface(std::move(mesh.vertices), std::move(mesh.triangles)));
+      return known;
+    } catch (const MeshError& e) {
+      r.fail("file", e.what());
+    } catch (const SurfaceError& e) {
+      r.fail("file", file.string() + " is not a closed surface a grain can have: " + e.what());
+    }
+  }
+
   // A compound's parts: SHAPE tables (`parts`) or the objects of a mesh file
   // (`file`, `scale`), each the convex hull of its triangles.
   std::vector<PlacedShape> compound_parts(TableReader& r, const toml::table& t) {
@@ -386,6 +405,10 @@ class SceneBuilder {
     } else if (type == "mesh") {
       const Real scale = r.positive("scale", 1.0);
       s.shape = Shape{mesh_hull(r, scale)};
+      r.finish();
+    } else if (type == "surface") {
+      const Real scale = r.positive("scale", 1.0);
+      s.surface = mesh_surface(r, scale);
       r.finish();
     } else if (type == "compound") {
       s.parts = compound_parts(r, *t);
@@ -580,6 +603,8 @@ class SceneBuilder {
         m.base_size = 2 * bounding_radius(m.base.shape);
         for (const PlacedShape& p : m.base.parts)  // a compound: of the sphere about its frame holding its parts
           m.base_size = std::fmax(m.base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));
+        if (m.base.surface)  // a surface grain: of the sphere about its frame holding its vertices
+          for (const Vec3& v : m.base.surface->vertices) m.base_size = std::fmax(m.base_size, 2 * length(v));
         if (!(m.base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
       }
       mix_parts.push_back(std::move(m));
@@ -767,6 +792,7 @@ class SceneBuilder {
   std::optional<dem::WorldBuilder> builder_;
   Json resolved_;
   std::set<std::string> names_;
+  std::map<std::pair<std::string, Real>, std::shared_ptr<const Surface>> surfaces_;  ///< by file and scale
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;

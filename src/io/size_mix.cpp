@@ -3,6 +3,7 @@
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
+#include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::io::detail {
 
@@ -28,12 +29,18 @@ SampledMix sample_mix(std::span<const MixPart> parts, std::span<const SizeClass>
           shape.shape = random_polyhedron(static_cast<int>(poly->vertices), draw(rng), rng);
         } else {
           const Real k = sized ? draw(rng) / part.base_size : 1;
-          shape = {scaled(part.base.shape, k), part.base.pose, part.base.parts};
+          shape = {scaled(part.base.shape, k), part.base.pose, part.base.parts, part.base.surface};
           shape.pose.translation *= k;
           for (PlacedShape& p : shape.parts) p.shape = scaled(p.shape, k), p.pose.translation *= k;
+          if (shape.surface && k != 1) {  // checked again: scaling rounds every vertex
+            std::vector<Vec3> vertices = shape.surface->vertices;
+            for (Vec3& v : vertices) v *= k;
+            shape.surface = std::make_shared<const Surface>(make_surface(std::move(vertices), shape.surface->triangles));
+          }
         }
-        volumes[c].push_back(shape.parts.empty() ? mass_properties(shape.shape).volume
-                                                 : mass_properties(shape.parts).volume);
+        volumes[c].push_back(shape.surface          ? shape.surface->volume
+                             : shape.parts.empty() ? mass_properties(shape.shape).volume
+                                                   : mass_properties(shape.parts).volume);
         mix.variants.push_back(std::move(shape));
       }
     }
