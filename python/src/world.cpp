@@ -29,18 +29,28 @@
 namespace gjkdem::py_bind {
 namespace {
 
-// A gjkdem.Shape or a sequence of them, as the builder's variants.
-std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
-  std::vector<dem::BodyShape> out;
-  if (py::isinstance<PyShape>(shapes)) {
-    const PyShape& s = shapes.cast<const PyShape&>();
-    out.push_back({s.shape, s.offset, s.parts});
-    return out;
+// A gjkdem.Shape, or a gjkdem.Surface (a surface grain), as a body's shape.
+bool is_body_shape(const py::handle& shape) {
+  return py::isinstance<PyShape>(shape) || py::isinstance<Surface>(shape);
+}
+dem::BodyShape body_shape(const py::handle& shape, const char* what) {
+  if (py::isinstance<Surface>(shape)) {
+    dem::BodyShape s;
+    s.surface = shape.cast<std::shared_ptr<Surface>>();
+    return s;
   }
+  if (!py::isinstance<PyShape>(shape)) fail(what, "expected a gjkdem.Shape or a gjkdem.Surface");
+  const PyShape& s = shape.cast<const PyShape&>();
+  return {s.shape, s.offset, s.parts};
+}
+
+// A shape or a sequence of them, as the builder's variants.
+std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
+  if (is_body_shape(shapes)) return {body_shape(shapes, "shapes")};
+  std::vector<dem::BodyShape> out;
   for (const auto& item : shapes.cast<py::sequence>()) {
-    if (!py::isinstance<PyShape>(item)) fail("shapes", "expected a gjkdem.Shape or a list of them");
-    const PyShape& s = item.cast<const PyShape&>();
-    out.push_back({s.shape, s.offset, s.parts});
+    if (!is_body_shape(item)) fail("shapes", "expected a gjkdem.Shape or gjkdem.Surface, or a list of them");
+    out.push_back(body_shape(item, "shapes"));
   }
   return out;
 }
@@ -295,8 +305,7 @@ void bind_world(py::module_& m) {
              const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
              std::uint32_t motion, const std::string& label) {
             dem::WorldBuilder& b = self.cast<dem::WorldBuilder&>();
-            const PyShape& shape = shape_object.cast<const PyShape&>();
-            dem::BodyDef def{.shape = {shape.shape, shape.offset, shape.parts},
+            dem::BodyDef def{.shape = body_shape(shape_object, "shape"),
                              .material = material_index(b, material),
                              .position = to_vec3(position, "position"),
                              .rotation = to_quat(rotation, "rotation"),
@@ -308,7 +317,7 @@ void bind_world(py::module_& m) {
             // Moving bodies given one Shape object share one template, as a
             // scene's do: the builder keeps, per Shape object (held alive
             // here, so its id stays its own), the shared shape it made.
-            if (!fixed && shape.parts.empty()) {
+            if (!fixed && def.shape.parts.empty()) {
               if (!py::hasattr(self, "_shared_shapes")) self.attr("_shared_shapes") = py::dict();
               py::dict shared = self.attr("_shared_shapes");
               const py::int_ key(reinterpret_cast<std::uintptr_t>(shape_object.ptr()));

@@ -192,6 +192,73 @@ TEST(Scene, TinyRestitutionCalibrates) {
 }
 
 // Issue 11: a mesh scaled by 1e300 was accepted: refused, naming the key and line.
+// Surface grains (issue 30): bodies, generators (sized) and inflows take a
+// closed mesh as it is, sharing one surface per file and scale; a mesh that
+// is not closed, or faces inward, is refused naming the file and the edge.
+TEST(Scene, SurfaceGrainsComeFromClosedMeshes) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gjkdem_surface_scene";
+  std::filesystem::create_directories(dir);
+  // An L-shaped prism (non-convex), 8 mm thick.
+  {
+    std::ofstream obj(dir / "ell.obj");
+    const double xy[6][2] = {{0, 0}, {0.02, 0}, {0.02, 0.01}, {0.01, 0.01}, {0.01, 0.02}, {0, 0.02}};
+    for (double z : {0.0, 0.008})
+      for (const auto& p : xy) obj << "v " << p[0] - 0.008 << " " << p[1] - 0.008 << " " << z - 0.004 << "\n";
+    obj << "f 1 3 2\nf 1 4 3\nf 1 5 4\nf 1 6 5\nf 7 8 9\nf 7 9 10\nf 7 10 11\nf 7 11 12\n";
+    for (int i = 0; i < 6; ++i) {
+      const int j = (i + 1) % 6;
+      obj << "f " << i + 1 << " " << j + 1 << " " << j + 7 << "\nf " << i + 1 << " " << j + 7 << " " << i + 7 << "\n";
+    }
+    std::ofstream open(dir / "open.obj");  // an octahedron without its last face
+    open << "v 0.01 0 0\nv -0.01 0 0\nv 0 0.01 0\nv 0 -0.01 0\nv 0 0 0.01\nv 0 0 -0.01\n"
+            "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\n";
+    std::ofstream inward(dir / "inward.obj");  // a tetrahedron facing in
+    inward << "v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+  }
+  const std::string head = kHead + "[contact]\nmodel = \"volume\"\n" + kPlane;
+  Scene scene = load_scene(head + R"(
+[[body]]
+shape = { type = "surface", file = "ell.obj" }
+material = "rock"
+position = [0.0, 0.0, 0.05]
+[[generator]]
+count = 30
+shape = { type = "surface", file = "ell.obj" }
+sizes = [[0.02, 0.03, 1.0]]
+material = "rock"
+region = { min = [-0.2, -0.2, 0.1], max = [0.2, 0.2, 0.3] }
+[[inflow]]
+shape = { type = "surface", file = "ell.obj" }
+material = "rock"
+rate = 100.0
+region = { min = [-0.2, -0.2, 0.5], max = [0.2, 0.2, 0.6] }
+)", "test.toml", dir);
+  const dem::World& w = scene.world;
+  ASSERT_EQ(w.bodies.size(), 31u);
+  const dem::ShapeTemplate& body = w.templates[w.bodies[0].shape];
+  ASSERT_TRUE(body.surface_grain);
+  EXPECT_NEAR(body.unit_mass.volume, 3 * 1e-4 * 0.008, 1e-15);  // the L, not its hull (4 of 1e-4 m^2)
+  for (const dem::Body& b : w.bodies) {
+    const dem::ShapeTemplate& t = w.templates[b.shape];
+    ASSERT_TRUE(t.surface_grain);
+    Real size = 0;  // the diameter of the sphere about its frame holding it: in the size class
+    for (const Vec3& v : t.surface->vertices) size = std::fmax(size, 2 * length(v));
+    if (&b == &w.bodies[0]) continue;
+    EXPECT_GE(size, 0.02 * (1 - 1e-12));
+    EXPECT_LE(size, 0.03 * (1 + 1e-12));
+  }
+  ASSERT_EQ(w.inflows.size(), 1u);
+  EXPECT_TRUE(w.templates[w.inflows[0].templates[0]].surface_grain);
+  for (const auto& [file, what] : {std::pair{"open.obj", "edge"}, std::pair{"inward.obj", "inward"}}) {
+    const std::string message = refusal(head + "[[body]]\nshape = { type = \"surface\", file = \"" +
+                                        (dir / file).string() + "\" }\nmaterial = \"rock\"\n");
+    EXPECT_NE(message.find("body[0].shape.file"), std::string::npos) << message;
+    EXPECT_NE(message.find(file), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Scene, MeshScaledBeyondDoublesIsRefused) {
   const std::filesystem::path obj = std::filesystem::temp_directory_path() / "gjkdem_scene_test_tetra.obj";
   std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";

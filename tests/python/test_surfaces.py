@@ -117,3 +117,39 @@ def test_l_prisms_on_an_integer_grid_match_their_boxes():
         if volume > 0:
             assert np.allclose(o.centroid, moment / volume, atol=1e-12)
             assert sum(p["volume"] for p in o.patches) == pytest.approx(volume, abs=1e-12)
+
+
+def l_prism(scale):
+    """The L of [0,2]x[0,1] and [0,1]x[0,2], 1 thick, scaled, centred near the origin."""
+    outline = [(0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2)]
+    cap = [(0, 1, 2), (0, 2, 3), (0, 3, 4), (0, 4, 5)]
+    n = len(outline)
+    v = [(x, y, 0) for x, y in outline] + [(x, y, 1) for x, y in outline]
+    t = [f for a, b, c in cap for f in ((a, c, b), (a + n, b + n, c + n))]
+    t += [f for i in range(n) for f in ((i, (i + 1) % n, (i + 1) % n + n), (i, (i + 1) % n + n, i + n))]
+    return gjkdem.Surface((np.array(v, float) - [0.8, 0.8, 0.5]) * scale, np.array(t))
+
+
+def test_surface_grains_settle_on_a_floor_in_a_world():
+    s = gjkdem.Settings()
+    s.model = "volume"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("rock", density=2500, youngs_modulus=1e7, restitution=0.3, friction=0.5)
+    b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+    ell = l_prism(0.01)
+    for k in range(3):
+        b.add_body(ell, "rock", position=[0.002 * k, 0, 0.006 + 0.012 * k])
+    w = b.build()
+    assert w.template_count == 1  # one Surface object: one template
+    assert w.masses()[0] == pytest.approx(2500 * 3e-6, rel=1e-12)  # the L's volume, not its hull's
+    w.run(0.4, dt=5e-5)
+    assert np.all(np.linalg.norm(w.velocities, axis=1) < 1e-3)
+    assert np.all(w.positions[:, 2] > 0)  # resting on the floor, on each other
+    assert len(w.contacts()["forces"]) >= 3
+
+
+def test_surfaces_are_refused_where_they_cannot_go():
+    b = gjkdem.WorldBuilder()
+    b.add_material("rock", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="gjkdem.Shape or a gjkdem.Surface"):
+        b.add_body("not a shape", "rock")
