@@ -369,9 +369,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     const Vec3 &a0 = a.vertices[ts[0]], &a1 = a.vertices[ts[1]], &a2 = a.vertices[ts[2]];
     const Vec3 &b0 = b.vertices[tt[0]], &b1 = b.vertices[tt[1]], &b2 = b.vertices[tt[2]];
     bool on_a[3], on_b[3];  // corners on the other's plane exactly: edges there may lie along the other's edges
-    const int sides_a[3] = {perturbed_orient3d(b0, b1, b2, a0, Side::B, on_a[0]),
-                            perturbed_orient3d(b0, b1, b2, a1, Side::B, on_a[1]),
-                            perturbed_orient3d(b0, b1, b2, a2, Side::B, on_a[2])};
+    int sides_a[3], sides_b[3];
+    perturbed_orient3d_three(b0, b1, b2, {a0, a1, a2}, Side::B, sides_a, on_a);
     for (int k = 0; k < 3; ++k)
       if (on_a[k] && on_a[(k + 1) % 3]) {  // an edge of s in t's plane: t's edges may lie along it
         va.in_plane.push_back(a.triangle_edges[s][k]);
@@ -379,9 +378,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
       }
     if (on_a[0] && on_a[1] && on_a[2]) coplanar.emplace_back(s, t);
     if (sides_a[0] == sides_a[1] && sides_a[1] == sides_a[2]) return;  // s wholly on one side of t's plane
-    const int sides_b[3] = {perturbed_orient3d(a0, a1, a2, b0, Side::A, on_b[0]),
-                            perturbed_orient3d(a0, a1, a2, b1, Side::A, on_b[1]),
-                            perturbed_orient3d(a0, a1, a2, b2, Side::A, on_b[2])};
+    perturbed_orient3d_three(a0, a1, a2, {b0, b1, b2}, Side::A, sides_b, on_b);
     for (int k = 0; k < 3; ++k)
       if (on_b[k] && on_b[(k + 1) % 3]) vb.in_plane.push_back(b.triangle_edges[t][k]);
     if (sides_b[0] == sides_b[1] && sides_b[1] == sides_b[2]) return;  // t wholly on one side of s's plane

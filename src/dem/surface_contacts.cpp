@@ -30,7 +30,7 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
   if (!ta.surface) return GeometryStatus::Unsupported;
-  surface_patches(*ta.surface, shape_pose(ta, a), *tb.surface, pose_b, model, scratch, out);
+  surface_patches(ta.surface, shape_pose(ta, a), tb.surface, pose_b, model, scratch, out);
   return GeometryStatus::Touching;
 }
 

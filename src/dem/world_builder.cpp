@@ -579,7 +579,7 @@ void WorldBuilder::check_explicit_bodies() const {
     Real depth = 0;
     if (ta.surface_grain || tb.surface_grain) {  // the surfaces' patches (hulls may overlap: hooked rings)
       if (!ta.surface || !tb.surface) continue;  // no volume: the run reports the pair
-      surface_patches(*ta.surface, poses[i], *tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches);
+      surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches);
       for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
     } else {
       const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);

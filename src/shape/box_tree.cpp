@@ -74,15 +74,26 @@ void query_box_tree(const BoxTree& tree, const Aabb& box, std::vector<std::uint3
   }
 }
 
+namespace {
+
+// enclose() without the library's NaN rules (boxes here are finite): inline
+// compares, where fmin and fmax are calls; a moved surface refits every step.
+Aabb enclose_finite(const Aabb& a, const Aabb& b) noexcept {
+  return {{a.lo.x < b.lo.x ? a.lo.x : b.lo.x, a.lo.y < b.lo.y ? a.lo.y : b.lo.y, a.lo.z < b.lo.z ? a.lo.z : b.lo.z},
+          {a.hi.x > b.hi.x ? a.hi.x : b.hi.x, a.hi.y > b.hi.y ? a.hi.y : b.hi.y, a.hi.z > b.hi.z ? a.hi.z : b.hi.z}};
+}
+
+}  // namespace
+
 void refit_box_tree(BoxTree& tree, std::span<const Aabb> boxes) {
   for (std::size_t k = 0; k < tree.items.size(); ++k) tree.item_boxes[k] = boxes[tree.items[k]];
   for (std::size_t k = tree.nodes.size(); k-- > 0;) {  // children come after their parent
     BoxTree::Node& n = tree.nodes[k];
     if (n.count) {
       n.box = tree.item_boxes[n.first];
-      for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i) n.box = enclose(n.box, tree.item_boxes[i]);
+      for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i) n.box = enclose_finite(n.box, tree.item_boxes[i]);
     } else {
-      n.box = enclose(tree.nodes[n.left].box, tree.nodes[n.right].box);
+      n.box = enclose_finite(tree.nodes[n.left].box, tree.nodes[n.right].box);
     }
   }
 }

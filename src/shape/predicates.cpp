@@ -78,6 +78,24 @@ int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
   return abc == Side::B ? -n : n;
 }
 
+void perturbed_orient3d_three(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&d)[3], Side abc, int (&sign)[3],
+                              bool (&on_plane)[3]) {
+  // det[b - a, c - a, d - a] = (d - a) . n, n = (b - a) x (c - a): the same
+  // six triple products as orient3d's, so the same permanent and bound.
+  const Vec3 u = b - a, v = c - a;
+  const Real n1 = u.y * v.z, n2 = u.z * v.y, n3 = u.z * v.x, n4 = u.x * v.z, n5 = u.x * v.y, n6 = u.y * v.x;
+  const Vec3 n{n1 - n2, n3 - n4, n5 - n6};
+  const Vec3 bound{std::fabs(n1) + std::fabs(n2), std::fabs(n3) + std::fabs(n4), std::fabs(n5) + std::fabs(n6)};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 w = d[k] - a;
+    const Real det = w.x * n.x + w.y * n.y + w.z * n.z;
+    const Real permanent = std::fabs(w.x) * bound.x + std::fabs(w.y) * bound.y + std::fabs(w.z) * bound.z;
+    on_plane[k] = false;
+    if (std::fabs(det) > kFilterRelBound * permanent && permanent > kTinyPermanent) sign[k] = sign_of(det);
+    else sign[k] = perturbed_orient3d(a, b, c, d[k], abc, on_plane[k]);
+  }
+}
+
 int perturbed_orient3d_edges(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, Side pq) {
   if (const int o = orient3d(p, q, r, s)) return o;
   // Edge rs moved by delta: det[q - p, r - p, s - p] + ((q - p) x (r - s)) . delta;

@@ -71,16 +71,21 @@ bool edge_enters_corner(const Vec3& v, const Vec3& x, const Vec3& c, const Vec3&
 }
 
 // The boxes of the triangles and edges, where the vertices are now.
+// Inline compares (coordinates are finite), where fmin and fmax are calls: a
+// moved surface refits every box every step.
+Vec3 lower(const Vec3& a, const Vec3& b) { return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z}; }
+Vec3 upper(const Vec3& a, const Vec3& b) { return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z}; }
+
 void fit_boxes(Surface& s) {
   s.triangle_boxes.resize(s.triangles.size());
   for (std::size_t t = 0; t < s.triangles.size(); ++t) {
     const Vec3 &a = s.vertices[s.triangles[t][0]], &b = s.vertices[s.triangles[t][1]], &c = s.vertices[s.triangles[t][2]];
-    s.triangle_boxes[t] = {min(a, min(b, c)), max(a, max(b, c))};
+    s.triangle_boxes[t] = {lower(a, lower(b, c)), upper(a, upper(b, c))};
   }
   s.edge_boxes.resize(s.edges.size());
   for (std::size_t e = 0; e < s.edges.size(); ++e) {
     const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
-    s.edge_boxes[e] = {min(p, q), max(p, q)};
+    s.edge_boxes[e] = {lower(p, q), upper(p, q)};
   }
 }
 
@@ -268,7 +273,11 @@ Surface moved(const Surface& surface, const Transform& pose) {
 
 void move_into(const Surface& surface, const Transform& pose, Surface& s) {
   s = surface;
-  for (Vec3& v : s.vertices) v = apply(pose, v);
+  repose(surface, pose, s);
+}
+
+void repose(const Surface& surface, const Transform& pose, Surface& s) {
+  for (std::size_t v = 0; v < s.vertices.size(); ++v) s.vertices[v] = apply(pose, surface.vertices[v]);
   fit_boxes(s);
   refit_box_tree(s.tree, s.triangle_boxes);
   s.box = s.tree.nodes[0].box;

@@ -3,7 +3,8 @@
 // - A surface cube and a convex cube push the same on a plane and on a
 //   block (no seam: the same solid).
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
-// - A ring threaded on a peg hangs from it and stays.
+// - A ring threaded on a peg hangs from it and stays; a ball settles at the
+//   bottom of a bowl; a U stands under the Hertz law (equivalent depth).
 // - Two surface grains collide under the potential form with their energy.
 // - Patch slots: a patch keeps its slot as it moves; a new one takes a free one.
 // - The same bits on one thread and two.
@@ -111,6 +112,48 @@ TEST(SurfaceGrain, RingHangsOnAPeg) {
   EXPECT_NEAR(b.position.z, 0.004 - std::sqrt(0.016 * 0.016 - 0.004 * 0.004), 5e-4);
   EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b));  // the peg holds its weight
   EXPECT_LT(std::fabs(b.position.x), 1e-3);
+}
+
+TEST(SurfaceGrain, BallSettlesAtTheBottomOfABowl) {
+  WorldSettings settings = volume_settings();
+  WorldBuilder builder(settings);
+  Material m{"glass", 2500, 1e7, 0.25, 0.3, 0.5};
+  m.rolling_friction = 0.05;  // rolling without slip loses nothing to the dashpots
+  const std::uint32_t glass = builder.add_material(m);
+  BodyShape bowl;
+  bowl.surface = shared(test::bowl(0.05, 0.06, 24, 8));
+  builder.add_body({.shape = bowl, .material = glass, .position = {0, 0, 0}, .fixed = true});
+  // Off-centre, a little clear of the inner sphere (radius 50 mm).
+  builder.add_body({.shape = {make_sphere(0.01), {}}, .material = glass, .position = {0.02, 0, -0.0330}});
+  World w = builder.build();
+  for (int i = 0; i < 30000; ++i) ASSERT_EQ(step(w, 5e-5).status, StepStatus::Ok) << i;
+  const Body& ball = w.bodies[1];
+  // At the bottom, from 20 mm off: on the lowest ring of the bowl's facets
+  // (within 50 mm cos 78.75 deg of the axis). The volume law takes the ball
+  // as its inscribed polytope, which may rest on a facet of that ring.
+  EXPECT_LT(std::hypot(ball.position.x, ball.position.y), 0.05 * std::cos(78.75 / 180 * kPi));
+  EXPECT_LT(ball.position.z, -0.038);
+  EXPECT_LT(length(ball.velocity), 1e-3);
+}
+
+TEST(SurfaceGrain, UStandsUnderTheHertzLawToo) {
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder builder(settings);
+  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+  builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  test::Mesh u = scaled(test::u_prism(1), 0.01);
+  for (Vec3& v : u.vertices) v = {v.x, v.z, -v.y};
+  BodyShape shape;
+  shape.surface = shared(u);
+  builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.0201}});
+  World w = builder.build();
+  for (int i = 0; i < 20000; ++i) ASSERT_EQ(step(w, 2e-5).status, StepStatus::Ok) << i;
+  const Body& b = w.bodies[0];
+  EXPECT_EQ(w.stats.contacts, 2);
+  EXPECT_LT(length(b.velocity), 1e-4);
+  EXPECT_GT(rotate(shape_orientation(w.templates[b.shape], b), Vec3{0, 0, 1}).z, 1 - 1e-6);
+  EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b));  // the two feet hold its weight
 }
 
 TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {

@@ -68,6 +68,50 @@ inline Mesh torus(Real major, Real minor, int around, int across) {
   return m;
 }
 
+/// A bowl: the solid between two spheres about the origin (radii `inner` <
+/// `outer`) below z = 0, closed by a flat rim; `around` by `down` quads per
+/// sphere. Its hollow opens upward.
+inline Mesh bowl(Real inner, Real outer, int around, int down) {
+  Mesh m;
+  const Real tau = 6.283185307179586;
+  // Ring j (0 at the rim, down at the pole) of sphere r; poles shared.
+  for (const Real r : {outer, inner}) {
+    for (int j = 0; j < down; ++j)
+      for (int i = 0; i < around; ++i) {
+        const Real polar = tau / 4 * j / down, u = tau * i / around;  // from the rim (polar 0) to the pole
+        m.vertices.push_back({r * std::cos(polar) * std::cos(u), r * std::cos(polar) * std::sin(u), -r * std::sin(polar)});
+      }
+    m.vertices.push_back({0, 0, -r});
+  }
+  const std::uint32_t per = static_cast<std::uint32_t>(around * down + 1);
+  const auto at = [&](int sphere, int j, int i) {
+    return j == down ? sphere * per + per - 1 : static_cast<std::uint32_t>(sphere * per + j * around + i % around);
+  };
+  for (int sphere = 0; sphere < 2; ++sphere)
+    for (int j = 0; j < down; ++j)
+      for (int i = 0; i < around; ++i) {
+        // Outer faces point away from the centre, inner ones towards it.
+        const std::uint32_t p = at(sphere, j, i), q = at(sphere, j, i + 1), r = at(sphere, j + 1, i + 1),
+                            s = at(sphere, j + 1, i);
+        if (j + 1 == down) {
+          if (sphere == 0) m.triangles.push_back({p, r, q});
+          else m.triangles.push_back({p, q, r});
+        } else if (sphere == 0) {
+          m.triangles.push_back({p, r, q});
+          m.triangles.push_back({p, s, r});
+        } else {
+          m.triangles.push_back({p, q, r});
+          m.triangles.push_back({p, r, s});
+        }
+      }
+  for (int i = 0; i < around; ++i) {  // the rim, facing up
+    const std::uint32_t o0 = at(0, 0, i), o1 = at(0, 0, i + 1), i0 = at(1, 0, i), i1 = at(1, 0, i + 1);
+    m.triangles.push_back({o0, o1, i1});
+    m.triangles.push_back({o0, i1, i0});
+  }
+  return m;
+}
+
 /// Adds b's triangles to a (b's vertices appended; with `weld`, b's
 /// vertices equal to one of a's are taken as a's).
 inline void append(Mesh& a, const Mesh& b, bool weld = false) {

@@ -15,6 +15,7 @@
 // kPatchMatchRel of the smaller body's size; the others take the smallest
 // free slots. Two hooked rings keep two contacts whose springs never swap.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -29,6 +30,7 @@ namespace gjkdem::dem {
 struct SurfaceScratch {
   SurfaceOverlapWorkspace overlap;
   Surface moved;                       ///< the surface of fewer vertices, in the other's frame
+  std::shared_ptr<const Surface> moved_from;  ///< what `moved` is a copy of (its topology then needs no copy)
   std::vector<Real> depth;             ///< per vertex, against a plane
   std::vector<std::uint32_t> piece;
 };
@@ -39,7 +41,8 @@ struct SurfacePatchContact {
 };
 
 /// The patches of two placed surfaces, largest first.
-void surface_patches(const Surface& a, const Transform& pose_a, const Surface& b, const Transform& pose_b,
+void surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                     const std::shared_ptr<const Surface>& b, const Transform& pose_b,
                      ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 
 /// The patches of a placed surface (b) beyond a plane wall (a), largest

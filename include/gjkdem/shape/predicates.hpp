@@ -37,6 +37,13 @@ int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
 /// The same, and whether d lies on the plane abc exactly (before the move).
 int perturbed_orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, Side abc, bool& on_plane);
 
+/// perturbed_orient3d of three points d[k] against one triangle abc: the
+/// same signs and on-plane flags, with the triangle's normal and the filter's
+/// bounds made once (a surface overlap asks this for every pair of
+/// triangles whose boxes meet).
+void perturbed_orient3d_three(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&d)[3], Side abc, int (&sign)[3],
+                              bool (&on_plane)[3]);
+
 /// orient3d(p, q, r, s) with edge pq from one surface and edge rs from the
 /// other (`pq` says which), B's moved by delta. 0 only when the two edges
 /// are parallel (they then never decide a crossing).

@@ -56,6 +56,9 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
 Surface moved(const Surface& surface, const Transform& pose);
 /// The same into `into`, whose memory is reused (a step's scratch).
 void move_into(const Surface& surface, const Transform& pose, Surface& into);
+/// The same where `copy` is already a copy of `surface`, moved or not: only
+/// its vertices and boxes are rewritten (its topology is that of `surface`).
+void repose(const Surface& surface, const Transform& pose, Surface& copy);
 
 /// The boundary of a solid polytope (its hull triangles) as a surface: a
 /// convex body as a surface grain's contacts see it. Throws SurfaceError for
