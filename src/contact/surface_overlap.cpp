@@ -114,7 +114,9 @@ bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
 }
 
 // Every vertex's status: outside where it lies beyond the solid's box,
-// carried along the edges (a crossing flips it), a ray where nothing reaches.
+// carried along the edges (a crossing flips it) from there into the box, a
+// ray where nothing reaches. The walk starts at the box's edge, so its cost
+// follows the vertices inside the box, not the whole surface.
 void find_status(View& v, const Surface& solid) {
   const Surface& s = *v.s;
   v.inside.assign(s.vertices.size(), -1);
@@ -124,7 +126,18 @@ void find_status(View& v, const Surface& solid) {
     const Vec3& p = s.vertices[i];
     if (p.x < solid.box.lo.x || p.y < solid.box.lo.y || p.z < solid.box.lo.z || p.x > solid.box.hi.x ||
         p.y > solid.box.hi.y || p.z > solid.box.hi.z)
-      v.inside[i] = 0, queue.push_back(i);
+      v.inside[i] = 0;
+  }
+  for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {  // the box's edge: where the walk starts
+    if (v.inside[i] >= 0) continue;
+    for (std::uint32_t k = s.vertex_edge_begin[i]; k < s.vertex_edge_begin[i + 1]; ++k) {
+      const std::uint32_t e = s.vertex_edges[k];
+      const std::uint32_t j = s.edges[e][0] == i ? s.edges[e][1] : s.edges[e][0];
+      if (v.inside[j] < 0) continue;
+      v.inside[i] = static_cast<std::int8_t>(v.inside[j] ^ ((v.first_crossing[e + 1] - v.first_crossing[e]) & 1));
+      queue.push_back(i);
+      break;
+    }
   }
   const auto spread = [&] {
     while (!queue.empty()) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
 #include "stages.hpp"
 #include "gjkdem/tolerances.hpp"
@@ -30,7 +31,11 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
   if (!ta.surface) return GeometryStatus::Unsupported;
-  surface_patches(ta.surface, shape_pose(ta, a), tb.surface, pose_b, model, scratch, out);
+  const Transform pose_a = shape_pose(ta, a);
+  // Hulls apart (GJK on the templates' convex shapes, which hold the
+  // surfaces): no patch, and nothing to move or traverse.
+  if (!intersect(ta.shape, pose_a, tb.shape, pose_b)) return GeometryStatus::Touching;
+  surface_patches(ta.surface, pose_a, tb.surface, pose_b, model, scratch, out);
   return GeometryStatus::Touching;
 }
 
