@@ -6,7 +6,8 @@
 # serial run, byte for byte (the checkpoint apart from the wall-clock
 # seconds it records), and so are those of a run stopped on 3 ranks and
 # resumed on 2, and of one stopped on 1 and resumed on 4; with a shaken
-# floor too, and for the hopper example (inflow, compounds, a belt) and the
+# floor too, and for the hopper example (inflow, compounds, a belt), surface
+# grains (also stopped on 2 and resumed on 1) and the
 # periodic shear example and a servoed shearing cell on 2 ranks (the
 # latter also stopped on 1 and resumed on 2); a failure stops every rank
 # with its message in run.json, and a rank failing outside the run's
@@ -63,6 +64,24 @@ for f in trace.csv energy.csv view/index.csv view/frame_000010.bin; do
   cmp -s "hopper1/$f" "hopper2/$f" || fail "$f differs between the hopper runs on 1 and 2 ranks"
 done
 /usr/bin/python3 "$same_checkpoint" hopper1/checkpoint.bin hopper2/checkpoint.bin || fail "the hopper checkpoints differ"
+
+# Surface grains (issue 30): non-convex rocks onto a fixed ring, each
+# patch a contact with its own slot, on 2 ranks and stopped on 2 and resumed
+# on 1: the serial bits.
+surface_scene="$root/tests/data/scenes/surface_grains.toml"
+"$gjkdem" run "$surface_scene" --out surface1 --quiet || fail "the serial surface-grain run did not complete"
+"${launch[@]}" -np 2 "$gjkdem" run "$surface_scene" --out surface2 --quiet || fail "the surface-grain run on 2 ranks did not complete"
+set +e
+"${launch[@]}" -np 2 "$gjkdem" run "$surface_scene" --out surface21 --quiet --stop-after 400
+rc=$?
+set -e
+[ "$rc" -eq 130 ] || fail "the surface-grain run stopped on 2 ranks exited $rc"
+"$gjkdem" run --resume surface21 --quiet || fail "the surface-grain run resumed on 1 rank did not complete"
+for run in surface2 surface21; do
+  for f in trace.csv energy.csv; do cmp -s "surface1/$f" "$run/$f" || fail "$f differs between surface1 and $run"; done
+  /usr/bin/python3 "$same_checkpoint" surface1/checkpoint.bin "$run/checkpoint.bin" || fail "checkpoints of surface1 and $run differ"
+done
+awk -F, 'END { exit !($6 > 10) }' surface1/energy.csv || fail "the surface grains made no contacts"
 
 # Stopped on 3 ranks between checkpoints, resumed on 2.
 set +e
@@ -169,4 +188,4 @@ grep -q "another rank" signalled/run.json || fail "run.json does not say another
 "${launch[@]}" -np 2 "$gjkdem" run --resume signalled --quiet || fail "the resume of the signalled run did not complete"
 same_run serial signalled
 
-echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper, periodic shear and a servoed cell on 2 ranks"
+echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper, surface grains, periodic shear and a servoed cell on 2 ranks"
