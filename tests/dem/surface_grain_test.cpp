@@ -1,7 +1,8 @@
 // Surface grains in the engine (dem/surface_contact.hpp): a closed surface
 // taken as it is, its contacts the patches of the overlap.
 // - A surface cube and a convex cube push the same on a plane and on a
-//   block (no seam: the same solid).
+//   block (no seam: the same solid); an L and its compound of two boxes too
+//   where only one box touches.
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
 // - A ring threaded on a peg hangs from it and stays; a ball settles at the
 //   bottom of a bowl; a U stands under the Hertz law (equivalent depth).
@@ -64,6 +65,41 @@ TEST(SurfaceGrain, CubePushesAsAConvexCubeOnAPlaneAndABlock) {
     EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0])) << on_block;
     EXPECT_LT(length(torque[1] - torque[0]), 1e-9 * length(force[0]) * 0.01) << on_block;
   }
+}
+
+TEST(SurfaceGrain, AnLPushesAsItsCompoundWhereNoSeamIsTouched) {
+  // The L of [0,2]x[0,1] and [0,1]x[0,2] (cm, 1 cm thick) as one surface and
+  // as two boxes touching along x = 1 (the seam); tilted onto a plane so
+  // only the far end of the long arm dips into it.
+  const test::Mesh l = scaled(test::l_prism(1), 0.01);
+  std::vector<PlacedShape> parts{{Shape{Box{{0.01, 0.005, 0.005}}}, Transform::from({0.01, 0.005, 0.005}, Quat{})},
+                                 {Shape{Box{{0.005, 0.005, 0.005}}}, Transform::from({0.005, 0.015, 0.005}, Quat{})}};
+  Vec3 force[2], torque[2];
+  for (int surface = 0; surface < 2; ++surface) {
+    WorldBuilder builder(volume_settings());
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+    BodyShape shape;
+    if (surface) shape.surface = shared(l);
+    else shape.parts = parts;
+    builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.05}});
+    World w = builder.build();
+    Body& b = w.bodies.back();
+    // Turned about y so that x = 2 cm is lowest, the corner at x = 2 cm 0.5 mm deep.
+    const Quat tilt = normalized(Quat{std::cos(0.15), 0, std::sin(0.15), 0});
+    const ShapeTemplate& t = w.templates[b.shape];
+    b.orientation = normalized(tilt * t.principal.rotation);
+    const Vec3 tip = rotate(tilt, Vec3{0.02, 0, 0});
+    const Vec3 shift{0, 0, -0.0005 - tip.z};
+    b.position = rotate(tilt, t.unit_mass.centroid) + shift;
+    b.velocity = {0.01, 0.005, -0.02};
+    ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok);
+    EXPECT_EQ(w.stats.contacts, 1) << surface;
+    force[surface] = b.force, torque[surface] = b.torque;
+  }
+  EXPECT_GT(length(force[0]), 1e-3);
+  EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0]));
+  EXPECT_LT(length(torque[1] - torque[0]), 1e-9 * length(force[0]) * 0.01);
 }
 
 TEST(SurfaceGrain, UStandsOnBothFeet) {
