@@ -39,11 +39,16 @@ def icosphere(subdivisions):
 def rock(size):
     rng = random.Random(7)
     directions, faces = icosphere(2)
-    bumps = [(tuple(rng.gauss(0, 1) for _ in range(3)), rng.uniform(-0.3, 0.25)) for _ in range(6)]
+    # Six dents in the middle of its sides (the hull bridges them) and three
+    # knobs between them, jittered.
+    dents = [(0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1), (1, 1, 0.3), (-1, -1, -0.3)]
+    knobs = [(1, -1, 1), (-1, 1, 1), (1, 0.2, -1)]
+    bumps = [(tuple(c + rng.gauss(0, 0.1) for c in d), -0.5) for d in dents] + \
+            [(tuple(c + rng.gauss(0, 0.1) for c in d), 0.2) for d in knobs]
     bumps = [(tuple(c / math.sqrt(sum(x * x for x in d)) for c in d), h) for d, h in bumps]
     vertices = []
     for v in directions:
-        r = 1 + sum(h * math.exp(-8 * (1 - sum(a * b for a, b in zip(v, d)))) for d, h in bumps)
+        r = max(0.4, 1 + sum(h * math.exp(-12 * (1 - sum(a * b for a, b in zip(v, d)))) for d, h in bumps))
         stretch = (1.3, 1.0, 0.8)  # an elongated, flattish grain
         vertices.append(tuple(size / 2 * r * s * c for s, c in zip(stretch, v)))
     return vertices, faces

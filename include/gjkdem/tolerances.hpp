@@ -119,6 +119,13 @@ inline constexpr Real kPatchMinRelVolume = 1e-11;
 /// pair (the two hooks of interlocked C's) lie about a body's size apart.
 inline constexpr Real kPatchMatchRel = 0.25;
 
+/// Surface grains: a piece of an overlap whose contact area |S_A| is below
+/// kEngulfedAreaRel times its volume^(2/3) has one solid wholly inside the
+/// other (|S_A| is zero, or rounding noise: 1e-17 of the piece's size
+/// measured for an icosahedron inside another). The run stops naming the
+/// pair. A real contact's |S_A| is at least of the order of V^(2/3).
+inline constexpr Real kEngulfedAreaRel = 1e-6;
+
 /// Surface overlaps: an edge of the other surface is tested exactly for
 /// lying along an edge's line only when the squared sines of its ends'
 /// angles off the line sum below this (a screen: rounding gives ~1e-32 for

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/tessellate.hpp"
@@ -67,6 +69,20 @@ ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fi
 }
 
 ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed) {
+  // One closed shell: a hollow grain's cavity or a detached piece would be
+  // left out of its contacts (a piece's overlap is taken from its outer shell).
+  std::vector<std::uint32_t> root(surface->vertices.size());
+  for (std::uint32_t v = 0; v < root.size(); ++v) root[v] = v;
+  const auto find = [&](std::uint32_t v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  std::size_t shells = root.size();
+  for (const auto& [p, q] : surface->edges)
+    if (find(p) != find(q)) root[find(p)] = find(q), --shells;
+  if (shells != 1)
+    throw std::invalid_argument("a surface grain is one closed shell; this surface has " + std::to_string(shells) +
+                                " (a hollow, or separate pieces)");
   const Shape hull{make_polytope(surface->vertices)};
   ShapeTemplate t = fixed ? make_wall_template(hull) : make_template(hull);
   if (!fixed) {

@@ -84,7 +84,7 @@ void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemp
   std::vector<Key> keys;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
-    if (!c.active || c.a_is_plane) continue;
+    if (!c.active || c.a_is_plane || c.surface) continue;  // a surface grain's patches are separate contacts
     const Body& a = bodies[c.a];
     const Body& b = bodies[c.b];
     if (a.group > 0 && !b.fixed) keys.push_back({c.b, c.part_b, a.group, k});

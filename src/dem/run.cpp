@@ -167,8 +167,12 @@ std::string describe_failure(const World& w, const StepReport& r) {
              name_of(w, r.id_b) + " at t = " + number_text(w.time) + " s";
     case StepStatus::ThroughWall:
       return name_of(w, r.id_b) + " passed wholly through " + name_of(w, r.id_a) + " at t = " + number_text(w.time) +
-             " s: under the volume law nothing holds a body beyond a plane wall (lower dt, or its speed, or "
-             "stiffen the contact)";
+             " s: nothing holds a body wholly beyond a plane wall (lower dt, or its speed, or stiffen the contact)";
+    case StepStatus::Engulfed:
+      return "one of " + name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " lies wholly inside the other at t = " +
+             number_text(w.time) +
+             " s: their overlap has no contact area to push them apart (lower dt, or their speed, or stiffen the "
+             "contact)";
     case StepStatus::CellTooShort: {
       const int a = static_cast<int>(r.id_a);
       return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +

@@ -85,6 +85,8 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
       return {StepStatus::UnsupportedPair, c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, w.bodies[c.b].id};
     if (c.geometry.status == GeometryStatus::Through)
       return {StepStatus::ThroughWall, w.planes[c.a].id, w.bodies[c.b].id};
+    if (c.geometry.status == GeometryStatus::Engulfed)
+      return {StepStatus::Engulfed, w.bodies[c.a].id, w.bodies[c.b].id};
   }
   if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
   const detail::SideSources sources{{w.templates, w.materials}, work.motion_frames, w.cell_rate};

@@ -1,13 +1,15 @@
 #include "gjkdem/dem/surface_contact.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "gjkdem/contact/surface_half_space.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::dem {
 
-void surface_patches(const std::shared_ptr<const Surface>& shared_a, const Transform& pose_a,
+bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Transform& pose_a,
                      const std::shared_ptr<const Surface>& shared_b, const Transform& pose_b, ContactModel model,
                      SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
@@ -29,7 +31,9 @@ void surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
     const Vec3 area_a = apply_rotation(frame, p.area_a);
     ContactGeometry g;
     g.area = length(area_a);
-    if (!(g.area > 0)) continue;  // faces that only lie on each other
+    // A volume with no contact area: one solid wholly inside the other (S_A
+    // is then zero, or rounding noise in no direction).
+    if (!(g.area > kEngulfedAreaRel * std::cbrt(p.volume * p.volume))) return false;
     g.status = GeometryStatus::Touching;
     g.normal = area_a / g.area;
     g.volume = p.volume;
@@ -48,6 +52,7 @@ void surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
     }
     out.push_back({g, centroid});
   }
+  return true;
 }
 
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
@@ -93,12 +98,15 @@ void match_patch_slots(std::span<const Vec3> anchors, std::span<const PatchAncho
     return std::tie(x.distance, x.now, x.before) < std::tie(y.distance, y.now, y.before);
   });
   std::vector<bool> taken(last.size(), false);
+  // Every slot of last step stays out of reach of new patches, matched or
+  // not: a vanished patch's springs are still in the store this step, and a
+  // new patch must start without them.
   std::vector<std::uint32_t> used;
+  for (const PatchAnchor& p : last) used.push_back(p.slot);
   for (const Candidate& c : near)
     if (slots[c.now] == kNone && !taken[c.before]) {
       slots[c.now] = last[c.before].slot;
       taken[c.before] = true;
-      used.push_back(last[c.before].slot);
     }
   std::sort(used.begin(), used.end());
   std::uint32_t next = 0;

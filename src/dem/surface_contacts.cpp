@@ -22,21 +22,21 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   out.clear();
   const Body& b = bodies[c.b];
   const ShapeTemplate& tb = templates[b.shape];
-  if (!tb.surface) return GeometryStatus::Unsupported;
   Transform pose_b = shape_pose(tb, b);
   pose_b.translation += image_shift_of(cell, c);
+  if (c.a_is_plane && !tb.surface) return GeometryStatus::Unsupported;
   if (c.a_is_plane)
     return plane_surface_patches(planes[c.a], *tb.surface, pose_b, model, scratch, out) ? GeometryStatus::Touching
                                                                                         : GeometryStatus::Through;
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
-  if (!ta.surface) return GeometryStatus::Unsupported;
   const Transform pose_a = shape_pose(ta, a);
   // Hulls apart (GJK on the templates' convex shapes, which hold the
   // surfaces): no patch, and nothing to move or traverse.
   if (!intersect(ta.shape, pose_a, tb.shape, pose_b)) return GeometryStatus::Touching;
-  surface_patches(ta.surface, pose_a, tb.surface, pose_b, model, scratch, out);
-  return GeometryStatus::Touching;
+  if (!ta.surface || !tb.surface) return GeometryStatus::Unsupported;
+  return surface_patches(ta.surface, pose_a, tb.surface, pose_b, model, scratch, out) ? GeometryStatus::Touching
+                                                                                        : GeometryStatus::Engulfed;
 }
 
 // How far a patch may have moved and still be the same: kPatchMatchRel of
@@ -63,9 +63,16 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   work.surface_status.resize(listed.size());
   const std::int64_t n = static_cast<std::int64_t>(listed.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4) if (n >= 8)
-  for (std::int64_t i = 0; i < n; ++i)
-    work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
-                                          work.surface[thread_id()], work.surface_found[i]);
+  for (std::int64_t i = 0; i < n; ++i) {
+    // Nothing may leave a parallel loop: a failure of the exact overlap (a
+    // defect, never bad input) stops the run naming the pair.
+    try {
+      work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
+                                            work.surface[thread_id()], work.surface_found[i]);
+    } catch (const std::exception&) {
+      work.surface_status[i] = GeometryStatus::Unsupported;
+    }
+  }
 
   // The list again, each listed contact replaced by its patches in slot order.
   std::vector<StepContact>& out = work.expanded;

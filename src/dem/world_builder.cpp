@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "gjkdem/collide/query.hpp"
@@ -199,7 +200,7 @@ std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, con
       t = fixed ? make_wall_template(shape.shape) : make_template(shape.shape);
     }
   } catch (const std::invalid_argument& e) {
-    throw BuildError(label + ": cannot be a moving body: " + e.what());
+    throw BuildError(label + (fixed ? ": cannot be a body: " : ": cannot be a moving body: ") + e.what());
   }
   given_shapes_.push_back(t.shape);  // a compound's hull
   world_.templates.push_back(std::move(t));
@@ -579,7 +580,8 @@ void WorldBuilder::check_explicit_bodies() const {
     Real depth = 0;
     if (ta.surface_grain || tb.surface_grain) {  // the surfaces' patches (hulls may overlap: hooked rings)
       if (!ta.surface || !tb.surface) continue;  // no volume: the run reports the pair
-      surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches);
+      if (!surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches))
+        depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
       for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
     } else {
       const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
@@ -587,6 +589,9 @@ void WorldBuilder::check_explicit_bodies() const {
     }
     if (depth > tol) {
       const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;
+      if (std::isinf(depth))
+        throw BuildError(labels_[first] + " and " + labels_[second] + " start one wholly inside the other",
+                         {first, second});
       throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(depth) +
                            " m at the start",
                        {first, second});
@@ -621,15 +626,20 @@ void WorldBuilder::prepare_shapes() {
 void WorldBuilder::prepare_surfaces() {
   std::vector<ShapeTemplate>& templates = world_.templates;
   if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return t.surface_grain; })) return;
-  std::vector<std::size_t> user(templates.size(), 0);
+  constexpr std::size_t kNoBody = ~std::size_t{0};  // an inflow's template
+  std::vector<std::size_t> user(templates.size(), kNoBody);
   for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
   for (std::size_t k = 0; k < templates.size(); ++k) {
     ShapeTemplate& t = templates[k];
     if (t.surface) continue;
-    const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[k]];
+    const std::string who = user[k] == kNoBody ? "an inflow's shape"
+                            : labels_.empty()   ? std::string("a body")
+                                                : labels_[user[k]];
+    const std::vector<std::uint32_t> at =
+        user[k] == kNoBody ? std::vector<std::uint32_t>{} : std::vector<std::uint32_t>{static_cast<std::uint32_t>(user[k])};
     if (!t.parts.empty())
       throw BuildError(who + ": compounds and surface grains cannot be in one world yet (make the compound a surface)",
-                       {static_cast<std::uint32_t>(user[k])});
+                       at);
     Shape s = t.shape;
     if (const auto* box = std::get_if<Box>(&s.core); box && solid_polytope(s)) {
       std::vector<Vec3> corners;
@@ -647,8 +657,7 @@ void WorldBuilder::prepare_surfaces() {
     try {
       t.surface = std::make_shared<const Surface>(polytope_surface(std::get<Polytope>(s.core)));
     } catch (const SurfaceError& e) {
-      throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(),
-                       {static_cast<std::uint32_t>(user[k])});
+      throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
     }
   }
 }

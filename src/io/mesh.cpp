@@ -30,6 +30,14 @@ Vec3 finite_point(const std::string& file, const std::string& where, Real x, Rea
 
 std::string at_line(long line) { return "line " + std::to_string(line); }
 
+// Six significant digits: a 1 cm grain's volume is 1e-06, not "0.000001".
+std::string significant(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
 // Three coordinates from a text line; strtod also reads "nan" and "inf", so
 // those are refused by name instead of as a parse error.
 Vec3 read_point(std::istringstream& ls, const std::string& file, long line, const char* tag) {
@@ -224,8 +232,8 @@ ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {
   if (!out.watertight)
     out.warnings.push_back(name + ": the mesh is not watertight (open or non-manifold edges): using its convex hull");
   else if (!out.convex)
-    out.warnings.push_back(name + ": the mesh is not convex (volume " + std::to_string(std::fabs(mesh_volume)) +
-                           ", hull " + std::to_string(hull_volume) + "): using its convex hull" +
+    out.warnings.push_back(name + ": the mesh is not convex (volume " + significant(std::fabs(mesh_volume)) +
+                           ", hull " + significant(hull_volume) + "): using its convex hull" +
                            (mesh.object_begin.size() <= 1 ? " (for the grain's true shape give it as type \"surface\", "
                                                             "docs/scenes.md)"
                                                           : ""));

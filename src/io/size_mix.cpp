@@ -35,7 +35,11 @@ SampledMix sample_mix(std::span<const MixPart> parts, std::span<const SizeClass>
           if (shape.surface && k != 1) {  // checked again: scaling rounds every vertex
             std::vector<Vec3> vertices = shape.surface->vertices;
             for (Vec3& v : vertices) v *= k;
-            shape.surface = std::make_shared<const Surface>(make_surface(std::move(vertices), shape.surface->triangles));
+            try {
+              shape.surface = std::make_shared<const Surface>(make_surface(std::move(vertices), shape.surface->triangles));
+            } catch (const SurfaceError& e) {
+              throw SceneError(part.where + ": the surface scaled by " + std::to_string(k) + " is no longer one: " + e.what());
+            }
           }
         }
         volumes[c].push_back(shape.surface          ? shape.surface->volume

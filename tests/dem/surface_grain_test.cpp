@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 
+#include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/dem/world.hpp"
 #include "gjkdem/dem/world_builder.hpp"
@@ -236,6 +237,59 @@ TEST(SurfaceGrain, PatchSlotsFollowThePatches) {
   // Two patches near one old one: the nearer keeps it.
   match_patch_slots(std::vector<Vec3>{{0.05, 0, 0}, {0.02, 0, 0}}, last, 0.1, slots);
   EXPECT_EQ(slots, (std::vector<std::uint32_t>{1, 0}));
+  // A patch gone (slot 0) and a new one far away: the new one does not take
+  // the gone one's slot (its springs are still in the store this step).
+  match_patch_slots(std::vector<Vec3>{{1.01, 0, 0}, {7, 0, 0}}, std::vector<PatchAnchor>{{0, {0, 0, 0}}, {1, {1, 0, 0}}},
+                    0.1, slots);
+  EXPECT_EQ(slots, (std::vector<std::uint32_t>{1, 2}));
+}
+
+TEST(SurfaceGrain, OneInsideAnotherStopsTheRunNamingThem) {
+  // A small cube wholly inside a big one: a volume, no contact area. The
+  // builder refuses it at the start (whichever is first); a grain that gets
+  // there during the run stops it.
+  for (int small_first = 0; small_first < 2; ++small_first) {
+    WorldBuilder builder(volume_settings());
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    BodyShape big, small;
+    big.surface = shared(test::box_surface({-0.05, -0.05, -0.05}, {0.05, 0.05, 0.05}));
+    small.surface = shared(test::box_surface({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}));
+    builder.add_body({.shape = small_first ? small : big, .material = rock, .label = "first"});
+    builder.add_body({.shape = small_first ? big : small, .material = rock, .position = {0.001, 0.002, 0}, .label = "second"});
+    try {
+      builder.build();
+      ADD_FAILURE() << "accepted";
+    } catch (const BuildError& e) {
+      EXPECT_NE(std::string(e.what()).find("start one wholly inside the other"), std::string::npos) << e.what();
+    }
+    WorldBuilder unchecked(volume_settings());
+    unchecked.accept_initial_overlaps();
+    const std::uint32_t m = unchecked.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    unchecked.add_body({.shape = small_first ? small : big, .material = m});
+    unchecked.add_body({.shape = small_first ? big : small, .material = m, .position = {0.001, 0.002, 0}});
+    World w = unchecked.build();
+    const StepReport r = step(w, 1e-5);
+    EXPECT_EQ(r.status, StepStatus::Engulfed) << small_first;
+    EXPECT_NE(describe_failure(w, r).find("lies wholly inside the other"), std::string::npos);
+  }
+}
+
+TEST(SurfaceGrain, AGrainIsOneShell) {
+  test::Mesh two = test::box_surface({0, 0, 0}, {1, 1, 1});
+  test::append(two, test::box_surface({2, 0, 0}, {3, 1, 1}));
+  WorldBuilder builder(volume_settings());
+  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+  BodyShape shape;
+  shape.surface = shared(two);
+  try {
+    builder.add_body({.shape = shape, .material = rock, .label = "twins"});
+    ADD_FAILURE() << "accepted";
+  } catch (const BuildError& e) {
+    EXPECT_NE(std::string(e.what()).find("twins: cannot be a moving body: a surface grain is one closed shell; this "
+                                         "surface has 2"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SurfaceGrain, SameBitsOnOneThreadAndTwo) {

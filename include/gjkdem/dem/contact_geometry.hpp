@@ -10,6 +10,7 @@ enum class GeometryStatus {
   Touching,     ///< the fields below are set
   Unsupported,  ///< the contact model has no computation for this pair of shapes
   Through,      ///< volume law: the body lies wholly beyond a plane wall (no cut face: no force can hold it)
+  Engulfed,     ///< surface grains: one lies wholly inside the other (a volume, no contact area)
 };
 
 struct ContactGeometry {

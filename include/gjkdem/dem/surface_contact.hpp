@@ -40,8 +40,10 @@ struct SurfacePatchContact {
   Vec3 centroid;             ///< of the patch's volume, world
 };
 
-/// The patches of two placed surfaces, largest first.
-void surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+/// The patches of two placed surfaces, largest first. Returns false when a
+/// piece of the overlap has volume but no contact area (one solid wholly
+/// inside the other: nothing can push them apart).
+bool surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                      const std::shared_ptr<const Surface>& b, const Transform& pose_b,
                      ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 
@@ -54,7 +56,8 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
 /// Slots for one pair's patches: `anchors` of the patches now; `last` the
 /// slots and anchors of its patches last step. Nearest pairs first, a patch
 /// within `reach` of a last anchor takes its slot; the others take the
-/// smallest slots left. `slots` gets one per anchor.
+/// smallest slots not used last step (a vanished patch's springs are not
+/// handed on). `slots` gets one per anchor.
 struct PatchAnchor {
   std::uint32_t slot;
   Vec3 anchor;
