@@ -1,3 +1,4 @@
+#include "gjkdem/math/union_find.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
 
 #include <algorithm>
@@ -197,15 +198,6 @@ struct Sums {
   Vec3 moment24;     // 24 times the first moment
   Vec3 area_a, area_b;
   Vec3 area_moment_a;  // first moment of area_a: sum of (fan centroid) x (fan's vector area)
-};
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  std::uint32_t find(std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(std::uint32_t i, std::uint32_t j) { parent[find(i)] = find(j); }
 };
 
 // Whether point x lies inside the closed polygon of the loop's segments,
@@ -446,7 +438,7 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
   segments.clear(), links.clear(), joined.parent.clear();
   const auto add = [&](std::uint32_t triangle, std::uint32_t from, std::uint32_t to) {
     segments.push_back({triangle, from, to, point_of(from), point_of(to)});
-    joined.parent.push_back(static_cast<std::uint32_t>(joined.parent.size()));
+    joined.add();
     return static_cast<std::uint32_t>(segments.size() - 1);
   };
   // A crossing segment bounds a face of A and a face of B: one piece.

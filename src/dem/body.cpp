@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gjkdem/math/union_find.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 
@@ -71,15 +72,10 @@ ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fi
 ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed) {
   // One closed shell: a hollow grain's cavity or a detached piece would be
   // left out of its contacts (a piece's overlap is taken from its outer shell).
-  std::vector<std::uint32_t> root(surface->vertices.size());
-  for (std::uint32_t v = 0; v < root.size(); ++v) root[v] = v;
-  const auto find = [&](std::uint32_t v) {
-    while (root[v] != v) v = root[v] = root[root[v]];
-    return v;
-  };
-  std::size_t shells = root.size();
-  for (const auto& [p, q] : surface->edges)
-    if (find(p) != find(q)) root[find(p)] = find(q), --shells;
+  UnionFind vertices;
+  vertices.reset(surface->vertices.size());
+  std::size_t shells = surface->vertices.size();
+  for (const auto& [p, q] : surface->edges) shells -= vertices.join(p, q);
   if (shells != 1)
     throw std::invalid_argument("a surface grain is one closed shell; this surface has " + std::to_string(shells) +
                                 " (a hollow, or separate pieces)");

@@ -59,7 +59,7 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
                            SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
   const SurfaceHalfSpace h = surface_half_space(b, apply_inverse(pose_b, wall.point),
-                                                apply_inverse_rotation(pose_b, wall.normal), s.depth, s.piece);
+                                                apply_inverse_rotation(pose_b, wall.normal), s.half_space);
   if (h.submerged) return false;
   for (const HalfSpacePiece& p : h.pieces) {
     if (!(p.cut_area > 0)) continue;

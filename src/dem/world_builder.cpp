@@ -28,6 +28,15 @@ bool solid_polytope(const Shape& s) {
   return false;
 }
 
+// Flat cores without a margin: a point, a segment, a triangle, a flat
+// polytope or box. Curved cores and anything with a margin have volume.
+bool without_volume(const Shape& s) {
+  return s.margin == 0 && !solid_polytope(s) &&
+         (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
+          std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
+          std::holds_alternative<Box>(s.core));
+}
+
 }  // namespace
 
 namespace {
@@ -640,22 +649,13 @@ void WorldBuilder::prepare_surfaces() {
     if (!t.parts.empty())
       throw BuildError(who + ": compounds and surface grains cannot be in one world yet (make the compound a surface)",
                        at);
-    Shape s = t.shape;
-    if (const auto* box = std::get_if<Box>(&s.core); box && solid_polytope(s)) {
-      std::vector<Vec3> corners;
-      for (int c = 0; c < 8; ++c)
-        corners.push_back({c & 1 ? box->half_extents.x : -box->half_extents.x,
-                           c & 2 ? box->half_extents.y : -box->half_extents.y,
-                           c & 4 ? box->half_extents.z : -box->half_extents.z});
-      s = Shape{make_polytope(corners)};
-    } else if (!solid_polytope(s)) {
-      if (s.margin == 0 && !std::holds_alternative<Ellipsoid>(s.core) && !std::holds_alternative<Cylinder>(s.core) &&
-          !std::holds_alternative<Cone>(s.core) && !std::holds_alternative<Superellipsoid>(s.core))
-        continue;  // no volume
-      s = Shape{tessellate(s, settings_.tessellation).polytope};
-    }
+    if (without_volume(t.shape)) continue;
     try {
-      t.surface = std::make_shared<const Surface>(polytope_surface(std::get<Polytope>(s.core)));
+      const Shape& s = t.shape;
+      t.surface = std::make_shared<const Surface>(
+          std::holds_alternative<Box>(s.core) && s.margin == 0 ? box_surface(std::get<Box>(s.core))
+          : solid_polytope(s) ? polytope_surface(std::get<Polytope>(s.core))
+                              : polytope_surface(tessellate(s, settings_.tessellation).polytope));
     } catch (const SurfaceError& e) {
       throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
     }
@@ -666,9 +666,7 @@ void WorldBuilder::prepare_surfaces() {
 // inscribed polytope; a shape without volume is refused.
 void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std::size_t user) const {
   if (solid_polytope(s)) return;
-  if (s.margin == 0 && (std::holds_alternative<Point>(s.core) || std::holds_alternative<Segment>(s.core) ||
-                        std::holds_alternative<Triangle>(s.core) || std::holds_alternative<Polytope>(s.core) ||
-                        std::holds_alternative<Box>(s.core)))
+  if (without_volume(s))
     throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
                            "thickness, or use model \"hertz\" or \"linear\")",
                      {static_cast<std::uint32_t>(user)});

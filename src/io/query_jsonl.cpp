@@ -267,23 +267,16 @@ namespace {
 // coordinates (its hull's triangles), to pair it with a mesh.
 Surface surface_of_polyhedron(const PlacedInput& in) {
   const Shape& shape = in.shape;
-  Polytope hull;
-  if (const auto* p = std::get_if<Polytope>(&shape.core)) {
-    hull = *p;
-  } else if (const auto* box = std::get_if<Box>(&shape.core)) {
-    std::vector<Vec3> corners;
-    for (int k = 0; k < 8; ++k)
-      corners.push_back({k & 1 ? box->half_extents.x : -box->half_extents.x, k & 2 ? box->half_extents.y : -box->half_extents.y,
-                         k & 4 ? box->half_extents.z : -box->half_extents.z});
-    hull = make_polytope(corners);
-  } else {
+  const auto* polytope = std::get_if<Polytope>(&shape.core);
+  const auto* box = std::get_if<Box>(&shape.core);
+  if (!polytope && !box)
     throw std::invalid_argument("a mesh pairs only with another mesh, a polytope or a box (solids bounded by flat faces) in this version");
-  }
   if (shape.margin > 0) throw std::invalid_argument("a mesh pairs with shapes without margin");
-  if (hull.data->triangles.empty()) throw std::invalid_argument("a flat polytope bounds no solid to pair with a mesh");
-  std::vector<Vec3> vertices;
-  for (const Vec3& v : hull.data->vertices) vertices.push_back(apply(in.pose, v));
-  return make_surface(std::move(vertices), {hull.data->triangles.begin(), hull.data->triangles.end()});
+  try {
+    return moved(polytope ? polytope_surface(*polytope) : box_surface(*box), in.pose);
+  } catch (const SurfaceError&) {
+    throw std::invalid_argument("a flat polytope bounds no solid to pair with a mesh");
+  }
 }
 
 }  // namespace

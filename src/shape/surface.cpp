@@ -283,6 +283,13 @@ void repose(const Surface& surface, const Transform& pose, Surface& s) {
   s.box = s.tree.nodes[0].box;
 }
 
+Surface box_surface(const Box& box) {
+  const Vec3& h = box.half_extents;
+  std::vector<Vec3> corners;
+  for (int k = 0; k < 8; ++k) corners.push_back({k & 1 ? h.x : -h.x, k & 2 ? h.y : -h.y, k & 4 ? h.z : -h.z});
+  return polytope_surface(make_polytope(corners));
+}
+
 Surface polytope_surface(const Polytope& polytope) {
   const PolytopeData& d = *polytope.data;
   if (d.triangles.empty()) throw SurfaceError("a flat polytope bounds no solid");

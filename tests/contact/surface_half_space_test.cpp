@@ -19,8 +19,7 @@ namespace {
 TEST(SurfaceHalfSpace, MatchesConvexClippingOnRandomHulls) {
   std::mt19937_64 rng(3);
   std::normal_distribution<Real> gauss;
-  std::vector<Real> depth;
-  std::vector<std::uint32_t> piece;
+  HalfSpaceScratch scratch;
   int cut = 0;
   for (int n = 0; n < 300; ++n) {
     std::vector<Vec3> points(14);
@@ -30,7 +29,7 @@ TEST(SurfaceHalfSpace, MatchesConvexClippingOnRandomHulls) {
     const Vec3 normal = normalized(Vec3{gauss(rng), gauss(rng), gauss(rng)});
     const Vec3 point = normal * (0.8 * gauss(rng));
     const HalfSpaceContact expected = half_space_contact(Shape{hull}, Transform{}, point, normal);
-    const SurfaceHalfSpace got = surface_half_space(s, point, normal, depth, piece);
+    const SurfaceHalfSpace got = surface_half_space(s, point, normal, scratch);
     if (!expected.touching) {
       EXPECT_TRUE(got.pieces.empty()) << n;
       continue;
@@ -52,9 +51,8 @@ TEST(SurfaceHalfSpace, AUsFeetAreTwoPieces) {
   // The U of [0,3]x[0,1] and the arms [0,1]x[1,2], [2,3]x[1,2] (thickness 1
   // in z); the plane y = 1.5 facing -y leaves the arms' tips beyond it.
   const Surface u = test::surface_of(test::u_prism(1));
-  std::vector<Real> depth;
-  std::vector<std::uint32_t> piece;
-  const SurfaceHalfSpace h = surface_half_space(u, {0, 1.5, 0}, {0, -1, 0}, depth, piece);
+  HalfSpaceScratch scratch;
+  const SurfaceHalfSpace h = surface_half_space(u, {0, 1.5, 0}, {0, -1, 0}, scratch);
   ASSERT_EQ(h.pieces.size(), 2u);
   EXPECT_FALSE(h.submerged);
   for (const HalfSpacePiece& p : h.pieces) {
@@ -65,8 +63,8 @@ TEST(SurfaceHalfSpace, AUsFeetAreTwoPieces) {
     EXPECT_NEAR(p.centroid.z, 0.5, 1e-14);
   }
   EXPECT_NEAR(h.pieces[0].centroid.x + h.pieces[1].centroid.x, 3, 1e-14);  // at x = 0.5 and 2.5
-  EXPECT_TRUE(surface_half_space(u, {0, 5, 0}, {0, -1, 0}, depth, piece).pieces.empty());
-  EXPECT_TRUE(surface_half_space(u, {0, 5, 0}, {0, 1, 0}, depth, piece).submerged);
+  EXPECT_TRUE(surface_half_space(u, {0, 5, 0}, {0, -1, 0}, scratch).pieces.empty());
+  EXPECT_TRUE(surface_half_space(u, {0, 5, 0}, {0, 1, 0}, scratch).submerged);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // triangle are in one piece (a triangle's part below a plane is convex).
 #include <vector>
 
+#include "gjkdem/math/union_find.hpp"
 #include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem {
@@ -27,10 +28,17 @@ struct SurfaceHalfSpace {
   std::vector<HalfSpacePiece> pieces;
 };
 
+/// Per-vertex scratch of surface_half_space, kept between calls so that its
+/// memory is reused (one per thread).
+struct HalfSpaceScratch {
+  std::vector<Real> depth;            ///< below the plane, per vertex
+  UnionFind pieces;                   ///< of the submerged vertices
+  std::vector<HalfSpacePiece> sums;   ///< per piece root, as it is summed
+};
+
 /// The solid of `surface` on the side of the plane through `point` opposite
-/// to unit `normal`, everything in the surface's frame. The scratch vectors
-/// (a depth and a piece per vertex) keep their memory between calls.
+/// to unit `normal`, everything in the surface's frame.
 SurfaceHalfSpace surface_half_space(const Surface& surface, const Vec3& point, const Vec3& normal,
-                                    std::vector<Real>& depth_scratch, std::vector<std::uint32_t>& piece_scratch);
+                                    HalfSpaceScratch& scratch);
 
 }  // namespace gjkdem

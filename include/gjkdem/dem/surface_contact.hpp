@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "gjkdem/contact/surface_half_space.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
@@ -31,8 +32,7 @@ struct SurfaceScratch {
   SurfaceOverlapWorkspace overlap;
   Surface moved;                       ///< the surface of fewer vertices, in the other's frame
   std::shared_ptr<const Surface> moved_from;  ///< what `moved` is a copy of (its topology then needs no copy)
-  std::vector<Real> depth;             ///< per vertex, against a plane
-  std::vector<std::uint32_t> piece;
+  HalfSpaceScratch half_space;         ///< against a plane
 };
 
 struct SurfacePatchContact {

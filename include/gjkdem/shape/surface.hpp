@@ -18,6 +18,7 @@
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/box_tree.hpp"
+#include "gjkdem/shape/box.hpp"
 #include "gjkdem/shape/polytope.hpp"
 
 namespace gjkdem {
@@ -64,6 +65,9 @@ void repose(const Surface& surface, const Transform& pose, Surface& copy);
 /// convex body as a surface grain's contacts see it. Throws SurfaceError for
 /// a flat polytope.
 Surface polytope_surface(const Polytope& polytope);
+/// The boundary of a solid box (its 12 triangles). Throws SurfaceError for
+/// a flat box.
+Surface box_surface(const Box& box);
 
 /// Volume, centroid and inertia (per unit density) of the solid, exactly
 /// from its triangles (the divergence theorem).
