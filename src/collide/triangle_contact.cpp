@@ -1,27 +1,117 @@
+// The seed's triangle-pair query in closed form, one pair or many: the kernel
+// (triangle_kernel.inl) compiled for SSE2 and AVX2, and the dispatch between
+// them.
 #include "gjkdem/collide/triangle_contact.hpp"
 
-#include "gjkdem/collide/query.hpp"
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <type_traits>
 
 namespace gjkdem {
+namespace {
+
+#define GJKDEM_LANE_INLINE [[gnu::always_inline]] inline
+
+// 32-byte vectors live only inside the AVX2 functions (all inlined); GCC warns
+// about their ABI late, after any pop, so the warning is off for the file.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+using V2 = double __attribute__((vector_size(16)));
+using V4 = double __attribute__((vector_size(32)));
+
+namespace sse2 {
+#include "triangle_kernel.inl"
+}  // namespace sse2
+
+void run_blocks_sse2(const TrianglePairBlock* in, TriangleDistanceBlock* out, std::size_t count) {
+  sse2::run_blocks<V2>(in, out, count);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define GJKDEM_HAVE_AVX2_PATH 1
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define GJKDEM_TRIANGLE_KERNEL_AVX2 1
+namespace avx2 {
+#include "triangle_kernel.inl"
+}  // namespace avx2
+#undef GJKDEM_TRIANGLE_KERNEL_AVX2
+
+void run_blocks_avx2(const TrianglePairBlock* in, TriangleDistanceBlock* out, std::size_t count) {
+  avx2::run_blocks<V4>(in, out, count);
+}
+#pragma GCC pop_options
+#endif
+
+}  // namespace
+
+void TrianglePairs::push_back(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
+                              const Vec3& f) {
+  const int lane = static_cast<int>(size % kTriangleLanes);
+  const Vec3 corners[2][3] = {{a, b, c}, {d, e, f}};
+  const auto put = [&](TrianglePairBlock& block, int l) {
+    for (int corner = 0; corner < 3; ++corner)
+      for (int axis = 0; axis < 3; ++axis) {
+        block.a[corner][axis][l] = corners[0][corner][axis];
+        block.b[corner][axis][l] = corners[1][corner][axis];
+      }
+  };
+  if (lane == 0) {
+    blocks.emplace_back();
+    for (int l = 0; l < kTriangleLanes; ++l) put(blocks.back(), l);  // the padding lanes too
+  } else {
+    put(blocks.back(), lane);
+  }
+  ++size;
+}
+
+bool triangle_simd_available(TriangleSimd simd) noexcept {
+  if (simd != TriangleSimd::Avx2) return true;
+#ifdef GJKDEM_HAVE_AVX2_PATH
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+void triangle_distances(const TrianglePairBlock* pairs, TriangleDistanceBlock* out, std::size_t count,
+                        TriangleSimd simd) noexcept {
+#ifdef GJKDEM_HAVE_AVX2_PATH
+  static const bool has_avx2 = __builtin_cpu_supports("avx2");
+  if (simd == TriangleSimd::Avx2 || (simd == TriangleSimd::Best && has_avx2)) {
+    run_blocks_avx2(pairs, out, count);
+    return;
+  }
+#endif
+  run_blocks_sse2(pairs, out, count);
+}
+
+void triangle_distances(const TrianglePairs& pairs, std::vector<TriangleDistanceBlock>& out, TriangleSimd simd) {
+  out.resize(pairs.blocks.size());
+  triangle_distances(pairs.blocks.data(), out.data(), pairs.blocks.size(), simd);
+}
 
 TriangleContact triangle_contact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e,
-                                 const Vec3& f, Real rho, Real tol) noexcept {
-  // Local frames at the centroids keep round-off proportional to the triangles'
-  // size even far from the origin.
-  const Vec3 ca = (a + b + c) / 3, cd = (d + e + f) / 3;
-  const Shape abc{Triangle{{a - ca, b - ca, c - ca}}}, def{Triangle{{d - cd, e - cd, f - cd}}};
-  QuerySettings st;
-  st.gjk_rel_tol = tol;
-  const DistanceResult r = distance(abc, Transform::from(ca, {}), def, Transform::from(cd, {}), nullptr, st);
-  TriangleContact out;
-  out.status = r.status;
-  out.iterations = r.iterations;
-  out.distance = r.intersect ? 0 : r.distance;
-  out.contact = r.intersect || r.distance <= rho;
-  out.witness_a = r.witness_a;
-  out.witness_b = r.witness_b;
-  out.normal = r.normal;
-  return out;
+                                 const Vec3& f, Real rho) noexcept {
+  // One lane of the same kernel: a block would be 8x the work.
+  TrianglePairBlock in;
+  const Vec3 corners[2][3] = {{a, b, c}, {d, e, f}};
+  for (int corner = 0; corner < 3; ++corner)
+    for (int axis = 0; axis < 3; ++axis) {
+      in.a[corner][axis][0] = corners[0][corner][axis];
+      in.b[corner][axis][0] = corners[1][corner][axis];
+    }
+  TriangleDistanceBlock out;
+  sse2::run_lanes<double>(in, out, 0);
+  TriangleContact r;
+  r.distance = out.distance[0];
+  r.witness_a = {out.witness_a[0][0], out.witness_a[1][0], out.witness_a[2][0]};
+  r.witness_b = {out.witness_b[0][0], out.witness_b[1][0], out.witness_b[2][0]};
+  r.contact = r.distance <= rho;
+  r.status = r.distance > 0 ? GjkStatus::Separated : GjkStatus::Intersecting;
+  if (r.distance > 0) r.normal = (r.witness_b - r.witness_a) / r.distance;
+  return r;
 }
 
 }  // namespace gjkdem
