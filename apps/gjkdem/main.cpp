@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
       });
 
   gjkdem::app::BenchOptions bench;
-  CLI::App* b = app.add_subcommand("bench", "time one query type over every pair of a file");
+  CLI::App* b = app.add_subcommand(
+      "bench", "time one query type over every pair of a file (distance on triangle pairs: the batched kernel)");
   b->add_option("--in", bench.in, "input file (default: standard input)");
   b->add_option("--query", bench.query, "intersect | distance | penetration | contact")->capture_default_str();
   b->add_option("--repeat", bench.repeat, "timed passes over all pairs")->capture_default_str();

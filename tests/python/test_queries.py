@@ -183,3 +183,33 @@ def test_shapes_keep_the_frame_they_were_given_in():
     box = gjkdem.Shape("box", half_extents=[1, 1, 1])
     d = gjkdem.distance(p, box, None, [5, 5, 8, 1, 0, 0, 0])
     assert d.distance == pytest.approx(1.0)
+
+
+def test_triangle_distances_match_gjk_on_each_pair():
+    rng = np.random.default_rng(17)
+    n = 203  # not a multiple of the kernel's block
+    a = rng.uniform(-1, 1, size=(n, 3, 3))
+    b = rng.uniform(-1, 1, size=(n, 3, 3)) + rng.uniform(-0.8, 0.8, size=(n, 1, 3))
+    out = gjkdem.triangle_distances(a, b)
+    assert out["distance"].shape == (n,) and out["witness_a"].shape == (n, 3)
+    touching = 0
+    for k in range(n):
+        r = gjkdem.distance(gjkdem.Shape("triangle", vertices=a[k]), gjkdem.Shape("triangle", vertices=b[k]))
+        want = 0.0 if r.intersect else r.distance
+        assert abs(out["distance"][k] - want) < 1e-9, k
+        assert abs(np.linalg.norm(out["witness_b"][k] - out["witness_a"][k]) - out["distance"][k]) < 1e-12
+        touching += out["distance"][k] == 0
+    assert 10 < touching < n - 10  # both kinds of pairs occur
+
+
+def test_triangle_distances_refuse_bad_arrays():
+    good = np.zeros((2, 3, 3))
+    assert gjkdem.triangle_distances(np.zeros((0, 3, 3)), np.zeros((0, 3, 3)))["distance"].shape == (0,)
+    for bad, words in [(np.zeros((2, 3)), r"shape \(N, 3, 3\)"), (np.zeros((3, 3, 3)), "one pair per row"),
+                       ("text", r"shape \(N, 3, 3\)")]:
+        with pytest.raises(ValueError, match=words):
+            gjkdem.triangle_distances(good, bad)
+    nan = good.copy()
+    nan[1, 2, 0] = np.nan
+    with pytest.raises(ValueError, match="triangle 1 has a coordinate that is not finite"):
+        gjkdem.triangle_distances(nan, good)

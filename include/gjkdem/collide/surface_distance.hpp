@@ -1,8 +1,8 @@
 #pragma once
 // The distance between two closed triangle surfaces (shape/surface.hpp) and
 // a closest pair of points: the least of the triangle pairs' distances
-// (triangle_contact), visiting only the pairs of tree nodes whose boxes lie
-// closer than the best found so far. For separated solids this is the
+// (the batched kernel triangle_distances), visiting only the pairs of tree
+// nodes whose boxes lie closer than the best found so far. For separated solids this is the
 // distance between the solids (one inside the other is an overlap:
 // contact/surface_overlap.hpp tells).
 #include "gjkdem/shape/surface.hpp"
