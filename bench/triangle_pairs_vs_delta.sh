@@ -48,5 +48,5 @@ for scale in ("1", "0.01"):
         g = json.loads((tmp / f"gjkdem-{scale}-{set_}.json").read_text())
         assert g.get("kernel") == "triangle_distances", g
         ns, name, wrong = best[set_]
-        print(f"| {scale} | {set_} | {ns:.1f}: {name} | {wrong} | {g['ns_min']:.1f} | {ours[set_]} | {ns / g['ns_min']:.2f}x |")
+        print(f"| {scale} | {set_} | {ns:.1f}: {name} | {wrong} | {g['ns_min']:.1f} ({g['simd']}) | {ours[set_]} | {ns / g['ns_min']:.2f}x |")
 EOF

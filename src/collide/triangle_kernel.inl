@@ -1,8 +1,9 @@
 // The closed-form triangle-pair kernel over a lane type V, included by
-// triangle_contact.cpp once per instruction set (inside a namespace each, the
-// second time under #pragma GCC target("avx2")), so that every helper is
-// compiled for the instruction set of the loop that inlines it. No include
-// guard on purpose.
+// triangle_contact.cpp once per instruction set (inside a namespace each,
+// under #pragma GCC target for AVX2 and AVX-512, with
+// GJKDEM_TRIANGLE_KERNEL_WIDTH the widest vector it may use), so that every
+// helper is compiled for the instruction set of the loop that inlines it. No
+// include guard on purpose.
 //
 // Every lane runs the same IEEE operations in the same order, without fused
 // multiply-adds, so all widths give the same bits. No branches: every
@@ -43,12 +44,14 @@ GJKDEM_LANE_INLINE V lane_max(V a, V b) {
   return a > b ? a : b;
 }
 #if defined(__x86_64__)
-GJKDEM_LANE_INLINE V2 lane_min(V2 a, V2 b) { return __builtin_ia32_minpd(a, b); }
-GJKDEM_LANE_INLINE V2 lane_max(V2 a, V2 b) { return __builtin_ia32_maxpd(a, b); }
+GJKDEM_LANE_INLINE V2 lane_min(V2 a, V2 b) { return _mm_min_pd(a, b); }
+GJKDEM_LANE_INLINE V2 lane_max(V2 a, V2 b) { return _mm_max_pd(a, b); }
+#if GJKDEM_TRIANGLE_KERNEL_WIDTH >= 4
+GJKDEM_LANE_INLINE V4 lane_min(V4 a, V4 b) { return _mm256_min_pd(a, b); }
+GJKDEM_LANE_INLINE V4 lane_max(V4 a, V4 b) { return _mm256_max_pd(a, b); }
 #endif
-#ifdef GJKDEM_TRIANGLE_KERNEL_AVX2
-GJKDEM_LANE_INLINE V4 lane_min(V4 a, V4 b) { return __builtin_ia32_minpd256(a, b); }
-GJKDEM_LANE_INLINE V4 lane_max(V4 a, V4 b) { return __builtin_ia32_maxpd256(a, b); }
+// 8 lanes (AVX-512) take the generic form: a compare into a mask register
+// and a masked move, as cheap.
 #endif
 
 template <class V>

@@ -8,9 +8,9 @@
 // nothing left to bound) and lets one kernel run many pairs at once.
 //
 // The batched kernel takes pairs in blocks of kTriangleLanes (structure of
-// arrays inside a block) and runs them with AVX2 where the processor has it,
-// else with SSE2 (every x86-64); both give the same bits, lane for lane, as the
-// one-pair triangle_contact.
+// arrays inside a block) and runs them with AVX-512 or AVX2 where the
+// processor has it, else with SSE2 (every x86-64); all give the same bits,
+// lane for lane, as the one-pair triangle_contact.
 #include <cstddef>
 #include <vector>
 
@@ -60,11 +60,17 @@ struct TrianglePairs {
 };
 
 /// The instruction sets the kernel can run on; Best is the widest this
-/// processor has (AVX2, else SSE2).
-enum class TriangleSimd { Best, Sse2, Avx2 };
+/// processor has (AVX-512F, else AVX2, else SSE2).
+enum class TriangleSimd { Best, Sse2, Avx2, Avx512 };
 
 /// True when this processor runs `simd` (Best and Sse2 always).
 bool triangle_simd_available(TriangleSimd simd) noexcept;
+
+/// What Best runs on this processor (never Best).
+TriangleSimd triangle_simd_best() noexcept;
+
+/// "sse2", "avx2", "avx512" or "best".
+const char* triangle_simd_name(TriangleSimd simd) noexcept;
 
 /// Distances and closest points of `count` blocks of pairs. Every coordinate
 /// must be finite. `simd` other than Best is for tests and benchmarks; it must
