@@ -43,19 +43,22 @@ void bind_scenes(py::module_& m) {
       "folder's checkpoint: the run's last saved state, to measure or continue from Python.");
   m.def(
       "analyze",
-      [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every) {
+      [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every,
+         const dem::World* world) {
         io::AnalysisOptions options;
         if (region) options.region = dem::MeasureRegion{to_vec3(region->first, "region lo"), to_vec3(region->second, "region hi")};
         options.every = every;
-        const io::AnalysisSummary s = io::analyze_run(run_dir, options);
+        if (world) idle(*world);
+        const io::AnalysisSummary s = io::analyze_run(run_dir, options, {}, world);
         py::dict d;
         d["frames"] = s.frames, d["seconds"] = s.seconds, d["largest_frame"] = s.largest_frame;
         return d;
       },
-      py::arg("run_dir"), py::arg("region") = py::none(), py::arg("every") = 1,
+      py::arg("run_dir"), py::arg("region") = py::none(), py::arg("every") = 1, py::arg("world") = py::none(),
       "As `gjkdem analyze`: measures every `every`th frame of a run's view/ in the box region = (lo, hi)\n"
       "(None: around the moving bodies, frame by frame) and writes run_dir/analysis/measures.csv and\n"
-      "normal_forces.csv (docs/measurements.md). Returns {frames, seconds, largest_frame}.");
+      "normal_forces.csv (docs/measurements.md). Returns {frames, seconds, largest_frame}. The shapes come\n"
+      "from the folder's scene, or from `world`: the World whose run(out=...) wrote a folder from Python.");
 
   py::class_<io::SceneRun, std::unique_ptr<io::SceneRun>>(
       m, "SceneRun",

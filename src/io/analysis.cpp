@@ -3,6 +3,8 @@
 #include <cmath>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/run_output.hpp"
@@ -123,13 +125,19 @@ std::string normal_forces_rows(std::uint64_t frame, double time, const dem::Meas
 }
 
 AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
-                            const std::function<void(std::size_t, std::size_t)>& progress) {
+                            const std::function<void(std::size_t, std::size_t)>& progress, const dem::World* given) {
   if (options.every == 0) throw std::invalid_argument("--every must be at least 1");
   require_view_frames(dir);
   const fs::path view = dir / "view";
   const std::vector<ViewIndexRow> index = read_view_index(view_index_file(view));
-  Scene scene = load_run_scene(dir);
-  dem::World& world = scene.world;
+  if (given) {  // the shapes the folder was written with, or a refusal
+    std::ifstream in(view_shapes_file(view), std::ios::binary);
+    const std::string written{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (written != encode(view_shapes(*given)))
+      throw std::invalid_argument("the World given did not write " + dir.string() +
+                                  ": its shapes and walls differ from those of view/shapes.bin");
+  }
+  dem::World world = given ? *given : load_run_scene(dir).world;
 
   fs::create_directories(dir / "analysis");
   std::string measures = measures_header(), forces = normal_forces_header();

@@ -42,7 +42,8 @@ Json read_run_json(const RunPaths& folder) {
   if (j.is_discarded() || !j.is_object()) throw SceneError(folder.run_json().string() + " is not a run's JSON");
   if (!j.contains("scene_base") || !j["scene_base"].is_string())
     throw SceneError(folder.run_json().string() + " names no scene to rebuild the world from (a folder written by "
-                     "World.run(out=...) from Python keeps none: continue it with that World's load_checkpoint)");
+                     "World.run(out=...) from Python keeps none: continue it with that World's load_checkpoint, "
+                     "measure it with gjkdem.analyze(folder, world=that World))");
   return j;
 }
 

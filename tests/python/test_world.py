@@ -367,3 +367,20 @@ def test_bodies_given_one_shape_object_share_one_template():
     for w in (shared, apart):
         w.run(duration=0.01, dt=1e-4)
     assert np.array_equal(shared.positions, apart.positions)
+
+
+def test_a_folder_written_from_python_is_analyzed_with_its_world(tmp_path):
+    w = small_bed()
+    assert w.run(0.03, output_every=0.01, out=str(tmp_path / "run")) == "completed"
+    summary = gjkdem.analyze(str(tmp_path / "run"), world=w)
+    assert summary["frames"] == 5 and summary["largest_frame"] == 40
+    rows = (tmp_path / "run" / "analysis" / "measures.csv").read_text().splitlines()
+    assert len(rows) == 6 and rows[-1].split(",")[13] == "40"  # grains in the last frame
+    with pytest.raises(gjkdem.SceneError, match=r"gjkdem.analyze\(folder, world=that World\)"):
+        gjkdem.analyze(str(tmp_path / "run"))  # the folder keeps no scene
+    s = gjkdem.Settings()
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("m", 1000, 1e6)
+    b.add_body(gjkdem.Shape("box", half_extents=[0.1, 0.1, 0.1]), "m", position=[0, 0, 0])
+    with pytest.raises(ValueError, match="did not write"):
+        gjkdem.analyze(str(tmp_path / "run"), world=b.build())

@@ -43,9 +43,12 @@ std::string normal_forces_header();
 /// kForceBins + 1 rows: frame,time,low,high,count,density (f / mean f; density per unit of it).
 std::string normal_forces_rows(std::uint64_t frame, double time, const dem::Measures& m);
 
-/// Analyses the run in `dir` (its scene gives the shapes). `progress` (optional)
+/// Analyses the run in `dir`. The shapes come from `world` when given (the
+/// World that wrote the folder from Python, which keeps no scene; it is
+/// copied, not changed), else from the folder's scene. `progress` (optional)
 /// is called after each frame with the frames done and to do.
 AnalysisSummary analyze_run(const std::filesystem::path& dir, const AnalysisOptions& options,
-                            const std::function<void(std::size_t, std::size_t)>& progress = {});
+                            const std::function<void(std::size_t, std::size_t)>& progress = {},
+                            const dem::World* world = nullptr);
 
 }  // namespace gjkdem::io
