@@ -166,8 +166,14 @@ std::string describe_failure(const World& w, const StepReport& r) {
       return "the contact model has no computation for the pair " + name_of(w, r.id_a) + " and " +
              name_of(w, r.id_b) + " at t = " + number_text(w.time) + " s";
     case StepStatus::ThroughWall:
-      return name_of(w, r.id_b) + " passed wholly through " + name_of(w, r.id_a) + " at t = " + number_text(w.time) +
-             " s: nothing holds a body wholly beyond a plane wall (lower dt, or its speed, or stiffen the contact)";
+      if (name_of(w, r.id_a).starts_with("plane"))
+        return name_of(w, r.id_b) + " passed wholly through " + name_of(w, r.id_a) + " at t = " +
+               number_text(w.time) +
+               " s: nothing holds a body wholly beyond a plane wall (lower dt, or its speed, or stiffen the contact)";
+      return name_of(w, r.id_b) + " went through the mesh wall piece " + name_of(w, r.id_a) + " at t = " +
+             number_text(w.time) +
+             " s: its centre crossed the wall's triangle, and past it the contact pushes on through (lower dt, or "
+             "its speed, or stiffen the contact; a thicker wall holds faster bodies)";
     case StepStatus::Engulfed:
       return "one of " + name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " lies wholly inside the other at t = " +
              number_text(w.time) +

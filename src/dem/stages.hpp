@@ -41,6 +41,16 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
                              std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
                              std::span<const PairState> last, int threads, StepWorkspace& work);
 
+/// wall_crossing.cpp: the first listed contact (in list order) of a moving
+/// body with a mesh wall piece whose triangle (ShapeTemplate::wall_face) the
+/// body's centre crossed during the last step of length `dt` (the centre's
+/// path taken back by its velocity, relative to a driven piece): ThroughWall
+/// naming the piece and the body, else Ok. A body that far in is past
+/// holding: past the middle of the wall its contact pushes it on through.
+StepReport find_wall_crossing(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                              std::span<const MotionFrame> motion_frames, const PeriodicCell& cell,
+                              std::span<const StepContact> contacts, Real dt);
+
 /// contact_sides.cpp: what the contact laws see of each side of a contact,
 /// from the bodies' make-up, the driven motions' frames at this step's time
 /// and a deforming cell's velocity gradient.

@@ -88,6 +88,10 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
     if (c.geometry.status == GeometryStatus::Engulfed)
       return {StepStatus::Engulfed, w.bodies[c.a].id, w.bodies[c.b].id};
   }
+  if (const StepReport crossed =
+          detail::find_wall_crossing(w.bodies, w.templates, work.motion_frames, w.cell, contacts, dt);
+      crossed.status != StepStatus::Ok)
+    return crossed;
   if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
   const detail::SideSources sources{{w.templates, w.materials}, work.motion_frames, w.cell_rate};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)

@@ -357,7 +357,8 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
     } else {
       shape = Shape{Triangle{{a - centre, b - centre, c - centre}}, thick / 2};
     }
-    add_fixed_piece(shape, centre, material, group, piece, motion);
+    const std::uint32_t placed = add_fixed_piece(shape, centre, material, group, piece, motion);
+    world_.templates[world_.bodies[placed].shape].wall_face = Triangle{{a - centre, b - centre, c - centre}};
   }
 }
 

@@ -34,7 +34,7 @@ SampledMix sample_mix(std::span<const MixPart> parts, std::span<const SizeClass>
           for (PlacedShape& p : shape.parts) p.shape = scaled(p.shape, k), p.pose.translation *= k;
           if (shape.surface && k != 1) {  // checked again: scaling rounds every vertex
             std::vector<Vec3> vertices = shape.surface->vertices;
-            for (Vec3& v : vertices) v *= k;
+            for (Vec3& vertex : vertices) vertex *= k;
             try {
               shape.surface = std::make_shared<const Surface>(make_surface(std::move(vertices), shape.surface->triangles));
             } catch (const SurfaceError& e) {

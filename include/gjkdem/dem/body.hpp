@@ -6,6 +6,7 @@
 // steps lives in the world's pair store (pair_state.hpp), not in the bodies.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 #include <type_traits>
@@ -53,6 +54,10 @@ struct ShapeTemplate {
   /// tessellation when curved) in a world with surface grains; null otherwise.
   /// In the shape's frame.
   std::shared_ptr<const Surface> surface;
+  /// A mesh wall piece's triangle (the middle of its thickness), in the
+  /// shape's frame: a moving body whose centre crosses it during a step has
+  /// gone through the wall (StepStatus::ThroughWall). Unset for other shapes.
+  std::optional<Triangle> wall_face;
 };
 
 /// A template for a moving particle (throws std::invalid_argument for shapes

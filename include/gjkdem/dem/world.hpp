@@ -63,7 +63,7 @@ enum class StepStatus {
   Ok,
   UnsupportedPair,  ///< the contact model has no computation for this pair of shapes
   CellTooShort,     ///< a deforming periodic cell became shorter than shortest_period (periodic.hpp)
-  ThroughWall,      ///< a body lies wholly beyond a plane wall (id_a the wall, id_b the body)
+  ThroughWall,      ///< a body lies wholly beyond a plane wall, or its centre crossed a mesh wall piece (id_a the wall or piece, id_b the body)
   Engulfed,         ///< a body lies wholly inside a surface grain, or one inside it (ids of the two)
 };
 
