@@ -140,4 +140,22 @@ steps=$(sed -nE 's/^  "steps": ([0-9]+),/\1/p' long/run.json)
 echo junk > long/checkpoint.bin.tmp
 "$gjkdem" run --resume long --threads 1 --quiet --stop-after $((steps + 10)) || [ $? -eq 130 ]
 [ ! -e long/checkpoint.bin.tmp ] || fail "the stale checkpoint.bin.tmp stayed"
+# A dry run (issue 35): the summary and estimates, nothing written where the
+# run writes; a scene the run would refuse exits 2, one that fails early 1.
+"$gjkdem" run --check "$scene" --threads 1 > check.txt || fail "the dry run of the small pour failed"
+grep -q "^bodies: .* moving" check.txt && grep -q "^estimate: " check.txt && grep -q "^output: about .* in small_pour_out" check.txt ||
+  { cat check.txt; fail "the dry run's summary"; }
+[ ! -e small_pour_out ] || fail "the dry run wrote the run's folder"
+sed 's/^count = 60$/count = -3/' "$scene" > bad.toml
+set +e
+"$gjkdem" run --check bad.toml 2> bad.txt
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q "count" bad.txt || fail "a bad scene's dry run should exit 2 naming the key (got $rc)"
+sed 's/^velocity = \[0.0, 0.0, -1.0\]$/velocity = [0.0, 0.0, -1.0e4]/' "$scene" > fast.toml
+set +e
+"$gjkdem" run --check fast.toml > fast.txt
+rc=$?
+set -e
+[ "$rc" -eq 1 ] && grep -q "the run would fail" fast.txt || { cat fast.txt; fail "a dry run of a failing run should exit 1 (got $rc)"; }
 echo "cli_run: all checks passed"

@@ -33,6 +33,7 @@ struct RunOptions {
   int threads = -1;         ///< -1: the scene's [simulation].threads
   long long stop_after = -1;  ///< stop as if interrupted after this many steps (tests)
   bool quiet = false;       ///< no progress output
+  bool check = false;       ///< a dry run: every check and a short timed sample, nothing written (io/scene_check.hpp)
 };
 /// 0 completed, 1 failed during the run, 2 refused (bad scene or options), 130 interrupted.
 int run_simulation(const RunOptions& opt);

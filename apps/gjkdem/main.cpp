@@ -42,6 +42,9 @@ int main(int argc, char** argv) {
   r->add_option("--stop-after", run.stop_after, "stop as if interrupted after this many steps")
       ->check(CLI::Range(0LL, 1LL << 60));
   r->add_flag("--quiet", run.quiet, "no progress output");
+  r->add_flag("--check", run.check,
+              "a dry run: every check, a few steps timed in a scratch folder, then the bodies, steps, a time and an "
+              "output size estimate; nothing is written (exit 1: the run would fail)");
   r->get_option("--resume")->excludes(r->get_option("scene"));
   r->get_option("--resume")->excludes(r->get_option("--out"));  // a resumed run writes where it ran
   r->get_option("--resume")->excludes(r->get_option("--overwrite"));

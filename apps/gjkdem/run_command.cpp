@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "gjkdem/io/scene_check.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "gjkdem/mpi/mpi_transport.hpp"
 
@@ -158,7 +159,24 @@ int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
 // Under mpirun every rank reads the scene (and the checkpoint) and runs its
 // domain; rank 0 alone writes the folder and speaks. A rank that cannot
 // start tells the others, so that none waits for it.
+// gjkdem run --check: the scene's summary, a time and size estimate.
+int check_simulation(const RunOptions& opt) {
+  if (!opt.resume.empty() || !opt.out.empty() || opt.stop_after >= 0) {
+    std::cerr << "gjkdem: --check takes a scene and --threads only\n";
+    return 2;
+  }
+  try {
+    const io::SceneCheck c = io::check_scene(opt.scene, opt.threads);
+    std::cout << io::describe(c);
+    return c.failure.empty() ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << "gjkdem: error: " << e.what() << "\n";
+    return 2;
+  }
+}
+
 int run_simulation(const RunOptions& opt) {
+  if (opt.check) return check_simulation(opt);
   const std::unique_ptr<dem::DomainTransport> transport = mpi::launched_transport();
   const bool follower = transport && transport->rank() > 0;
   const bool domains = transport && transport->size() > 1;

@@ -1,12 +1,14 @@
 // TOML scenes from Python: read one into a World, or run one into a run
 // folder exactly as `gjkdem run` does (io::SceneRun: the same files, the
 // same bytes), with Python observers beside the writers.
+#include <cmath>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "bindings.hpp"
 #include "gjkdem/io/analysis.hpp"
+#include "gjkdem/io/scene_check.hpp"
 #include "gjkdem/io/scene.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
@@ -60,6 +62,33 @@ void bind_scenes(py::module_& m) {
       "normal_forces.csv (docs/measurements.md). Returns {frames, seconds, largest_frame}. The shapes come\n"
       "from the folder's scene, or from `world`: the World whose run(out=...) wrote a folder from Python.");
 
+  m.def(
+      "check_scene",
+      [](const std::optional<std::string>& scene, int threads, double sample_seconds) {
+        if (!(sample_seconds >= 0) || !std::isfinite(sample_seconds))
+          throw py::value_error("check_scene: sample_seconds must be finite and >= 0");
+        io::SceneCheck c;
+        {
+          py::gil_scoped_release release;
+          c = io::check_scene(scene.value_or(""), threads, sample_seconds);
+        }
+        py::dict d;
+        d["bodies"] = c.bodies, d["moving"] = c.moving, d["fixed"] = c.fixed, d["templates"] = c.templates;
+        d["inflow_room"] = c.inflow_room, d["threads"] = c.threads, d["duration"] = c.duration, d["dt"] = c.dt;
+        d["dt_auto"] = c.dt_auto, d["steps"] = c.steps, d["outputs"] = c.outputs, d["out_dir"] = c.out_dir;
+        d["sampled_steps"] = c.sampled_steps, d["seconds_per_step"] = c.seconds_per_step;
+        d["estimated_seconds"] = c.estimated_seconds, d["output_bytes"] = c.output_bytes;
+        d["checkpoint_bytes"] = c.checkpoint_bytes, d["estimated_bytes"] = c.estimated_bytes;
+        d["warnings"] = c.warnings;
+        d["failure"] = c.failure.empty() ? py::object(py::none()) : py::object(py::str(c.failure));
+        d["summary"] = io::describe(c);
+        return d;
+      },
+      py::arg("scene") = py::none(), py::arg("threads") = -1, py::arg("sample_seconds") = 2.0,
+      "As `gjkdem run --check`: every check of the scene (SceneError) and of a run's start, then a few steps\n"
+      "timed in a scratch folder (about sample_seconds of wall time); returns a dict: bodies, steps, dt,\n"
+      "estimated_seconds (at the first steps' pace), estimated_bytes, failure (None, or why the run would\n"
+      "fail), summary (the command's text). Nothing is written where the run would write.");
   py::class_<io::SceneRun, std::unique_ptr<io::SceneRun>>(
       m, "SceneRun",
       "A scene run into its folder as `gjkdem run` does: frames, trace.csv, energy.csv, checkpoints, run.json.\n"

@@ -86,3 +86,17 @@ def test_a_folder_holding_another_run_is_refused(scene, tmp_path):
     assert isinstance(e.value, OSError)
     with pytest.raises(gjkdem.SceneError, match="cannot read"):
         gjkdem.SceneRun(str(tmp_path / "missing.toml"), out=str(tmp_path / "x"))
+
+
+def test_check_scene_is_the_programs_dry_run(cli, scene, tmp_path):
+    d = gjkdem.check_scene(str(scene), threads=1, sample_seconds=0.2)
+    assert d["bodies"] == d["moving"] + d["fixed"] and d["moving"] == 81 and d["failure"] is None
+    assert d["steps"] == 600 and d["outputs"] == 7 and 0 < d["sampled_steps"] <= 600
+    assert d["estimated_seconds"] > 0 and d["estimated_bytes"] > 7 * d["output_bytes"] > 0
+    assert not (tmp_path / "small_pour_out").exists() and not (scene.parent / "small_pour_out").exists()
+    printed = subprocess.run([cli, "run", "--check", str(scene), "--threads", "1"], capture_output=True, text=True)
+    assert printed.returncode == 0 and printed.stdout.splitlines()[:2] == d["summary"].splitlines()[:2]
+    with pytest.raises(gjkdem.SceneError, match="cannot read"):
+        gjkdem.check_scene(str(tmp_path / "missing.toml"))
+    with pytest.raises(ValueError, match="sample_seconds"):
+        gjkdem.check_scene(str(scene), sample_seconds=float("nan"))
