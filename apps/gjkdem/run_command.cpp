@@ -176,8 +176,8 @@ int check_simulation(const RunOptions& opt) {
 }
 
 int run_simulation(const RunOptions& opt) {
-  if (opt.check) return check_simulation(opt);
   const std::unique_ptr<dem::DomainTransport> transport = mpi::launched_transport();
+  if (opt.check) return transport && transport->rank() > 0 ? 0 : check_simulation(opt);  // rank 0 checks, on one rank
   const bool follower = transport && transport->rank() > 0;
   const bool domains = transport && transport->size() > 1;
   auto started = [&](const std::string& error) {
