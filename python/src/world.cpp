@@ -303,7 +303,7 @@ void bind_world(py::module_& m) {
           "add_body",
           [](py::object self, const py::object& shape_object, const py::object& material, const py::object& position,
              const py::object& rotation, const py::object& velocity, const py::object& angular_velocity, bool fixed,
-             std::uint32_t motion, const std::string& label) {
+             std::uint32_t motion, const std::string& label, const std::string& name) {
             dem::WorldBuilder& b = self.cast<dem::WorldBuilder&>();
             dem::BodyDef def{.shape = body_shape(shape_object, "shape"),
                              .material = material_index(b, material),
@@ -313,7 +313,8 @@ void bind_world(py::module_& m) {
                              .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
                              .fixed = fixed,
                              .motion = motion,
-                             .label = label};
+                             .label = label,
+                             .name = name};
             // Moving bodies given one Shape object share one template, as a
             // scene's do: the builder keeps, per Shape object (held alive
             // here, so its id stays its own), the shared shape it made.
@@ -331,9 +332,10 @@ void bind_world(py::module_& m) {
           py::arg("rotation") = std::array<double, 4>{1, 0, 0, 0},
           py::arg("velocity") = std::array<double, 3>{0, 0, 0},
           py::arg("angular_velocity") = std::array<double, 3>{0, 0, 0}, py::arg("fixed") = false,
-          py::arg("motion") = 0, py::arg("label") = "",
+          py::arg("motion") = 0, py::arg("label") = "", py::arg("name") = "",
           "Adds a body whose frame (the shape's) is at `position`, turned by `rotation` [w, x, y, z]; returns its index.\n"
-          "motion: a number from add_motion, for a fixed body that moves as prescribed.")
+          "motion: a number from add_motion, for a fixed body that moves as prescribed. name: the body is traced\n"
+          "(trace.csv of run(out=...), World.names) and messages call it so; label: a name for messages only.")
       .def(
           "add_motion",
           [](dem::WorldBuilder& b, const py::object& center, const py::object& velocity,
@@ -462,6 +464,14 @@ void bind_world(py::module_& m) {
 
   py::class_<World> world(m, "World", "A DEM world: bodies, walls and their contacts. Made by WorldBuilder or a scene.");
   def_view<std::uint64_t>(world, "ids", offsetof(Body, id), 0, false, "Global ids (N,), read-only view.");
+  world.def_property_readonly(
+      "names",
+      [](const World& w) {
+        py::dict d;
+        for (const io::TracedBody& t : io::traced_bodies(w)) d[py::str(t.name)] = t.body;
+        return d;
+      },
+      "The named bodies (add_body's name, a scene body's name): {name: index}; run(out=...) traces them.");
   def_view<std::uint16_t>(world, "fixed", offsetof(Body, fixed), 0, false, "1 for fixed bodies (N,), read-only view.");
   def_view<std::uint16_t>(world, "motions", offsetof(Body, motion), 0, false,
                           "The motion number (add_motion) of driven bodies, 0 for others (N,), read-only view.");
@@ -595,7 +605,7 @@ void bind_world(py::module_& m) {
               io::prepare_run_folder(folder, overwrite);
               writers = std::make_unique<io::RunFolderWriters>(
                   folder, w,
-                  io::RunWriterOptions{.frames = frames, .checkpoint_every = checkpoint_every, .traced = {},
+                  io::RunWriterOptions{.frames = frames, .checkpoint_every = checkpoint_every, .traced = io::traced_bodies(w),
                                        .fingerprint = 0, .info_json = io::run_info_json(w, step)});
               writers->info().started(w, state);
             }

@@ -248,7 +248,16 @@ void WorldBuilder::place(Body& b, const BodyShape& s, const Vec3& position, cons
 }
 
 std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
-  const std::string label = d.label.empty() ? "body " + std::to_string(world_.bodies.size()) : d.label;
+  const std::string label = !d.label.empty() ? d.label
+                            : !d.name.empty() ? d.name
+                                              : "body " + std::to_string(world_.bodies.size());
+  if (!d.name.empty()) {
+    if (std::any_of(d.name.begin(), d.name.end(),
+                    [](char c) { return c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20; }))
+      throw BuildError(label + ": its name holds a comma, a quote or a control character (it is a trace.csv field)");
+    if (std::any_of(world_.names.begin(), world_.names.end(), [&](const BodyName& n) { return n.name == d.name; }))
+      throw BuildError(label + ": two bodies are named '" + d.name + "'");
+  }
   check_material(d.material, label);
   for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
     if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
@@ -273,6 +282,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   }
   world_.bodies.push_back(b);
   labels_.push_back(label);
+  if (!d.name.empty()) world_.names.push_back({b.id, d.name});
   const std::uint32_t index = static_cast<std::uint32_t>(world_.bodies.size() - 1);
   explicit_.push_back(index);
   drive(index, d.motion);

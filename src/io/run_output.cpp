@@ -177,6 +177,18 @@ void write_frame_series(const std::filesystem::path& file, std::span<const std::
   if (!f) throw std::runtime_error("cannot write " + file.string());
 }
 
+std::vector<TracedBody> traced_bodies(const dem::World& w) {
+  std::vector<TracedBody> out;
+  for (const dem::BodyName& n : w.names) {
+    // Bodies are kept in increasing id order.
+    const auto at = std::lower_bound(w.bodies.begin(), w.bodies.end(), n.id,
+                                     [](const dem::Body& b, std::uint64_t id) { return b.id < id; });
+    if (at != w.bodies.end() && at->id == n.id)
+      out.push_back({n.name, static_cast<std::uint32_t>(at - w.bodies.begin())});
+  }
+  return out;
+}
+
 std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"; }
 
 std::string trace_row(const dem::World& w, const std::string& name, const dem::Body& b) {

@@ -177,7 +177,7 @@ void SceneRun::open_writers(const std::string& text, const std::string& scene_fi
   const RunWriterOptions options{.frames = scene.write_frames,
                                  .view = scene.write_view,
                                  .checkpoint_every = scene.checkpoint_every,
-                                 .traced = scene.traced,
+                                 .traced = traced_bodies(scene.world),
                                  .fingerprint = fnv1a64(text),
                                  .info_json = info.dump()};
   if (!resuming) {

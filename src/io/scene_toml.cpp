@@ -445,16 +445,10 @@ class SceneBuilder {
     Json motion_json;
     if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
     d.motion = read_motion(r, motion_json);
-    if (name && names_.count(*name)) r.fail("name", "two bodies are named '" + *name + "'");
-    if (name && (name->empty() || name->find_first_of(",\"\r\n") != std::string::npos ||
-                 std::any_of(name->begin(), name->end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })))
-      r.fail("name", "must be a non-empty name without commas, quotes or control characters (it is a trace.csv field)");
+    if (name && name->empty()) r.fail("name", "must not be empty (leave it out for an untraced body)");
+    if (name) d.name = *name;  // the builder checks it (unique, a CSV field)
     const std::uint32_t index = building(r.table_node(), [&] { return builder_->add_body(d); });
     body_lines_[index] = r.table_node().source().begin.line;
-    if (name) {
-      names_.insert(*name);
-      scene_.traced.push_back({*name, index});
-    }
     Json j = {{"shape", "(as given)"}, {"material", r.required_string("material")},
               {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
               {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
@@ -791,7 +785,6 @@ class SceneBuilder {
   dem::WorldSettings settings_;
   std::optional<dem::WorldBuilder> builder_;
   Json resolved_;
-  std::set<std::string> names_;
   std::map<std::pair<std::string, Real>, std::shared_ptr<const Surface>> surfaces_;  ///< by file and scale
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
   bool accept_overlaps_ = false;

@@ -2,6 +2,7 @@
 setters, runs with observers, contacts, energies, checkpoints, and the
 errors of bad input."""
 import math
+import pathlib
 
 import numpy as np
 import pytest
@@ -384,3 +385,26 @@ def test_a_folder_written_from_python_is_analyzed_with_its_world(tmp_path):
     b.add_body(gjkdem.Shape("box", half_extents=[0.1, 0.1, 0.1]), "m", position=[0, 0, 0])
     with pytest.raises(ValueError, match="did not write"):
         gjkdem.analyze(str(tmp_path / "run"), world=b.build())
+
+
+def test_named_bodies_are_traced_as_in_scenes(tmp_path):
+    s = gjkdem.Settings()
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    b.add_plane([0, 0, 0], [0, 0, 1], "glass")
+    ball = gjkdem.Shape("sphere", radius=0.01)
+    b.add_body(ball, "glass", position=[0, 0, 0.05], name="tracer")
+    b.add_body(ball, "glass", position=[0.05, 0, 0.05])
+    with pytest.raises(ValueError, match="two bodies are named 'tracer'"):
+        b.add_body(ball, "glass", position=[0.1, 0, 0.05], name="tracer")
+    with pytest.raises(ValueError, match="its name holds a comma"):
+        b.add_body(ball, "glass", position=[0.1, 0, 0.05], name="a,b")
+    w = b.build()
+    assert w.names == {"tracer": 0}
+    assert w.run(0.02, output_every=0.01, out=str(tmp_path / "run")) == "completed"
+    rows = (tmp_path / "run" / "trace.csv").read_text().splitlines()
+    assert rows[0].startswith("time,name,x,y,z") and len(rows) == 4
+    assert all(r.split(",")[1] == "tracer" for r in rows[1:])
+    assert float(rows[-1].split(",")[4]) < 0.05  # it fell
+    scene = gjkdem.load_scene(str(pathlib.Path(__file__).parents[1] / "data" / "scenes" / "small_pour.toml"))
+    assert list(scene.world.names) == ["tracer"]  # a scene's named body: the same notion (after the walls)

@@ -91,6 +91,13 @@ struct SearchCache {
   bool renew_cell = true;
 };
 
+/// A body the user named: trace.csv logs it at every output, and messages
+/// call it by that name.
+struct BodyName {
+  std::uint64_t id = 0;  ///< Body::id
+  std::string name;
+};
+
 struct World {
   // Made by the builder, constant during a run.
   WorldSettings settings;
@@ -100,6 +107,7 @@ struct World {
   std::vector<PrescribedMotion> motions;  ///< of driven walls and bodies (motion.hpp)
   std::vector<DrivenBody> driven;         ///< the bodies with a motion, as given
   std::vector<Inflow> inflows;            ///< regions inserting bodies during a run (inflow.hpp)
+  std::vector<BodyName> names;            ///< the bodies given a name (BodyDef::name), in the order added: traced
   // State: what a checkpoint holds, or what is remade from it (the planes'
   // placement, forces_current).
   std::vector<Body> bodies;       ///< in increasing id order

@@ -100,7 +100,10 @@ struct BodyDef {
   Vec3 angular_velocity{};      ///< world (rad/s)
   bool fixed = false;           ///< not moved by forces; must have no velocity
   std::uint32_t motion = 0;     ///< > 0: a fixed body moved by this motion (add_motion)
-  std::string label{};          ///< names the body in messages, e.g. "body[2]" or its name
+  std::string label{};          ///< names the body in messages, e.g. "body[2]"; empty: its name, else "body N"
+  /// The user's name for it: traced (World::names, trace.csv). Empty: none;
+  /// else unique, without commas, quotes or control characters (a CSV field).
+  std::string name{};
 };
 
 /// Bodies placed without overlap in the box [lo, hi], in cells one bounding

@@ -57,6 +57,9 @@ struct TracedBody {
   std::uint32_t body = 0;  ///< index into world.bodies
 };
 
+/// The world's named bodies (World::names), as trace.csv logs them.
+std::vector<TracedBody> traced_bodies(const dem::World& world);
+
 std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);

@@ -33,7 +33,6 @@ struct Scene {
   bool write_frames = true;
   bool write_view = true;       ///< view/ frames (docs/view-format.md)
   dem::RunGuards guards;        ///< [simulation].guards: "stop" (default), "warn" or "off"
-  std::vector<TracedBody> traced;
   std::string resolved_json;    ///< the scene with its defaults filled in (JSON object)
   std::vector<std::string> warnings;  ///< meshes convexified and the like
 };
