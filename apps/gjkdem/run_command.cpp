@@ -28,15 +28,6 @@ using Clock = std::chrono::steady_clock;
 volatile std::sig_atomic_t g_stop_signal = 0;  // set by the handler only
 extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
 
-std::string duration_text(double seconds) {
-  if (!std::isfinite(seconds) || seconds < 0) return "?";
-  const long s = std::lround(seconds);
-  char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, s / 60 % 60);
-  else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-  return buf;
-}
-
 // Progress on standard error: a bar redrawn in place on a terminal, a plain
 // line every 10 s (and at the end) otherwise.
 class Progress : public dem::RunObserver {
@@ -60,11 +51,8 @@ class Progress : public dem::RunObserver {
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double rate = elapsed > 0 ? static_cast<double>(s.step - first_) / elapsed : 0;
-    const double eta = rate > 0 ? static_cast<double>(s.steps_total - s.step) / rate : NAN;
     const double frac = s.steps_total ? static_cast<double>(s.step) / static_cast<double>(s.steps_total) : 1;
-    char line[200];
-    std::snprintf(line, sizeof line, "t = %.4f / %.4g s  %5.1f%%  %.0f steps/s  ETA %s", w.time, duration_,
-                  100 * frac, rate, duration_text(eta).c_str());
+    const std::string line = io::progress_line(w.time, duration_, s.step, s.steps_total, rate);
     if (tty_) {
       const int width = 24, done = static_cast<int>(frac * width);
       std::cerr << "\r[" << std::string(done, '#') << std::string(width - done, '.') << "] " << line << "   "
@@ -232,7 +220,7 @@ int run_simulation(const RunOptions& opt) {
       case dem::RunStatus::Completed:
         if (!opt.quiet)
           std::cerr << "gjkdem: completed " << run->state.step << " steps (" << world.bodies.size()
-                    << " bodies) in " << duration_text(run->wall_seconds()) << "; results in "
+                    << " bodies) in " << io::duration_text(run->wall_seconds()) << "; results in "
                     << run->folder.dir.string() << "\n";
         return 0;
       case dem::RunStatus::Stopped:

@@ -1,6 +1,7 @@
 #pragma once
 // Running a world from Python: the run loop goes on with the GIL released;
 // observers, warnings and Ctrl-C come back to Python between steps.
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <span>
@@ -35,6 +36,26 @@ class PyObserver : public dem::RunObserver {
   std::optional<py::error_already_set> error_;
   std::string stop_;
   unsigned polls_ = 0;
+};
+
+/// run(progress=True): the command's progress line (io::progress_line) on
+/// Python's sys.stderr, redrawn in place every 0.25 s on a terminal, a line
+/// every 10 s otherwise (a notebook, a log), and at the end.
+class PyProgress : public dem::RunObserver {
+ public:
+  PyProgress(std::uint64_t first_step, Real duration);
+  void on_output(const dem::World&, const dem::RunState&) override {}
+  void on_step(const dem::World& world, const dem::RunState& state) override;
+  void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome&) override;
+
+ private:
+  void show(const dem::World& world, const dem::RunState& state, bool final);
+
+  std::uint64_t first_;
+  Real duration_;
+  bool tty_ = false;
+  std::chrono::steady_clock::time_point start_, last_;
+  unsigned calls_ = 0;
 };
 
 /// A world a call is using with the GIL released (a step, a run, a

@@ -116,19 +116,23 @@ void bind_scenes(py::module_& m) {
       .def_property_readonly("folder", [](const io::SceneRun& r) { return r.folder.dir.string(); })
       .def(
           "run",
-          [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after) {
+          [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after, bool progress) {
             io::SceneRun& r = self.cast<io::SceneRun&>();
             const InUse in_use(r.scene.world);
             PyObserver o(self.attr("world"), observer);
-            return run_with(o, {}, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+            std::optional<PyProgress> shown;
+            std::vector<dem::RunObserver*> extra;
+            if (progress) extra.push_back(&shown.emplace(r.state.step, r.scene.duration));
+            return run_with(o, extra, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
               return r.run(obs, [&]() -> std::string {
                 if (stop_after && r.state.step >= *stop_after) return "stop_after";
                 return stop();
               });
             });
           },
-          py::arg("observer") = py::none(), py::arg("stop_after") = py::none(),
-          "Runs to the end (or until step stop_after), calling observer(world, state) at each output.\n"
+          py::arg("observer") = py::none(), py::arg("stop_after") = py::none(), py::arg("progress") = false,
+          "Runs to the end (or until step stop_after), calling observer(world, state) at each output;\n"
+          "progress=True prints the command's progress line on sys.stderr.\n"
           "Returns \"completed\" or \"stopped\" (resume with SceneRun.resume(folder)).");
 }
 

@@ -584,7 +584,7 @@ void bind_world(py::module_& m) {
           "run",
           [](py::object self, double duration, std::optional<double> dt, std::optional<double> output_every,
              const py::object& observer, std::optional<std::string> out, bool overwrite, bool frames,
-             int checkpoint_every) {
+             int checkpoint_every, bool progress) {
             World& w = self.cast<World&>();
             const InUse in_use(w);
             const double step = dt ? *dt : dem::critical_time_step(w);
@@ -609,8 +609,10 @@ void bind_world(py::module_& m) {
                                        .fingerprint = 0, .info_json = io::run_info_json(w, step)});
               writers->info().started(w, state);
             }
-            const std::vector<dem::RunObserver*> outputs =
+            std::vector<dem::RunObserver*> outputs =
                 writers ? writers->observers() : std::vector<dem::RunObserver*>{};
+            std::optional<PyProgress> shown;
+            if (progress) outputs.push_back(&shown.emplace(state.step, duration));
             PyObserver o(self, observer);
             return run_with(o, outputs,
                             [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
@@ -623,11 +625,13 @@ void bind_world(py::module_& m) {
           },
           py::arg("duration"), py::arg("dt") = py::none(), py::arg("output_every") = py::none(),
           py::arg("observer") = py::none(), py::arg("out") = py::none(), py::arg("overwrite") = false,
-          py::arg("frames") = true, py::arg("checkpoint_every") = 10,
+          py::arg("frames") = false, py::arg("checkpoint_every") = 10, py::arg("progress") = false,
           "Runs for `duration` s in steps of dt (None: critical_time_step), calling observer(world, state) at the\n"
           "start, every output_every s and at the end; an observer returning False stops the run.\n"
-          "out: a run folder to write as `gjkdem run` does (frames, energy.csv, trace.csv, checkpoint.bin,\n"
-          "run.json; overwrite replaces an earlier run's files).\n"
+          "out: a run folder to write as `gjkdem run` does (view/ frames for the viewer and analyze, energy.csv,\n"
+          "trace.csv of the named bodies, checkpoint.bin, run.json; overwrite replaces an earlier run's files;\n"
+          "frames=True adds the VTK frames, which weigh about ten times the rest). progress=True prints the\n"
+          "command's progress line on sys.stderr.\n"
           "Returns \"completed\" or \"stopped\"; raises RunError when the run fails (guards, unsupported pairs).")
       .def("critical_time_step", &dem::critical_time_step)
       .def("stable_time_step", &dem::stable_time_step)

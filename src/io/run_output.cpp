@@ -5,6 +5,8 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
+#include <cstdio>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -187,6 +189,27 @@ std::vector<TracedBody> traced_bodies(const dem::World& w) {
       out.push_back({n.name, static_cast<std::uint32_t>(at - w.bodies.begin())});
   }
   return out;
+}
+
+std::string duration_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "?";
+  const long s = std::lround(seconds);
+  char buf[32];
+  if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, s / 60 % 60);
+  else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  return buf;
+}
+
+std::string progress_line(Real time, Real duration, std::uint64_t step, std::uint64_t steps_total,
+                          double steps_per_second) {
+  const double eta = steps_per_second > 0 ? static_cast<double>(steps_total - std::min(step, steps_total)) /
+                                                steps_per_second
+                                          : -1;
+  const double fraction = steps_total ? static_cast<double>(step) / static_cast<double>(steps_total) : 1;
+  char line[200];
+  std::snprintf(line, sizeof line, "t = %.4f / %.4g s  %5.1f%%  %.0f steps/s  ETA %s", time, duration, 100 * fraction,
+                steps_per_second, duration_text(eta).c_str());
+  return line;
 }
 
 std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"; }

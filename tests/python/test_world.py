@@ -197,7 +197,7 @@ def test_a_run_can_write_a_run_folder_as_the_program_does(tmp_path):
 
     w = small_bed(count=10)
     out = tmp_path / "bed"
-    assert w.run(0.02, dt=1e-4, output_every=0.005, out=str(out), checkpoint_every=2) == "completed"
+    assert w.run(0.02, dt=1e-4, output_every=0.005, out=str(out), checkpoint_every=2, frames=True) == "completed"
     info = json.loads((out / "run.json").read_text())
     assert info["status"] == "completed" and info["bodies"] == 10 and info["steps"] == 200
     energy = (out / "energy.csv").read_text().splitlines()
@@ -206,8 +206,16 @@ def test_a_run_can_write_a_run_folder_as_the_program_does(tmp_path):
     assert (out / "checkpoint.bin").stat().st_size > 0
     with pytest.raises(gjkdem.RunFolderError, match="overwrite"):
         w.run(0.01, dt=1e-4, out=str(out))
-    assert w.run(0.01, dt=1e-4, out=str(out), overwrite=True, frames=False) == "completed"
-    assert not list((out / "frames").glob("frame_*.vtk"))
+    # Lean by default: the view frames (viewer, analyze), no VTK.
+    assert w.run(0.01, dt=1e-4, out=str(out), overwrite=True) == "completed"
+    assert not list((out / "frames").glob("frame_*.vtk")) and len(list((out / "view").glob("frame_*.bin"))) == 2
+
+
+def test_progress_is_the_programs_line_on_stderr(capsys):
+    w = small_bed(count=10)
+    assert w.run(0.01, dt=1e-4, progress=True) == "completed"
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err and err[-1].startswith("gjkdem: t = 0.0100 / 0.01 s  100.0%") and "steps/s  ETA 0m00s" in err[-1]
 
 
 def test_a_ball_rests_on_a_mesh_wall_as_on_a_plane():

@@ -67,6 +67,16 @@ std::string energy_header();
 /// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy.
 std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts);
 
+/// A wall time as "4m05s" or "1h02m" ("?" when negative or not finite).
+std::string duration_text(double seconds);
+
+/// A run's progress as `gjkdem run` and Python's run(progress=True) print
+/// it: "t = 0.1234 / 1 s   12.3%  4567 steps/s  ETA 1m05s" for the world at
+/// `time` of a run lasting `duration`, `step` of `steps_total` done at
+/// `steps_per_second`.
+std::string progress_line(Real time, Real duration, std::uint64_t step, std::uint64_t steps_total,
+                          double steps_per_second);
+
 /// cell.csv (periodic worlds): time, the cell's lengths and tilts (m), its
 /// volume (m^3), velocity gradient (1/s) and the contacts' stress (Pa,
 /// compression positive), components xx yy zz xy xz yz.
