@@ -199,10 +199,21 @@ GJKDEM_LANE_INLINE void run_lanes(const TrianglePairBlock& in, TriangleDistanceB
     return P3<V>{load<V>(&side[c][0][lane0]), load<V>(&side[c][1][lane0]), load<V>(&side[c][2][lane0])};
   };
   // The first corner of ABC is the local origin: round-off then follows the
-  // triangles' size and gap, not their distance from the world origin.
+  // triangles' size and gap, not their distance from the world origin...
   const P3<V> origin = corner(in.a, 0);
-  const P3<V> pa[3] = {corner(in.a, 0) - origin, corner(in.a, 1) - origin, corner(in.a, 2) - origin};
-  const P3<V> pb[3] = {corner(in.b, 0) - origin, corner(in.b, 1) - origin, corner(in.b, 2) - origin};
+  P3<V> pa[3] = {corner(in.a, 0) - origin, corner(in.a, 1) - origin, corner(in.a, 2) - origin};
+  P3<V> pb[3] = {corner(in.b, 0) - origin, corner(in.b, 1) - origin, corner(in.b, 2) - origin};
+  // ...and the pair's extent is the unit: the candidates multiply up to four
+  // lengths, which would overflow or underflow for triangles far from size 1
+  // (1e-80 or 1e80 m); in units of the extent they cannot.
+  V extent = splat<V>(0);
+  for (const P3<V>* side : {pa, pb})
+    for (int k = 0; k < 3; ++k)
+      extent = lane_max(extent, lane_max(lane_max(lane_max(side[k].x, -side[k].x), lane_max(side[k].y, -side[k].y)),
+                                         lane_max(side[k].z, -side[k].z)));
+  const V unit = pick(extent > splat<V>(0), extent, splat<V>(1));
+  const V per_unit = splat<V>(1) / unit;
+  for (int k = 0; k < 3; ++k) pa[k] = pa[k] * per_unit, pb[k] = pb[k] * per_unit;
   const Tri<V> ta = make_tri(pa), tb = make_tri(pb);
 
   V ha[3], hb[3];  // corners' plane values against the other triangle
@@ -224,11 +235,12 @@ GJKDEM_LANE_INLINE void run_lanes(const TrianglePairBlock& in, TriangleDistanceB
   const P3<V> cross_point = (xj * hi - xi * hj) * (splat<V>(1) / (hi - hj));
 
   const V d2 = pick(hit, splat<V>(0), best.d2);
-  const P3<V> wa = pick(hit, cross_point, best.pa) + origin;
-  const P3<V> wb = pick(hit, cross_point, best.pb) + origin;
-  double d2_lanes[kWidth<V>];
+  const P3<V> wa = pick(hit, cross_point, best.pa) * unit + origin;
+  const P3<V> wb = pick(hit, cross_point, best.pb) * unit + origin;
+  double d2_lanes[kWidth<V>], unit_lanes[kWidth<V>];
   store(d2_lanes, d2);
-  for (int w = 0; w < kWidth<V>; ++w) out.distance[lane0 + w] = std::sqrt(d2_lanes[w]);
+  store(unit_lanes, unit);
+  for (int w = 0; w < kWidth<V>; ++w) out.distance[lane0 + w] = std::sqrt(d2_lanes[w]) * unit_lanes[w];
   store(&out.witness_a[0][lane0], wa.x);
   store(&out.witness_a[1][lane0], wa.y);
   store(&out.witness_a[2][lane0], wa.z);

@@ -194,6 +194,38 @@ TEST(TrianglePairs, SwappedAndMovedPairsAgree) {
   }
 }
 
+// Candidates multiply up to four lengths: in metres, 1e-80 m triangles would
+// underflow and 1e80 m ones overflow. The kernel works in units of each
+// pair's extent, so the answers scale with the pairs from 1e-150 to 1e150.
+TEST(TrianglePairs, AnswersScaleWithThePairsAtAnySize) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Pair> pairs;
+  for (int k = 0; k < 200; ++k) {
+    Pair q;
+    const Vec3 off = Vec3{u(rng), u(rng), u(rng)} * 1.2;
+    for (Vec3& p : q.a.p) p = Vec3{u(rng), u(rng), u(rng)};
+    for (Vec3& p : q.b.p) p = off + Vec3{u(rng), u(rng), u(rng)};
+    pairs.push_back(q);
+  }
+  const auto unit = run(pairs);
+  for (const double scale : {1e-150, 1e-80, 1e-20, 1e20, 1e80, 1e150}) {
+    std::vector<Pair> scaled = pairs;
+    for (Pair& q : scaled)
+      for (Tri* t : {&q.a, &q.b})
+        for (Vec3& p : t->p) p = p * scale;
+    const auto out = run(scaled);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const double want = distance_of(unit, i) * scale, got = distance_of(out, i);
+      ASSERT_TRUE(std::isfinite(got)) << "scale " << scale << " pair " << i;
+      ASSERT_NEAR(got, want, 1e-13 * scale) << "scale " << scale << " pair " << i;
+      const Vec3 wa = witness(out[i / kTriangleLanes].witness_a, i % kTriangleLanes);
+      EXPECT_LT(length(wa - witness(unit[i / kTriangleLanes].witness_a, i % kTriangleLanes) * scale), 1e-12 * scale)
+          << "scale " << scale << " pair " << i;
+    }
+  }
+}
+
 TEST(TrianglePairs, EveryInstructionSetAndTheOnePairQueryGiveTheSameBits) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
