@@ -409,6 +409,27 @@ void bind_world(py::module_& m) {
           py::arg("motion") = 0, py::arg("label") = "",
           "A triangle mesh wall (world coordinates, (N, 3) vertices, (M, 3) indices), one fixed piece per triangle.")
       .def(
+          "add_cylinder_walls",
+          [](dem::WorldBuilder& b, const py::object& base, const py::object& axis, double radius, double height,
+             const py::object& material, bool bottom, bool top, int segments, double thickness, std::uint32_t motion,
+             const std::string& label) {
+            const dem::CylinderWall wall{.base = to_vec3(base, "base"),
+                                         .axis = to_vec3(axis, "axis"),
+                                         .radius = radius,
+                                         .height = height,
+                                         .bottom = bottom,
+                                         .top = top,
+                                         .segments = segments,
+                                         .thickness = thickness};
+            b.add_cylinder_walls(wall, material_index(b, material), label.empty() ? "cylinder" : label, motion);
+          },
+          py::arg("base"), py::arg("axis"), py::arg("radius"), py::arg("height"), py::arg("material"),
+          py::arg("bottom") = true, py::arg("top") = false, py::arg("segments") = 48, py::arg("thickness") = 0.0,
+          py::arg("motion") = 0, py::arg("label") = "",
+          "A cylindrical container as a scene's type = \"cylinder\" wall: `segments` flat sides whose inner faces lie\n"
+          "at `radius` from the axis through `base`, from base to base + height * axis, with a floor (bottom) and a\n"
+          "roof (top); thickness 0: 2% of the radius.")
+      .def(
           "fill_region",
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,

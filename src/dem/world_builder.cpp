@@ -1,6 +1,7 @@
 #include "gjkdem/dem/world_builder.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -370,6 +371,57 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
     const std::uint32_t placed = add_fixed_piece(shape, centre, material, group, piece, motion);
     world_.templates[world_.bodies[placed].shape].wall_face = Triangle{{a - centre, b - centre, c - centre}};
   }
+}
+
+Real cylinder_wall_thickness(const CylinderWall& w) { return w.thickness > 0 ? w.thickness : 0.02 * w.radius; }
+
+void cylinder_wall_mesh(const CylinderWall& w, const std::string& label, std::vector<Vec3>& vertices,
+                        std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  if (!is_finite(w.base) || !is_finite(w.axis) || !(length(w.axis) > 0))
+    throw BuildError(label + ": the base and a non-zero axis must be finite");
+  if (!(w.radius > 0) || !std::isfinite(w.radius) || !(w.height > 0) || !std::isfinite(w.height))
+    throw BuildError(label + ": the radius and height must be finite and > 0");
+  if (w.segments < 8 || w.segments > 4096) throw BuildError(label + ": segments must be 8 to 4096");
+  if (!(w.thickness >= 0) || !std::isfinite(w.thickness)) throw BuildError(label + ": the thickness must be >= 0");
+  const Real t = cylinder_wall_thickness(w);
+  const Vec3 a = normalized(w.axis);
+  Vec3 u, v;
+  orthonormal_basis(a, u, v);
+  const int n = w.segments;
+  // A piece's middle lies half a thickness behind its inner face: the flats
+  // at radius + t/2 (their corners farther out), the caps t/2 beyond the ends.
+  const Real corner = (w.radius + t / 2) / std::cos(kPi / n);
+  const Vec3 low = w.base - a * (t / 2), high = w.base + a * (w.height + t / 2);
+  vertices.clear(), triangles.clear();
+  for (int k = 0; k < n; ++k) {
+    const Real angle = 2 * kPi * k / n;
+    const Vec3 out = (u * std::cos(angle) + v * std::sin(angle)) * corner;
+    vertices.push_back(low + out);
+    vertices.push_back(high + out);
+  }
+  const auto at = [n](int k, int level) { return static_cast<std::uint32_t>(2 * ((k % n + n) % n) + level); };
+  for (int k = 0; k < n; ++k) {
+    triangles.push_back({at(k, 0), at(k + 1, 0), at(k + 1, 1)});
+    triangles.push_back({at(k, 0), at(k + 1, 1), at(k, 1)});
+  }
+  // Caps: fans about their centres, the side walls' ends reaching them. All
+  // triangles face out (counter-clockwise seen from outside), so a capped
+  // cylinder is a closed mesh (the scene's containment check takes it).
+  for (const auto& [capped, centre, level] : {std::tuple{w.bottom, low, 0}, std::tuple{w.top, high, 1}}) {
+    if (!capped) continue;
+    const auto middle = static_cast<std::uint32_t>(vertices.size());
+    vertices.push_back(centre);
+    for (int k = 0; k < n; ++k)
+      triangles.push_back(level ? std::array{middle, at(k, 1), at(k + 1, 1)} : std::array{middle, at(k + 1, 0), at(k, 0)});
+  }
+}
+
+void WorldBuilder::add_cylinder_walls(const CylinderWall& wall, std::uint32_t material, const std::string& label,
+                                      std::uint32_t motion) {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  cylinder_wall_mesh(wall, label, vertices, triangles);
+  add_mesh_walls(vertices, triangles, cylinder_wall_thickness(wall), material, label, motion);
 }
 
 namespace {

@@ -767,8 +767,36 @@ class SceneBuilder {
       j["rotation"] = to_json(rotation);
       j["scale"] = scale;
       j["thickness"] = thick;
+    } else if (type == "cylinder") {
+      dem::CylinderWall c;
+      c.base = r.vec3("base").value_or(Vec3{});
+      c.axis = r.vec3("axis").value_or(Vec3{0, 0, 1});
+      c.radius = r.positive("radius");
+      c.height = r.positive("height");
+      c.bottom = r.boolean("bottom", true);
+      c.top = r.boolean("top", false);
+      const std::int64_t segments = r.integer("segments").value_or(48);
+      if (segments < 8 || segments > 4096) r.fail("segments", "must be 8 to 4096");
+      c.segments = static_cast<int>(segments);
+      c.thickness = r.positive("thickness", 0.02 * c.radius);
+      TriangleMesh mesh;
+      building(r.table_node(), [&] {
+        dem::cylinder_wall_mesh(c, r.where(), mesh.vertices, mesh.triangles);
+        builder_->add_cylinder_walls(c, material, r.where(), motion);
+      });
+      Vec3 lo{1e300, 1e300, 1e300}, hi = -lo;
+      for (const Vec3& v : mesh.vertices) lo = min(lo, v), hi = max(hi, v);
+      mesh_walls_.push_back({r.where() + " (cylinder)", std::move(mesh), {lo, hi}, std::nullopt});
+      j["base"] = to_json(c.base);
+      j["axis"] = to_json(c.axis);
+      j["radius"] = c.radius;
+      j["height"] = c.height;
+      j["bottom"] = c.bottom;
+      j["top"] = c.top;
+      j["segments"] = c.segments;
+      j["thickness"] = c.thickness;
     } else {
-      r.fail("type", "must be \"plane\", \"box\" or \"mesh\", not \"" + type + "\"");
+      r.fail("type", "must be \"plane\", \"box\", \"mesh\" or \"cylinder\", not \"" + type + "\"");
     }
     resolved_["wall"].push_back(j);
   }

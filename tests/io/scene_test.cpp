@@ -781,6 +781,70 @@ material = "rock"
     [](const ::testing::TestParamInfo<Bad>& param_info) { return param_info.param.name; });
 
 }  // namespace
+// Issue 35: a cylindrical container without a mesh file. Its pieces'
+// inner faces lie on the radius and the floor on the base; a region poking
+// out of a closed one is warned of, as for a drum mesh.
+TEST(Scene, ACylinderWallIsAMeshOfFlatsWhoseInnerFacesLieOnItsRadius) {
+  const std::string wall = R"(
+[[wall]]
+type = "cylinder"
+base = [1.0, 2.0, 3.0]
+axis = [0.0, 1.0, 0.0]
+radius = 0.05
+height = 0.2
+top = true
+segments = 12
+thickness = 0.004
+material = "rock"
+
+[[body]]
+shape = { type = "sphere", radius = 0.005 }
+material = "rock"
+position = [1.0, 2.1, 3.0]
+)";
+  const Scene s = load_scene(kHead + wall, "cylinder", ".");
+  ASSERT_EQ(s.world.bodies.size(), 12u * 2 + 12 + 12 + 1);  // sides, floor and roof fans, the ball
+  // Every side piece's middle is half a thickness behind the inner face at
+  // the radius: its centre lies at (radius + t/2) from the axis (the middle
+  // of a flat's triangle is nearer than the corners).
+  const Vec3 base{1, 2, 3}, axis{0, 1, 0};
+  int sides = 0;
+  for (const dem::Body& b : s.world.bodies) {
+    if (!b.fixed) continue;
+    const Vec3 rel = b.position - base;
+    const Real along = dot(rel, axis), across = length(rel - axis * along);
+    if (std::fabs(along + 0.002) < 1e-12 || std::fabs(along - 0.202) < 1e-12) {  // a cap's fan, t/2 beyond the end
+      EXPECT_LT(across, 0.052 / std::cos(kPi / 12)) << along;
+      continue;
+    }
+    EXPECT_TRUE(along > 0 && along < 0.2) << along;
+    ++sides;
+    EXPECT_GT(across, 0.052 - 1e-12);
+    EXPECT_LT(across, 0.052 / std::cos(kPi / 12) + 1e-12);
+  }
+  EXPECT_EQ(sides, 24);
+  const Scene poking = load_scene(kHead + wall + R"(
+[[generator]]
+count = 40
+shape = { type = "sphere", radius = 0.005 }
+material = "rock"
+region = { min = [0.94, 2.02, 2.97], max = [1.06, 2.18, 3.03] }
+)",
+                                  "cylinder", ".");
+  ASSERT_FALSE(poking.warnings.empty());
+  EXPECT_NE(poking.warnings[0].find("wall[0] (cylinder)"), std::string::npos) << poking.warnings[0];
+  for (const auto& [key, text] : {std::pair{"radius", "radius = 0.05\n"}, std::pair{"segments", "segments = 12\n"}}) {
+    std::string bad = kHead + wall;
+    bad.replace(bad.find(text), std::string(text).size(), key == std::string("radius") ? "" : "segments = 4\n");
+    try {
+      load_scene(bad, "cylinder", ".");
+      ADD_FAILURE() << "a cylinder without a good " << key << " was read";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Scene, ADeformingPeriodicCellIsRead) {
   const Scene s = load_scene("[simulation]\nduration = 1.0\ngravity = [0.0, 0.0, 0.0]\n[simulation.periodic]\n"
                              "x = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstrain_rate = { xz = 2.0 }\n"

@@ -416,3 +416,25 @@ def test_named_bodies_are_traced_as_in_scenes(tmp_path):
     assert float(rows[-1].split(",")[4]) < 0.05  # it fell
     scene = gjkdem.load_scene(str(pathlib.Path(__file__).parents[1] / "data" / "scenes" / "small_pour.toml"))
     assert list(scene.world.names) == ["tracer"]  # a scene's named body: the same notion (after the walls)
+
+
+def test_balls_thrown_about_in_a_cylinder_stay_inside():
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7, restitution=0.3, friction=0.4)
+    b.add_cylinder_walls([0, 0, 0], [0, 0, 1], radius=0.03, height=0.1, material="glass")
+    b.fill_region(gjkdem.Shape("sphere", radius=0.004), 40, [-0.02, -0.02, 0.01], [0.02, 0.02, 0.09], "glass",
+                  seed=2)
+    w = b.build()
+    moving = w.fixed == 0
+    w.velocities[moving] = [3.0, 2.0, 0.0]
+    assert w.run(0.2) == "completed"
+    p = w.positions[moving]
+    assert np.hypot(p[:, 0], p[:, 1]).max() + 0.004 < 0.0302 and p[:, 2].min() - 0.004 > -2e-4
+    b = gjkdem.WorldBuilder(s)  # build() emptied the first
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="segments must be 8 to 4096"):
+        b.add_cylinder_walls([0, 0, 0], [0, 0, 1], radius=0.03, height=0.1, material="glass", segments=3)
+    with pytest.raises(ValueError, match="non-zero axis"):
+        b.add_cylinder_walls([0, 0, 0], [0, 0, 0], radius=0.03, height=0.1, material="glass")

@@ -106,6 +106,26 @@ struct BodyDef {
   std::string name{};
 };
 
+/// A cylindrical container: a mesh wall of `segments` flat sides (and a
+/// floor and roof when capped) placed so that its inner faces lie at
+/// `radius` from the axis and on the base and top planes: the bodies inside
+/// have the whole of [0, height] x radius (up to the sides' flats).
+struct CylinderWall {
+  Vec3 base{};               ///< centre of the bottom (m)
+  Vec3 axis{0, 0, 1};        ///< towards the top (made unit)
+  Real radius = 0;           ///< inner radius (m)
+  Real height = 0;           ///< m
+  bool bottom = true;        ///< a floor
+  bool top = false;          ///< a roof
+  int segments = 48;         ///< flat sides, 8 to 4096 (48: the flats reach 99.8% of the radius)
+  Real thickness = 0;        ///< of the pieces (0: 2% of the radius)
+};
+
+/// The triangles of a CylinderWall (world coordinates), as add_cylinder_walls
+/// makes it. Throws BuildError for a bad one (naming `label`).
+void cylinder_wall_mesh(const CylinderWall& wall, const std::string& label, std::vector<Vec3>& vertices,
+                        std::vector<std::array<std::uint32_t, 3>>& triangles);
+
 /// Bodies placed without overlap in the box [lo, hi], in cells one bounding
 /// diameter wide filled layer by layer from the bottom, each with a random
 /// orientation and offset; cells that touch a body already added or lie
@@ -188,6 +208,10 @@ class WorldBuilder {
   /// flat region tile it and their overlap volumes add up exactly).
   void add_mesh_walls(std::span<const Vec3> vertices, std::span<const std::array<std::uint32_t, 3>> triangles,
                       Real thickness, std::uint32_t material, const std::string& label, std::uint32_t motion = 0);
+
+  /// A cylindrical container (CylinderWall): its mesh as add_mesh_walls takes it.
+  void add_cylinder_walls(const CylinderWall& wall, std::uint32_t material, const std::string& label,
+                          std::uint32_t motion = 0);
 
   /// An inflow (InflowDef); returns its index. The world reserves room for
   /// every body its inflows can insert, so views of its bodies stay valid.
