@@ -486,8 +486,44 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   return static_cast<std::uint32_t>(world_.inflows.size() - 1);
 }
 
-std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
+namespace {
+
+// A round region's bounding box, and whether a ball of radius r at c lies
+// inside it.
+Aabb round_box(const RoundRegion& g) {
+  if (g.kind == RoundRegion::Kind::Ball)
+    return {g.base - Vec3{g.radius, g.radius, g.radius}, g.base + Vec3{g.radius, g.radius, g.radius}};
+  // A disc of radius r about the unit axis a reaches r sqrt(1 - a_k^2) along axis k.
+  const Vec3 a = normalized(g.axis);
+  const Vec3 reach{g.radius * std::sqrt(std::fmax(0, 1 - a.x * a.x)), g.radius * std::sqrt(std::fmax(0, 1 - a.y * a.y)),
+                   g.radius * std::sqrt(std::fmax(0, 1 - a.z * a.z))};
+  const Vec3 top = g.base + a * g.height;
+  return {min(g.base, top) - reach, max(g.base, top) + reach};
+}
+
+bool ball_inside(const RoundRegion& g, const Vec3& c, Real r) {
+  const Vec3 rel = c - g.base;
+  if (g.kind == RoundRegion::Kind::Ball) return length(rel) + r <= g.radius;
+  const Vec3 a = normalized(g.axis);
+  const Real along = dot(rel, a);
+  return along >= r && along <= g.height - r && length(rel - a * along) + r <= g.radius;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, std::mt19937_64& rng) {
+  RegionFill f = given;
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
+  if (f.round) {
+    const RoundRegion& g = *f.round;
+    if (!is_finite(g.base) || !is_finite(g.axis) || !(length(g.axis) > 0))
+      throw BuildError(label + ": the region's base and a non-zero axis must be finite");
+    if (!(g.radius > 0) || !std::isfinite(g.radius) ||
+        (g.kind == RoundRegion::Kind::Cylinder && (!(g.height > 0) || !std::isfinite(g.height))))
+      throw BuildError(label + ": the region's radius (and a cylinder's height) must be finite and > 0");
+    const Aabb box = round_box(g);
+    f.lo = box.lo, f.hi = box.hi;
+  }
   check_material(f.material, label);
   if (f.variants.empty()) throw BuildError(label + ": no shape to fill the region with");
   try {
@@ -572,7 +608,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
           const Vec3 centre = f.lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
                               Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
           const Quat q = random_rotation(rng);
-          bool free = true;
+          bool free = !f.round || ball_inside(*f.round, centre, diameter / 2);
           for (const PlaneWall& p : world_.planes)
             if (dot(centre - p.point, p.normal) < diameter / 2) free = false;
           const Transform ball_pose = Transform::from(centre, Quat{});

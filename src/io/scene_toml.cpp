@@ -459,10 +459,54 @@ class SceneBuilder {
 
   // A region { min, max } of a generator or an inflow; `strict`: max must
   // exceed min on every axis (an inflow may be a plane or a point).
+  // A generator's region: a box (min, max), or with `type` a "cylinder"
+  // (base, axis, radius, height) or a "sphere" (centre, radius).
+  struct GeneratorRegion {
+    Vec3 lo, hi;
+    std::optional<dem::RoundRegion> round;
+    Json resolved;
+  };
+  GeneratorRegion read_generator_region(TableReader& r) {
+    const toml::table* t = r.table("region");
+    if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
+    TableReader region(*t, r.where() + ".region");
+    const std::string type = region.string("type").value_or("box");
+    GeneratorRegion g;
+    if (type == "box") {
+      std::tie(g.lo, g.hi) = read_region(r, true);
+      g.resolved = {{"min", to_json(g.lo)}, {"max", to_json(g.hi)}};
+      return g;
+    }
+    dem::RoundRegion round;
+    if (type == "cylinder") {
+      round.base = region.vec3("base").value_or(Vec3{});
+      round.axis = region.vec3("axis").value_or(Vec3{0, 0, 1});
+      if (!(length(round.axis) > 0)) region.fail("axis", "must not be zero");
+      round.radius = region.positive("radius");
+      round.height = region.positive("height");
+      g.resolved = {{"type", type}, {"base", to_json(round.base)}, {"axis", to_json(round.axis)},
+                    {"radius", round.radius}, {"height", round.height}};
+    } else if (type == "sphere") {
+      round.kind = dem::RoundRegion::Kind::Ball;
+      const std::optional<Vec3> centre = region.vec3("centre");
+      if (!centre) throw SceneError(region.where() + ": a sphere region needs 'centre'" + line_of(*t));
+      round.base = *centre;
+      round.radius = region.positive("radius");
+      g.resolved = {{"type", type}, {"centre", to_json(round.base)}, {"radius", round.radius}};
+    } else {
+      region.fail("type", "must be \"box\", \"cylinder\" or \"sphere\", not \"" + type + "\"");
+    }
+    region.finish();
+    g.round = round;
+    return g;
+  }
+
   std::pair<Vec3, Vec3> read_region(TableReader& r, bool strict) {
     const toml::table* t = r.table("region");
     if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
     TableReader region(*t, r.where() + ".region");
+    if (region.string("type").value_or("box") != "box")
+      region.fail("type", "an inflow's region is a box (min, max); cylinders and spheres are for generators");
     const Vec3 lo = region.vec3("min").value_or(Vec3{}), hi = region.vec3("max").value_or(Vec3{});
     if (!region.has("min") || !region.has("max"))
       throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(*t));
@@ -625,7 +669,8 @@ class SceneBuilder {
     fill.label = r.where();
     fill.count = static_cast<std::size_t>(count);
     fill.material = material_of(r);
-    std::tie(fill.lo, fill.hi) = read_region(r, true);
+    const GeneratorRegion region = read_generator_region(r);
+    fill.lo = region.lo, fill.hi = region.hi, fill.round = region.round;
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
     fill.fixed = r.boolean("fixed", false);
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
@@ -635,7 +680,7 @@ class SceneBuilder {
     const std::vector<std::uint32_t> placed = building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
     warn_of_bodies_outside_containers(r.where(), placed);
     Json j = {{"count", count}, {"material", r.required_string("material")},
-              {"region", {{"min", to_json(fill.lo)}, {"max", to_json(fill.hi)}}}, {"velocity", to_json(fill.velocity)}};
+              {"region", region.resolved}, {"velocity", to_json(fill.velocity)}};
     if (fill.fixed) j["fixed"] = true;
     j.update(mix.resolved);
     resolved_["generator"].push_back(j);

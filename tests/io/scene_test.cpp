@@ -845,6 +845,56 @@ region = { min = [0.94, 2.02, 2.97], max = [1.06, 2.18, 3.03] }
   }
 }
 
+// Issue 35: generators fill cylinders and spheres; each body's bounding
+// ball lies inside. Inflows keep to boxes, and say so.
+TEST(Scene, GeneratorsFillCylindersAndSpheres) {
+  const auto filled = [](const std::string& region, int count) {
+    return load_scene(kHead + R"(
+[[generator]]
+count = )" + std::to_string(count) + R"(
+shape = { type = "sphere", radius = 0.004 }
+material = "rock"
+region = )" + region + "\n",
+                      "regions", ".");
+  };
+  const Scene cylinder = filled(R"({ type = "cylinder", base = [0.1, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 0.03, height = 0.1 })", 120);
+  ASSERT_EQ(cylinder.world.bodies.size(), 120u);
+  for (const dem::Body& b : cylinder.world.bodies) {
+    const Vec3 rel = b.position - Vec3{0.1, 0, 0};
+    EXPECT_GE(rel.x, 0.004 - 1e-12);
+    EXPECT_LE(rel.x, 0.1 - 0.004 + 1e-12);
+    EXPECT_LE(std::hypot(rel.y, rel.z) + 0.004, 0.03 + 1e-12);
+  }
+  const Scene ball = filled(R"({ type = "sphere", centre = [0.0, 0.0, 0.5], radius = 0.03 })", 60);
+  ASSERT_EQ(ball.world.bodies.size(), 60u);
+  for (const dem::Body& b : ball.world.bodies) EXPECT_LE(length(b.position - Vec3{0, 0, 0.5}) + 0.004, 0.03 + 1e-12);
+  for (const auto& [region, expected] :
+       {std::pair{R"({ type = "cone", radius = 0.03 })", "must be \"box\", \"cylinder\" or \"sphere\""},
+        std::pair{R"({ type = "sphere", radius = 0.03 })", "needs 'centre'"},
+        std::pair{R"({ type = "cylinder", radius = 0.03, height = 0.1, min = [0.0, 0.0, 0.0] })", "min"},
+        std::pair{R"({ type = "sphere", centre = [0.0, 0.0, 0.0], radius = 0.005 })", "holds only"}}) {
+    try {
+      filled(region, 10);
+      ADD_FAILURE() << region << " was read";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+  try {
+    load_scene(kHead + R"(
+[[inflow]]
+rate = 100.0
+shape = { type = "sphere", radius = 0.004 }
+material = "rock"
+region = { type = "cylinder", radius = 0.03, height = 0.1 }
+)",
+               "regions", ".");
+    ADD_FAILURE() << "an inflow took a cylinder";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("an inflow's region is a box"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Scene, ADeformingPeriodicCellIsRead) {
   const Scene s = load_scene("[simulation]\nduration = 1.0\ngravity = [0.0, 0.0, 0.0]\n[simulation.periodic]\n"
                              "x = [-0.1, 0.1]\ny = [-0.1, 0.1]\nz = [-0.1, 0.1]\nstrain_rate = { xz = 2.0 }\n"

@@ -126,15 +126,26 @@ struct CylinderWall {
 void cylinder_wall_mesh(const CylinderWall& wall, const std::string& label, std::vector<Vec3>& vertices,
                         std::vector<std::array<std::uint32_t, 3>>& triangles);
 
-/// Bodies placed without overlap in the box [lo, hi], in cells one bounding
-/// diameter wide filled layer by layer from the bottom, each with a random
-/// orientation and offset; cells that touch a body already added or lie
-/// outside a plane wall are skipped.
+/// A region that is not a box: a cylinder from `base` along `axis` (made
+/// unit) of `radius` and `height`, or a ball about `base` of `radius`.
+struct RoundRegion {
+  enum class Kind { Cylinder, Ball } kind = Kind::Cylinder;
+  Vec3 base{};
+  Vec3 axis{0, 0, 1};
+  Real radius = 0, height = 0;
+};
+
+/// Bodies placed without overlap in the box [lo, hi] (or in `round`), in
+/// cells one bounding diameter wide filled layer by layer from the bottom,
+/// each with a random orientation and offset; cells that touch a body
+/// already added, lie outside a plane wall or reach out of `round` are
+/// skipped.
 struct RegionFill {
   std::vector<BodyShape> variants;  ///< each body takes one at random (shared templates)
   std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
   std::size_t count = 0;
-  Vec3 lo, hi;
+  Vec3 lo, hi;                      ///< the box (ignored with `round`: its bounding box is filled)
+  std::optional<RoundRegion> round; ///< a cylinder or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;
   bool fixed = false;               ///< fixed bodies (a rough floor, an obstacle field): no velocity
