@@ -433,12 +433,34 @@ void bind_world(py::module_& m) {
           "fill_region",
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
-             const py::object& weights, const std::string& label, bool fixed) {
+             const py::object& weights, const std::string& label, bool fixed, const py::object& cylinder,
+             const py::object& sphere) {
             dem::RegionFill f;
             f.variants = body_shapes(shapes);
             if (!weights.is_none()) f.weights = weights.cast<std::vector<double>>();
             f.count = count;
-            f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
+            const int given = !lo.is_none() + !cylinder.is_none() + !sphere.is_none();
+            if (given != 1 || lo.is_none() != hi.is_none())
+              fail("fill_region", "give the region once: lo and hi (a box), cylinder or sphere");
+            if (!lo.is_none()) f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
+            if (!cylinder.is_none()) {
+              const py::dict c = cylinder.cast<py::dict>();
+              for (const char* key : {"radius", "height"})
+                if (!c.contains(key)) fail("cylinder", std::string("needs '") + key + "'");
+              f.round = dem::RoundRegion{.kind = dem::RoundRegion::Kind::Cylinder,
+                                         .base = c.contains("base") ? to_vec3(c["base"], "cylinder base") : Vec3{},
+                                         .axis = c.contains("axis") ? to_vec3(c["axis"], "cylinder axis") : Vec3{0, 0, 1},
+                                         .radius = c["radius"].cast<double>(),
+                                         .height = c["height"].cast<double>()};
+            }
+            if (!sphere.is_none()) {
+              const py::dict c = sphere.cast<py::dict>();
+              for (const char* key : {"centre", "radius"})
+                if (!c.contains(key)) fail("sphere", std::string("needs '") + key + "'");
+              f.round = dem::RoundRegion{.kind = dem::RoundRegion::Kind::Ball,
+                                         .base = to_vec3(c["centre"], "sphere centre"),
+                                         .radius = c["radius"].cast<double>()};
+            }
             f.material = material_index(b, material);
             f.velocity = to_vec3(velocity, "velocity");
             f.fixed = fixed;
@@ -446,11 +468,13 @@ void bind_world(py::module_& m) {
             std::mt19937_64 rng(seed);
             return b.fill_region(f, rng);
           },
-          py::arg("shapes"), py::arg("count"), py::arg("lo"), py::arg("hi"), py::arg("material"),
-          py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1, py::arg("weights") = py::none(),
-          py::arg("label") = "", py::arg("fixed") = false,
+          py::arg("shapes"), py::arg("count"), py::arg("lo") = py::none(), py::arg("hi") = py::none(),
+          py::arg("material") = py::none(), py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1,
+          py::arg("weights") = py::none(), py::arg("label") = "", py::arg("fixed") = false,
+          py::arg("cylinder") = py::none(), py::arg("sphere") = py::none(),
           "Places `count` bodies, each one of `shapes` at random (number probabilities `weights`, default\n"
-          "equal), without overlap in [lo, hi]; returns their indices.")
+          "equal), without overlap in the box [lo, hi], or in cylinder={base, axis, radius, height} or\n"
+          "sphere={centre, radius} (each body's bounding sphere inside); returns their indices.")
       .def(
           "add_inflow",
           [](dem::WorldBuilder& b, const py::object& shapes, const py::object& lo, const py::object& hi,

@@ -438,3 +438,22 @@ def test_balls_thrown_about_in_a_cylinder_stay_inside():
         b.add_cylinder_walls([0, 0, 0], [0, 0, 1], radius=0.03, height=0.1, material="glass", segments=3)
     with pytest.raises(ValueError, match="non-zero axis"):
         b.add_cylinder_walls([0, 0, 0], [0, 0, 0], radius=0.03, height=0.1, material="glass")
+
+
+def test_fill_region_takes_cylinders_and_spheres():
+    s = gjkdem.Settings()
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    ball = gjkdem.Shape("sphere", radius=0.004)
+    in_cylinder = b.fill_region(ball, 100, material="glass",
+                                cylinder={"base": [0, 0, 0], "axis": [0, 0, 1], "radius": 0.03, "height": 0.1})
+    in_sphere = b.fill_region(ball, 40, material="glass", sphere={"centre": [0, 0, 0.5], "radius": 0.03})
+    with pytest.raises(ValueError, match="give the region once"):
+        b.fill_region(ball, 4, [0, 0, 1], [1, 1, 2], "glass", sphere={"centre": [0, 0, 0.5], "radius": 0.03})
+    with pytest.raises(ValueError, match="needs 'height'"):
+        b.fill_region(ball, 4, material="glass", cylinder={"radius": 0.03})
+    w = b.build()
+    p = w.positions
+    c = p[in_cylinder]
+    assert (np.hypot(c[:, 0], c[:, 1]) + 0.004 <= 0.03 + 1e-12).all() and c[:, 2].min() >= 0.004 - 1e-12
+    assert (np.linalg.norm(p[in_sphere] - [0, 0, 0.5], axis=1) + 0.004 <= 0.03 + 1e-12).all()
