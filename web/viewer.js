@@ -409,6 +409,49 @@ async function showFirstFrame() {
   apply(frame, 0);
   await setPreset('iso');
   firstFrameDrawn();
+  await showAddressedView();
+}
+
+// The view the page's address asks for, so that a shared link or a headless
+// screenshot shows a result, not t = 0: ?frame=N (from 1, as the label
+// counts) or frame=last, or ?time=T (the last frame at or before T s);
+// ?color=MODE, ?draw=shapes|spheres|auto, ?camera=front|side|top|iso,
+// ?chains=on. A bad value is said in the message line; the rest still apply.
+async function showAddressedView() {
+  const q = new URLSearchParams(window.location.search);
+  const wrong = [];
+  const attempt = async (key, action) => {
+    if (!q.has(key)) return;
+    try {
+      await action(q.get(key));
+    } catch (error) {
+      wrong.push(`${key}=${q.get(key)}: ${error.message ?? error}`);
+    }
+  };
+  await attempt('color', setColorMode);
+  await attempt('draw', setDraw);
+  await attempt('chains', (v) => {
+    if (v !== 'on' && v !== 'off') throw new Error('on or off');
+    return setChains(v === 'on');
+  });
+  await attempt('camera', (v) => {
+    if (!['front', 'side', 'top', 'iso'].includes(v)) throw new Error('front, side, top or iso');
+    return setPreset(v);
+  });
+  await attempt('frame', (v) => {
+    const n = v === 'last' ? source.frameCount : Number(v);
+    if (!Number.isInteger(n) || n < 1 || n > source.frameCount)
+      throw new Error(`a frame number from 1 to ${source.frameCount}, or last`);
+    return setFrame(n - 1);
+  });
+  await attempt('time', (v) => {
+    const t = Number(v), times = source.index.columns.time ?? [];
+    if (!Number.isFinite(t)) throw new Error('a time in seconds');
+    let k = 0;
+    while (k + 1 < times.length && times[k + 1] <= t) k++;
+    return setFrame(k);
+  });
+  if (wrong.length) $('message').textContent = `address: ${wrong.join('; ')}`;
 }
 
 async function start() {

@@ -85,6 +85,16 @@ class Frame:
                 or np.any(self.contact_first[~first_body] - PLANE_SIDE >= p)):
             raise ViewFormatError(f"{what} has a contact naming a body or plane it does not have")
 
+    @property
+    def fixed(self):
+        """(N,) bool: fixed bodies (walls' pieces, obstacles), the FIXED bit of flags."""
+        return (self.flags & FIXED) != 0
+
+    @property
+    def driven(self):
+        """(N,) bool: bodies moved by a prescribed motion, the DRIVEN bit of flags."""
+        return (self.flags & DRIVEN) != 0
+
     def __len__(self):
         return len(self.templates)
 

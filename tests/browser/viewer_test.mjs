@@ -322,6 +322,40 @@ async function runLive(errors) {
   }
 }
 
+// 6b. The address opens a view: the last frame, a colouring, a camera and
+// the chains from a shared link; a frame by its time; a bad value is said.
+async function runAddress(url, errors) {
+  const open = async (query) => {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`page error (${query}): ${e.message}`));
+    await page.goto(`${url}?${query}`);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    return page;
+  };
+  const page = await open('frame=last&color=force&camera=top&chains=on');
+  const last = (await page.evaluate(() => window.gjkdemViewer.frameCount)) - 1;
+  const atLast = await page
+    .waitForFunction((k) => window.gjkdemViewer.currentFrame === k, last, { timeout: 10_000 })
+    .then(() => true, () => false);
+  check(atLast, `?frame=last opens the last frame (${last + 1})`);
+  const shown = await page.evaluate(() => ({ color: document.getElementById('color-mode').value, chains: document.getElementById('chains').checked }));
+  check(shown.color === 'force', `?color=force colours by force (${shown.color})`);
+  check(shown.chains === true, '?chains=on draws the force chains');
+  if (args.artifacts) await page.screenshot({ path: path.join(args.artifacts, 'address-last-frame.png') });
+  await page.close();
+  const times = await (await fetch(`${url}run/view/index.csv`)).text().then((t) => t.trim().split('\n').slice(1).map((r) => Number(r.split(',')[1])));
+  const middle = Math.floor(times.length / 2);
+  const byTime = await open(`time=${times[middle]}&frame=zz`);
+  const atMiddle = await byTime
+    .waitForFunction((k) => window.gjkdemViewer.currentFrame === k, middle, { timeout: 10_000 })
+    .then(() => true, () => false);
+  check(atMiddle, `?time=${times[middle]} opens frame ${middle + 1}`);
+  const message = await byTime.evaluate(() => document.getElementById('message').textContent);
+  check(message.includes('address: frame=zz'), `a bad address value is said (${message})`);
+  await byTime.close();
+}
+
 // 7. A periodic world: its cell is drawn, as run.json's scene gives it.
 async function runPeriodic(errors) {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_periodic_'));
@@ -368,6 +402,7 @@ try {
   ]);
   if (args.bench) await runBench(page, Date.now() - t0);
   else await runChecks(page, errors);
+  if (!args.bench) await runAddress(url, errors);
   if (args['live-scene'] && !args.bench) await runLive(errors);
   if (args['periodic-scene'] && !args.bench) await runPeriodic(errors);
 } catch (error) {

@@ -49,6 +49,7 @@ def test_every_frame_holds_what_the_world_held(run_dir):
         np.testing.assert_allclose(f.velocities, s["velocities"], rtol=1e-6, atol=1e-7)
         assert np.array_equal(f.ids, s["ids"])
         assert np.array_equal(f.flags & gjkdem.view.FIXED, s["fixed"])
+        assert np.array_equal(f.fixed, s["fixed"] != 0) and not f.driven.any()  # the flags, readable
         # Contacts: the same pairs (by id; a plane is its wall id) and forces.
         ids = f.ids.astype(np.uint64)
         planes = run.plane_ids.astype(np.uint64)
