@@ -2,12 +2,14 @@
 // (../shared/spec/query-format.md), read by the same reader as `gjkdem
 // query`, so a shape means the same and is refused with the same message.
 #include <cmath>
+#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
 #include "bindings.hpp"
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/io/query_jsonl.hpp"
+#include "gjkdem/io/scene.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 
 namespace gjkdem::py_bind {
@@ -81,20 +83,83 @@ MassProperties mass_of(const PyShape& s) {
   return s.parts.empty() ? mass_properties(s.shape) : mass_properties(s.parts);
 }
 
+// JSON as TOML inline-table text: the scene reader's input. Strings keep
+// JSON's escapes (TOML's basic strings share them); numbers and booleans
+// read the same in both.
+std::string toml_text(const Json& v) {
+  if (v.is_object()) {
+    std::string s = "{ ";
+    bool first = true;
+    for (const auto& [key, value] : v.items()) {
+      s += (first ? "" : ", ") + Json(key).dump() + " = " + toml_text(value);
+      first = false;
+    }
+    return s + " }";
+  }
+  if (v.is_array()) {
+    std::string s = "[";
+    for (std::size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + toml_text(v[k]);
+    return s + "]";
+  }
+  return v.dump();
+}
+
+// A shape of the scenes' own types (platonic, random_polyhedron, compound,
+// mesh from a file): read by the scene reader, files relative to the
+// working directory; its warnings become Python warnings.
+PyShape scene_shape(const std::string& type, Json fields) {
+  std::uint64_t seed = 1;
+  if (fields.contains("seed")) {
+    if (!fields["seed"].is_number_integer() || fields["seed"].get<std::int64_t>() < 0)
+      throw py::value_error("Shape: seed must be a non-negative integer");
+    seed = fields["seed"].get<std::uint64_t>();
+    fields.erase("seed");
+  }
+  fields["type"] = type;
+  io::SceneShape s;
+  try {
+    s = io::read_scene_shape(toml_text(fields), std::filesystem::current_path(), "Shape(\"" + type + "\")", seed);
+  } catch (const io::SceneError& e) {
+    throw py::value_error(e.what());
+  }
+  for (const std::string& w : s.warnings)
+    py::module_::import("warnings").attr("warn")("gjkdem: " + w, py::handle(PyExc_UserWarning));
+  if (s.shape.surface) throw py::value_error("Shape: a surface grain is a gjkdem.Surface");
+  PyShape out{s.shape.shape, s.shape.pose, type, s.shape.parts};
+  if (!out.parts.empty()) {
+    try {
+      out.shape = dem::make_compound_template(out.parts, false).shape;
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_shapes(py::module_& m) {
   py::class_<PyShape>(m, "Shape", R"(A convex shape: a core and a margin (its Minkowski sum with a ball).
 
-Shape(type, **fields) takes the fields of the pair-query format
-(docs: ../shared/spec/query-format.md), in the shape's own frame:
+Shape(type, **fields) takes a scene's SHAPE fields (docs/scenes.md): those of
+the pair-query format (../shared/spec/query-format.md), in the shape's own
+frame, and the scenes' own types:
     Shape("sphere", radius=0.5)
     Shape("box", half_extents=[1, 2, 3], margin=0.1)
     Shape("polytope", vertices=points)           # an (N, 3) array
     Shape("cylinder", radius=1, half_height=2)   # axis along z
+    Shape("platonic", name="cube", size=0.02)
+    Shape("random_polyhedron", vertices=12, size=[0.012, 0.018], seed=3)   # one drawn from seed
+    Shape("mesh", file="rock.stl", scale=0.001)  # its convex hull (files from the working directory)
+    Shape("compound", parts=[{...}, {...}]) or Shape("compound", file="parts.obj")
 Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)")
       .def(py::init([](const std::string& type, const py::kwargs& fields) {
              Json j = to_json(fields, "shape");
+             if (type == "surface")
+               throw py::value_error("Shape(\"surface\"): a surface grain is a gjkdem.Surface (vertices, triangles)");
+             if (type == "platonic" || type == "random_polyhedron" || type == "compound" ||
+                 (type == "mesh" && j.contains("file")))
+               return scene_shape(type, std::move(j));
              j["type"] = type;
              return make_shape(j.dump(), io::ShapeFrame::Own);
            }),

@@ -67,6 +67,24 @@ class SceneBuilder {
  public:
   SceneBuilder(const std::string& source, std::filesystem::path base) : source_(source), base_(std::move(base)) {}
 
+  // One SHAPE table outside a scene (read_scene_shape): a random polyhedron
+  // drawn once from `seed` (a size range drawn in too), any other type as
+  // a body's shape.
+  SceneShape one_shape(const toml::table& t, const std::string& where, std::uint64_t seed) {
+    SceneShape out;
+    if (is_random_polyhedron(t)) {
+      TableReader r(t, where);
+      const PolyhedronSpec p = read_polyhedron_spec(r, t, false);
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> draw(p.size_lo, p.size_hi);
+      out.shape = {random_polyhedron(static_cast<int>(p.vertices), draw(rng), rng), {}};
+    } else {
+      out.shape = read_shape_table(t, where);
+    }
+    out.warnings = std::move(scene_.warnings);
+    return out;
+  }
+
   Scene build(const toml::table& root) {
     TableReader top(root, source_);
     read_simulation(top);
@@ -878,6 +896,21 @@ Scene load_scene(std::string_view toml_text, const std::string& source, const st
                      std::to_string(e.source().begin.line) + ")");
   }
   return SceneBuilder(source, base_dir).build(root);
+}
+
+SceneShape read_scene_shape(std::string_view toml_inline_table, const std::filesystem::path& base_dir,
+                            const std::string& where, std::uint64_t seed) {
+  const std::string text = "shape = " + std::string(toml_inline_table);
+  detail::check_key_depth(text, where);
+  toml::table root;
+  try {
+    root = toml::parse(text, where);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(where + ": " + std::string(e.description()));
+  }
+  const toml::table* t = root["shape"].as_table();
+  if (!t) throw SceneError(where + ": a SHAPE is a table");
+  return SceneBuilder(where, base_dir).one_shape(*t, where, seed);
 }
 
 std::string read_text_file(const std::filesystem::path& file) {

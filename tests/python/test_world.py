@@ -457,3 +457,30 @@ def test_fill_region_takes_cylinders_and_spheres():
     c = p[in_cylinder]
     assert (np.hypot(c[:, 0], c[:, 1]) + 0.004 <= 0.03 + 1e-12).all() and c[:, 2].min() >= 0.004 - 1e-12
     assert (np.linalg.norm(p[in_sphere] - [0, 0, 0.5], axis=1) + 0.004 <= 0.03 + 1e-12).all()
+
+
+def test_shapes_take_the_scenes_vocabulary(repo, tmp_path):
+    cube = gjkdem.Shape("platonic", name="cube", size=0.02)
+    assert cube.type == "platonic" and cube.volume > 0
+    drawn = [gjkdem.Shape("random_polyhedron", vertices=12, size=[0.012, 0.018], seed=s).volume for s in (3, 3, 4)]
+    assert drawn[0] == drawn[1] != drawn[2]  # one shape per seed
+    ell = gjkdem.Shape("compound", parts=[{"type": "box", "half_extents": [0.01, 0.01, 0.01]},
+                                          {"type": "box", "half_extents": [0.01, 0.01, 0.01], "center": [0.02, 0, 0]}])
+    assert ell.parts == 2 and ell.volume == pytest.approx(1.6e-5)
+    with pytest.warns(UserWarning, match="not convex"):
+        hull = gjkdem.Shape("mesh", file=str(repo / "examples" / "scenes" / "rock.obj"))
+    assert hull.volume > 0
+    b = gjkdem.WorldBuilder(gjkdem.Settings())
+    b.add_material("rock", density=2500, youngs_modulus=1e7)
+    b.fill_region([cube, ell, hull], 30, [0, 0, 0], [0.3, 0.3, 0.3], "rock")  # all of them are body shapes
+    assert b.build().template_count == 3
+    for fields, words in [(dict(name="cubee", size=1.0), "unknown platonic solid"),
+                          (dict(name="cube", size=-1.0), "size")]:
+        with pytest.raises(ValueError, match=words):
+            gjkdem.Shape("platonic", **fields)
+    with pytest.raises(ValueError, match="between 4 and 10000"):
+        gjkdem.Shape("random_polyhedron", vertices=2, size=0.01)
+    with pytest.raises(ValueError, match="file not found"):
+        gjkdem.Shape("mesh", file=str(tmp_path / "none.stl"))
+    with pytest.raises(ValueError, match="gjkdem.Surface"):
+        gjkdem.Shape("surface", file="rock.obj")

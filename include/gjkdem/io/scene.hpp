@@ -12,6 +12,7 @@
 
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::io {
@@ -40,6 +41,20 @@ struct Scene {
 /// Reads a scene from TOML text. `source` names it in messages; relative
 /// file names (meshes) are taken from `base_dir`.
 Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir);
+
+/// One shape in the scene's vocabulary (docs/scenes.md, "Shapes"), and the
+/// warnings reading it gave (a mesh that was not convex, ...).
+struct SceneShape {
+  dem::BodyShape shape;
+  std::vector<std::string> warnings;
+};
+
+/// A SHAPE table given as TOML inline-table text (`{ type = "platonic", name
+/// = "cube", size = 0.02 }`), as a scene's body takes it; files relative to
+/// `base_dir`; a random_polyhedron drawn once from `seed`. Throws SceneError
+/// naming `where`. Python's gjkdem.Shape reads the scenes' own types so.
+SceneShape read_scene_shape(std::string_view toml_inline_table, const std::filesystem::path& base_dir,
+                            const std::string& where, std::uint64_t seed = 1);
 
 /// The text of a file (SceneError "cannot read FILE" when it cannot be read).
 std::string read_text_file(const std::filesystem::path& file);
