@@ -1,6 +1,6 @@
 // The seed's triangle-pair query in closed form, one pair or many: the kernel
-// (triangle_kernel.inl) compiled for SSE2 and AVX2, and the dispatch between
-// them.
+// (triangle_kernel.inl) compiled for SSE2, AVX2 and AVX-512, and the dispatch
+// between them.
 #include "gjkdem/collide/triangle_contact.hpp"
 
 #include <cmath>
@@ -16,8 +16,9 @@ namespace {
 
 #define GJKDEM_LANE_INLINE [[gnu::always_inline]] inline
 
-// 32-byte vectors live only inside the AVX2 functions (all inlined); GCC warns
-// about their ABI late, after any pop, so the warning is off for the file.
+// 32- and 64-byte vectors live only inside the AVX2 and AVX-512 functions (all
+// inlined); GCC warns about their ABI late, after any pop, so the warning is
+// off for the file.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 using V2 = double __attribute__((vector_size(16)));
