@@ -659,7 +659,7 @@ region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
             "unknown platonic solid 'sphere'"},
         Bad{"bad_model", kHead + "[contact]\nmodel = \"magic\"\n" + kCube, "contact.model: must be"},
         Bad{"bad_volume_form", kHead + "[contact]\nvolume_form = \"exact\"\n" + kCube, "contact.volume_form: must be"},
-        Bad{"wall_type", kHead + kCube + "[[wall]]\ntype = \"cylinder\"\nmaterial = \"rock\"\n", "wall[0].type"},
+        Bad{"wall_type", kHead + kCube + "[[wall]]\ntype = \"torus\"\nmaterial = \"rock\"\n", "wall[0].type"},
         Bad{"duplicate_material", kHead + "[[material]]\nname = \"rock\"\ndensity = 1.0\nyoungs_modulus = 1.0\n" + kCube,
             "defined twice"},
         Bad{"only_fixed", kHead + R"([[body]]
