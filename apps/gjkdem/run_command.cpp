@@ -23,7 +23,6 @@ namespace gjkdem::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 volatile std::sig_atomic_t g_stop_signal = 0;  // set by the handler only
 extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
@@ -33,27 +32,21 @@ extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
 class Progress : public dem::RunObserver {
  public:
   Progress(bool quiet, std::uint64_t first_step, Real duration)
-      : quiet_(quiet), tty_(isatty(STDERR_FILENO)), first_(first_step), duration_(duration), start_(Clock::now()),
-        last_(start_) {}
+      : quiet_(quiet), clock_(isatty(STDERR_FILENO), first_step), duration_(duration) {}
   void on_output(const dem::World&, const dem::RunState&) override {}
   void on_step(const dem::World& w, const dem::RunState& s) override { update(w, s, false); }
   void on_stop(const dem::World& w, const dem::RunState& s, const dem::RunOutcome&) override { update(w, s, true); }
   void on_warning(const dem::World&, const dem::RunState&, const std::string& message) override {
-    std::cerr << (tty_ ? "\n" : "") << "gjkdem: warning: " << message << "\n";
+    std::cerr << (clock_.terminal() ? "\n" : "") << "gjkdem: warning: " << message << "\n";
   }
 
  private:
   void update(const dem::World& w, const dem::RunState& s, bool final) {
     if (quiet_) return;
-    const auto now = Clock::now();
-    const double since = std::chrono::duration<double>(now - last_).count();
-    if (!final && since < (tty_ ? 0.25 : 10.0)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = elapsed > 0 ? static_cast<double>(s.step - first_) / elapsed : 0;
+    const std::string line = clock_.due(w.time, duration_, s.step, s.steps_total, final);
+    if (line.empty()) return;
     const double frac = s.steps_total ? static_cast<double>(s.step) / static_cast<double>(s.steps_total) : 1;
-    const std::string line = io::progress_line(w.time, duration_, s.step, s.steps_total, rate);
-    if (tty_) {
+    if (clock_.terminal()) {
       const int width = 24, done = static_cast<int>(frac * width);
       std::cerr << "\r[" << std::string(done, '#') << std::string(width - done, '.') << "] " << line << "   "
                 << (final ? "\n" : "") << std::flush;
@@ -62,10 +55,9 @@ class Progress : public dem::RunObserver {
     }
   }
 
-  bool quiet_, tty_;
-  std::uint64_t first_;
+  bool quiet_;
+  io::ProgressClock clock_;
   Real duration_;
-  Clock::time_point start_, last_;
 };
 
 // Per rank, means per step (docs/scaling.md reads these).

@@ -4,7 +4,6 @@
 #include <thread>
 #include <vector>
 
-#include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::py_bind {
 namespace {
@@ -71,31 +70,31 @@ std::string PyObserver::stop_reason() {
   return stop_;
 }
 
-PyProgress::PyProgress(std::uint64_t first_step, Real duration)
-    : first_(first_step), duration_(duration), start_(std::chrono::steady_clock::now()), last_(start_) {
+namespace {
+
+bool stderr_is_a_terminal() {
   const py::object err = py::module_::import("sys").attr("stderr");
-  tty_ = py::hasattr(err, "isatty") && err.attr("isatty")().cast<bool>();
+  return py::hasattr(err, "isatty") && err.attr("isatty")().cast<bool>();
 }
 
-void PyProgress::on_step(const dem::World& world, const dem::RunState& state) {
-  if (++calls_ % 64 == 0) show(world, state, false);  // the clock read now and then
-}
+}  // namespace
+
+PyProgress::PyProgress(std::uint64_t first_step, Real duration)
+    : clock_(stderr_is_a_terminal(), first_step), duration_(duration) {}
+
+void PyProgress::on_step(const dem::World& world, const dem::RunState& state) { show(world, state, false); }
 
 void PyProgress::on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome&) {
   show(world, state, true);
 }
 
 void PyProgress::show(const dem::World& world, const dem::RunState& state, bool final) {
-  const auto now = std::chrono::steady_clock::now();
-  if (!final && std::chrono::duration<double>(now - last_).count() < (tty_ ? 0.25 : 10.0)) return;
-  last_ = now;
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double rate = elapsed > 0 ? static_cast<double>(state.step - first_) / elapsed : 0;
-  const std::string line = io::progress_line(world.time, duration_, state.step, state.steps_total, rate);
+  const std::string line = clock_.due(world.time, duration_, state.step, state.steps_total, final);
+  if (line.empty()) return;  // the GIL only when a line is due
   py::gil_scoped_acquire gil;
   try {
     const py::object err = py::module_::import("sys").attr("stderr");
-    err.attr("write")(tty_ ? "\rgjkdem: " + line + (final ? "\n" : "") : "gjkdem: " + line + "\n");
+    err.attr("write")(clock_.terminal() ? "\rgjkdem: " + line + (final ? "\n" : "") : "gjkdem: " + line + "\n");
     err.attr("flush")();
   } catch (py::error_already_set&) {  // a closed or odd stderr: progress is not worth failing the run
   }

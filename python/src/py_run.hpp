@@ -1,7 +1,6 @@
 #pragma once
 // Running a world from Python: the run loop goes on with the GIL released;
 // observers, warnings and Ctrl-C come back to Python between steps.
-#include <chrono>
 #include <functional>
 #include <optional>
 #include <span>
@@ -10,6 +9,7 @@
 
 #include "convert.hpp"
 #include "gjkdem/dem/run.hpp"
+#include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::py_bind {
 
@@ -51,11 +51,8 @@ class PyProgress : public dem::RunObserver {
  private:
   void show(const dem::World& world, const dem::RunState& state, bool final);
 
-  std::uint64_t first_;
+  io::ProgressClock clock_;
   Real duration_;
-  bool tty_ = false;
-  std::chrono::steady_clock::time_point start_, last_;
-  unsigned calls_ = 0;
 };
 
 /// A world a call is using with the GIL released (a step, a run, a

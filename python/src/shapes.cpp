@@ -104,6 +104,19 @@ std::string toml_text(const Json& v) {
   return v.dump();
 }
 
+// A compound of these parts, its hull for where a bound will do.
+PyShape compound_of(std::vector<PlacedShape> parts) {
+  PyShape c;
+  c.type = "compound";
+  c.parts = std::move(parts);
+  try {
+    c.shape = dem::make_compound_template(c.parts, false).shape;
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  return c;
+}
+
 // A shape of the scenes' own types (platonic, random_polyhedron, compound,
 // mesh from a file): read by the scene reader, files relative to the
 // working directory; its warnings become Python warnings.
@@ -125,15 +138,8 @@ PyShape scene_shape(const std::string& type, Json fields) {
   for (const std::string& w : s.warnings)
     py::module_::import("warnings").attr("warn")("gjkdem: " + w, py::handle(PyExc_UserWarning));
   if (s.shape.surface) throw py::value_error("Shape: a surface grain is a gjkdem.Surface");
-  PyShape out{s.shape.shape, s.shape.pose, type, s.shape.parts};
-  if (!out.parts.empty()) {
-    try {
-      out.shape = dem::make_compound_template(out.parts, false).shape;
-    } catch (const std::invalid_argument& e) {
-      throw py::value_error(e.what());
-    }
-  }
-  return out;
+  if (!s.shape.parts.empty()) return compound_of(std::move(s.shape.parts));
+  return {s.shape.shape, s.shape.pose, type, {}};
 }
 
 }  // namespace
@@ -175,18 +181,12 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
           "compound",
           [](const std::vector<PyShape>& parts) {
             if (parts.empty()) throw py::value_error("a compound needs at least one part");
-            PyShape c;
-            c.type = "compound";
+            std::vector<PlacedShape> placed;
             for (const PyShape& p : parts) {
               if (!p.parts.empty()) throw py::value_error("a part cannot itself be a compound");
-              c.parts.push_back({p.shape, p.offset});
+              placed.push_back({p.shape, p.offset});
             }
-            try {
-              c.shape = dem::make_compound_template(c.parts, false).shape;
-            } catch (const std::invalid_argument& e) {
-              throw py::value_error(e.what());
-            }
-            return c;
+            return compound_of(std::move(placed));
           },
           py::arg("parts"),
           "A non-convex grain as a rigid union of convex parts (each placed by its own center and rotation),\n"

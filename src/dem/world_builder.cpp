@@ -138,6 +138,7 @@ WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) 
 
 WorldBuilder::WorldBuilder(World world) : settings_(world.settings), world_(std::move(world)) {
   for (const ShapeTemplate& t : world_.templates) given_shapes_.push_back(t.shape);
+  for (const BodyName& n : world_.names) names_.insert(n.name);
   for (const Body& b : world_.bodies) {
     labels_.push_back("body " + std::to_string(b.id));
     groups_ = std::max(groups_, b.group);
@@ -256,8 +257,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     if (std::any_of(d.name.begin(), d.name.end(),
                     [](char c) { return c == ',' || c == '"' || static_cast<unsigned char>(c) < 0x20; }))
       throw BuildError(label + ": its name holds a comma, a quote or a control character (it is a trace.csv field)");
-    if (std::any_of(world_.names.begin(), world_.names.end(), [&](const BodyName& n) { return n.name == d.name; }))
-      throw BuildError(label + ": two bodies are named '" + d.name + "'");
+    if (names_.count(d.name)) throw BuildError(label + ": two bodies are named '" + d.name + "'");
   }
   check_material(d.material, label);
   for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
@@ -283,7 +283,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   }
   world_.bodies.push_back(b);
   labels_.push_back(label);
-  if (!d.name.empty()) world_.names.push_back({b.id, d.name});
+  if (!d.name.empty()) world_.names.push_back({b.id, d.name}), names_.insert(d.name);
   const std::uint32_t index = static_cast<std::uint32_t>(world_.bodies.size() - 1);
   explicit_.push_back(index);
   drive(index, d.motion);
@@ -511,9 +511,9 @@ bool ball_inside(const RoundRegion& g, const Vec3& c, Real r) {
 
 }  // namespace
 
-std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, std::mt19937_64& rng) {
-  RegionFill f = given;
+std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
+  Vec3 region_lo = f.lo, region_hi = f.hi;  // a round region's: its bounding box
   if (f.round) {
     const RoundRegion& g = *f.round;
     if (!is_finite(g.base) || !is_finite(g.axis) || !(length(g.axis) > 0))
@@ -522,7 +522,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, st
         (g.kind == RoundRegion::Kind::Cylinder && (!(g.height > 0) || !std::isfinite(g.height))))
       throw BuildError(label + ": the region's radius (and a cylinder's height) must be finite and > 0");
     const Aabb box = round_box(g);
-    f.lo = box.lo, f.hi = box.hi;
+    region_lo = box.lo, region_hi = box.hi;
   }
   check_material(f.material, label);
   if (f.variants.empty()) throw BuildError(label + ": no shape to fill the region with");
@@ -531,7 +531,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, st
   } catch (const BuildError& e) {
     throw BuildError(label, e.key, e.rule);
   }
-  if (!is_finite(f.lo) || !is_finite(f.hi) || !(f.hi.x > f.lo.x && f.hi.y > f.lo.y && f.hi.z > f.lo.z))
+  if (!is_finite(region_lo) || !is_finite(region_hi) || !(region_hi.x > region_lo.x && region_hi.y > region_lo.y && region_hi.z > region_lo.z))
     throw BuildError(label + ": the region's max must exceed its min on every axis");
   if (f.fixed && length(f.velocity) > 0)
     throw BuildError(label, "velocity", "must be zero for fixed bodies (fixed = true)");
@@ -543,7 +543,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, st
   }
   // Cells of at least one diameter, the slack spread evenly.
   std::vector<std::pair<Vec3, Quat>> spots;
-  const Vec3 size = f.hi - f.lo;
+  const Vec3 size = region_hi - region_lo;
   const Real nx = std::floor(size.x / diameter), ny = std::floor(size.y / diameter), nz = std::floor(size.z / diameter);
   // A region far larger than its bodies (or mostly outside the walls) would
   // be scanned cell by cell for nothing: visit at most this many cells.
@@ -579,8 +579,8 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, st
       Near n{b, shape_pose(world_.templates[world_.bodies[b].shape], world_.bodies[b]),
              bounding_radius(given_shapes_[world_.bodies[b].shape]), {}};
       const Vec3 reach{n.radius + diameter, n.radius + diameter, n.radius + diameter};
-      const Vec3 lo = hadamard(n.pose.translation - reach - f.lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
-      const Vec3 hi = hadamard(n.pose.translation + reach - f.lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
+      const Vec3 lo = hadamard(n.pose.translation - reach - region_lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
+      const Vec3 hi = hadamard(n.pose.translation + reach - region_lo, {1 / cell.x, 1 / cell.y, 1 / cell.z});
       const Vec3 first{std::fmax(0, std::floor(lo.x)), std::fmax(0, std::floor(lo.y)), std::fmax(0, std::floor(lo.z))};
       const Vec3 last{std::fmin(nx - 1, std::floor(hi.x)), std::fmin(ny - 1, std::floor(hi.y)),
                       std::fmin(nz - 1, std::floor(hi.z))};
@@ -605,7 +605,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& given, st
             throw BuildError(label + ": found room for only " + std::to_string(spots.size()) + " of the " +
                              std::to_string(f.count) + " bodies in the first " + number_text(cell_budget) +
                              " cells of the region; make the region smaller or closer to the bodies' size");
-          const Vec3 centre = f.lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
+          const Vec3 centre = region_lo + Vec3{(i + 0.5) * cell.x, (j + 0.5) * cell.y, (k + 0.5) * cell.z} +
                               Vec3{u(rng) * slack.x, u(rng) * slack.y, u(rng) * slack.z};
           const Quat q = random_rotation(rng);
           bool free = !f.round || ball_inside(*f.round, centre, diameter / 2);
@@ -871,6 +871,7 @@ World WorldBuilder::build() {
   world_ = World{};
   world_.settings = settings_;
   labels_.clear();
+  names_.clear();
   inflow_labels_.clear();
   given_shapes_.clear();
   explicit_.clear();

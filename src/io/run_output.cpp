@@ -212,6 +212,18 @@ std::string progress_line(Real time, Real duration, std::uint64_t step, std::uin
   return line;
 }
 
+ProgressClock::ProgressClock(bool terminal, std::uint64_t first_step)
+    : terminal_(terminal), first_(first_step), start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+std::string ProgressClock::due(Real time, Real duration, std::uint64_t step, std::uint64_t steps_total, bool final) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!final && std::chrono::duration<double>(now - last_).count() < (terminal_ ? 0.25 : 10.0)) return "";
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = elapsed > 0 ? static_cast<double>(step - std::min(step, first_)) / elapsed : 0;
+  return progress_line(time, duration, step, steps_total, rate);
+}
+
 std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"; }
 
 std::string trace_row(const dem::World& w, const std::string& name, const dem::Body& b) {

@@ -841,7 +841,7 @@ class SceneBuilder {
       const std::int64_t segments = r.integer("segments").value_or(48);
       if (segments < 8 || segments > 4096) r.fail("segments", "must be 8 to 4096");
       c.segments = static_cast<int>(segments);
-      c.thickness = r.positive("thickness", 0.02 * c.radius);
+      if (r.has("thickness")) c.thickness = r.positive("thickness");
       TriangleMesh mesh;
       building(r.table_node(), [&] {
         dem::cylinder_wall_mesh(c, r.where(), mesh.vertices, mesh.triangles);
@@ -857,7 +857,7 @@ class SceneBuilder {
       j["bottom"] = c.bottom;
       j["top"] = c.top;
       j["segments"] = c.segments;
-      j["thickness"] = c.thickness;
+      j["thickness"] = dem::cylinder_wall_thickness(c);
     } else {
       r.fail("type", "must be \"plane\", \"box\", \"mesh\" or \"cylinder\", not \"" + type + "\"");
     }

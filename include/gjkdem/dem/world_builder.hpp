@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include "gjkdem/dem/world.hpp"
@@ -120,6 +121,9 @@ struct CylinderWall {
   int segments = 48;         ///< flat sides, 8 to 4096 (48: the flats reach 99.8% of the radius)
   Real thickness = 0;        ///< of the pieces (0: 2% of the radius)
 };
+
+/// The thickness of its pieces (CylinderWall::thickness, or its default).
+Real cylinder_wall_thickness(const CylinderWall& wall);
 
 /// The triangles of a CylinderWall (world coordinates), as add_cylinder_walls
 /// makes it. Throws BuildError for a bad one (naming `label`).
@@ -261,6 +265,7 @@ class WorldBuilder {
   WorldSettings settings_;
   World world_;
   std::vector<std::string> labels_;     ///< per body
+  std::unordered_set<std::string> names_;  ///< World::names' names, for the uniqueness rule
   std::vector<std::string> inflow_labels_;  ///< per inflow
   std::vector<Shape> given_shapes_;     ///< per template, as given (before preparation)
   std::vector<std::uint32_t> explicit_; ///< bodies from add_body

@@ -2,6 +2,7 @@
 // What a run writes (../shared/spec/scene-format.md): ParaView frames (legacy
 // VTK polydata, binary, one file per frame, and a frames.vtk.series index with
 // the simulated times) and rows of trace.csv and energy.csv.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -76,6 +77,22 @@ std::string duration_text(double seconds);
 /// `steps_per_second`.
 std::string progress_line(Real time, Real duration, std::uint64_t step, std::uint64_t steps_total,
                           double steps_per_second);
+
+/// When a run's progress is shown (`gjkdem run`, Python's progress=True):
+/// every 0.25 s on a terminal (redrawn in place), every 10 s elsewhere (a
+/// log, a notebook), and at the end; the pace counted from `first_step`.
+class ProgressClock {
+ public:
+  ProgressClock(bool terminal, std::uint64_t first_step);
+  /// progress_line when one is due now (always when `final`), else empty.
+  std::string due(Real time, Real duration, std::uint64_t step, std::uint64_t steps_total, bool final);
+  bool terminal() const noexcept { return terminal_; }
+
+ private:
+  bool terminal_;
+  std::uint64_t first_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
 
 /// cell.csv (periodic worlds): time, the cell's lengths and tilts (m), its
 /// volume (m^3), velocity gradient (1/s) and the contacts' stress (Pa,
