@@ -6,7 +6,8 @@
 # cleanly, and an existing run is not overwritten. Run folders (issue 11):
 # files that are not the run's survive --overwrite, a folder in use is locked,
 # a killed run leaves run.json counting its last checkpoint and the stale
-# temporary files go on resume, and an edited scene.toml is not continued.
+# temporary files go on resume, an edited scene.toml is not continued, and a
+# new run starts from another's last state (--from) with changed parameters.
 set -euo pipefail
 gjkdem="$1"
 scene_dir="$(cd "$(dirname "$2")" && pwd)"
@@ -98,10 +99,30 @@ set +e
 "$gjkdem" run --resume edited --quiet 2> refused.txt
 rc=$?
 set -e
-[ "$rc" -eq 2 ] && grep -q "another scene" refused.txt || fail "a checkpoint was continued under an edited scene"
+[ "$rc" -eq 2 ] && grep -q "another scene" refused.txt && grep -q -- "--from" refused.txt ||
+  fail "a checkpoint was continued under an edited scene (or the refusal offers no way on)"
+
+# A new run from the completed run's last state (--from) with changed
+# friction, gravity and duration: its clock starts at 0 where the other
+# ended; a change of bodies is refused, naming the body.
+sed -e 's/^friction = 0.5/friction = 0.2/' -e 's/^gravity = .*/gravity = [0.0, 0.0, -5.0]/' \
+    -e 's/^duration = 0.06/duration = 0.02/' "$scene" > study.toml
+cp "$scene_dir/chute.obj" .
+"$gjkdem" run study.toml --from full --out study --quiet || fail "a run --from a completed run did not complete"
+grep -q '"started_from"' study/run.json || fail "run.json does not say where the run started from"
+[ "$(sed -n 2p study/energy.csv | cut -d, -f1,2)" = "0,$(tail -1 full/energy.csv | cut -d, -f2)" ] ||
+  fail "the run --from does not start at 0 with the kinetic energy the other ended with"
+[ "$(wc -l < study/energy.csv)" -eq 4 ] || fail "the run --from should hold 3 frames"
+sed -e 's/^shape = { type = "platonic", name = "octahedron", size = 0.02 }/shape = { type = "platonic", name = "cube", size = 0.02 }/' \
+    study.toml > reshaped.toml
+set +e
+"$gjkdem" run reshaped.toml --from full --out reshaped --quiet 2> refused.txt
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q "('tracer') has another shape" refused.txt ||
+  { cat refused.txt; fail "a run --from with a changed body was not refused by name (got $rc)"; }
 
 # SIGTERM: a long run stops cleanly and keeps what it wrote.
-cp "$scene_dir/chute.obj" .
 sed 's/^duration = 0.06/duration = 50.0/' "$scene" > long.toml
 "$gjkdem" run long.toml --out long --threads 1 --quiet &
 pid=$!

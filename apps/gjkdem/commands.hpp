@@ -29,6 +29,7 @@ struct RunOptions {
   std::string scene;        ///< scene file; empty: the built-in default scene
   std::string out;          ///< output folder; empty: the scene's [output].dir
   std::string resume;       ///< folder of a stopped run to continue
+  std::string start_from;   ///< run folder (or checkpoint) whose last state a new run starts from
   bool overwrite = false;   ///< replace a run already in the output folder
   int threads = -1;         ///< -1: the scene's [simulation].threads
   long long stop_after = -1;  ///< stop as if interrupted after this many steps (tests)

@@ -37,6 +37,9 @@ int main(int argc, char** argv) {
   r->add_option("scene", run.scene, "scene file (TOML, scene-format.md)")->check(CLI::ExistingFile);
   r->add_option("--out", run.out, "output folder (default: the scene's [output].dir)");
   r->add_option("--resume", run.resume, "continue the stopped run in this folder")->check(CLI::ExistingDirectory);
+  r->add_option("--from", run.start_from,
+                 "start from the last state of this run folder (or checkpoint file), the clock at 0: same bodies, "
+                 "shapes and walls; materials, law, gravity, motions, duration and outputs may change");
   r->add_flag("--overwrite", run.overwrite, "replace a run already in the output folder");
   r->add_option("--threads", run.threads, "threads (0: all cores; default: the scene's)")->check(CLI::Range(0, 4096));
   r->add_option("--stop-after", run.stop_after, "stop as if interrupted after this many steps")
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
   r->get_option("--resume")->excludes(r->get_option("scene"));
   r->get_option("--resume")->excludes(r->get_option("--out"));  // a resumed run writes where it ran
   r->get_option("--resume")->excludes(r->get_option("--overwrite"));
+  r->get_option("--resume")->excludes(r->get_option("--from"));  // a resumed run goes on from its own state
 
   gjkdem::app::ViewOptions view;
   CLI::App* v = app.add_subcommand("view", "show a run folder in the browser (serves it on 127.0.0.1)");

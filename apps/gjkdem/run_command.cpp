@@ -88,8 +88,11 @@ std::unique_ptr<io::SceneRun> open_run(const RunOptions& opt, bool follower) {
     if (io::SceneRun::completed(opt.resume)) return nullptr;
     return io::SceneRun::resume(opt.resume, opt.threads, follower);
   }
-  return io::SceneRun::start(opt.scene,
-                             {.out = opt.out, .overwrite = opt.overwrite, .threads = opt.threads, .follower = follower});
+  return io::SceneRun::start(opt.scene, {.out = opt.out,
+                                         .overwrite = opt.overwrite,
+                                         .threads = opt.threads,
+                                         .follower = follower,
+                                         .start_from = opt.start_from});
 }
 
 // More ranks on this node than it has cores: each of the many exchanges of
@@ -141,7 +144,7 @@ int run_follower(const RunOptions& opt, dem::DomainTransport& transport,
 // start tells the others, so that none waits for it.
 // gjkdem run --check: the scene's summary, a time and size estimate.
 int check_simulation(const RunOptions& opt) {
-  if (!opt.resume.empty() || !opt.out.empty() || opt.stop_after >= 0) {
+  if (!opt.resume.empty() || !opt.out.empty() || opt.stop_after >= 0 || !opt.start_from.empty()) {
     std::cerr << "gjkdem: --check takes a scene and --threads only\n";
     return 2;
   }

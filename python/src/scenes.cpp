@@ -93,14 +93,19 @@ void bind_scenes(py::module_& m) {
       m, "SceneRun",
       "A scene run into its folder as `gjkdem run` does: frames, trace.csv, energy.csv, checkpoints, run.json.\n"
       "SceneRun(scene=None, out=None, overwrite=False, threads=-1): a new run (scene None: the default scene;\n"
-      "out None: the scene's output.directory). SceneRun.resume(folder): takes a run up from its checkpoint.")
+      "out None: the scene's output.directory). SceneRun.resume(folder): takes a run up from its checkpoint.\n"
+      "start_from=FOLDER (or a checkpoint file): a new run from that run's last state, its clock at 0, as\n"
+      "`gjkdem run SCENE --from FOLDER`: same bodies, shapes and walls (else CheckpointError naming what\n"
+      "differs); materials, contact law settings, gravity, motions, duration and outputs may change.")
       .def(py::init([](const std::optional<std::string>& scene, const std::optional<std::string>& out, bool overwrite,
-                       int threads) {
-             return io::SceneRun::start(scene.value_or(""),
-                                        {.out = out.value_or(""), .overwrite = overwrite, .threads = threads});
+                       int threads, const std::optional<std::string>& start_from) {
+             return io::SceneRun::start(scene.value_or(""), {.out = out.value_or(""),
+                                                             .overwrite = overwrite,
+                                                             .threads = threads,
+                                                             .start_from = start_from.value_or("")});
            }),
            py::arg("scene") = py::none(), py::arg("out") = py::none(), py::arg("overwrite") = false,
-           py::arg("threads") = -1)
+           py::arg("threads") = -1, py::arg("start_from") = py::none())
       .def_static(
           "resume", [](const std::string& folder, int threads) { return io::SceneRun::resume(folder, threads); },
           py::arg("folder"), py::arg("threads") = -1)

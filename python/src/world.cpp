@@ -744,13 +744,18 @@ void bind_world(py::module_& m) {
           "checkpoint format (docs/checkpoints.md), with the time step to go on with (None: critical_time_step).")
       .def(
           "load_checkpoint",
-          [](World& w, const std::string& path) {
+          [](World& w, const std::string& path, bool restart) {
             const InUse in_use(w);
             py::gil_scoped_release release;
-            return io::load_checkpoint(path, w, 0).run.dt;
+            return io::load_checkpoint(path, w, 0, restart ? io::Restore::NewRun : io::Restore::SameRun).run.dt;
           },
-          py::arg("path"),
-          "Restores a state saved from a world built the same way (same bodies and ids); returns its time step.");
+          py::arg("path"), py::arg("restart") = false,
+          "Restores a saved state into this world, which must have the same bodies, shapes and walls (ids, shapes,\n"
+          "fixed bodies' places, plane walls: else CheckpointError naming what differs); its materials, contact\n"
+          "law settings and gravity may differ and take effect from the next step. restart=False: the saved run\n"
+          "goes on (its clock; a checkpoint saved from Python); restart=True: a new run from that state (time 0,\n"
+          "no wall work yet, forces recomputed), from any checkpoint, a `gjkdem run` folder's included.\n"
+          "Returns the saved time step.");
 }
 
 }  // namespace gjkdem::py_bind

@@ -15,10 +15,11 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 6. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 7. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
     "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
-    "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); BODY count, per body id(u64) shape(u32) "
+    "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); MAKE count, per shape "
+    "template digest(u64), count, per plane wall digest(u64); BODY count, per body id(u64) shape(u32) "
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
@@ -136,6 +137,43 @@ std::uint64_t fnv1a64(std::string_view bytes) noexcept {
   return h;
 }
 
+// What a world is made of, as digests a restore compares: a template's
+// kind, exact mass properties, reach and extreme points in 14 directions (its
+// size and form), a plane wall's place as built. They tell a changed shape
+// or wall apart from a changed material or law, which a continued run may
+// take (docs/checkpoints.md, "Continuing with changes").
+std::uint64_t digest(const dem::ShapeTemplate& t) {
+  Out o;
+  o.u32(static_cast<std::uint32_t>(t.shape.core.index())), o.real(t.shape.margin);
+  o.real(t.unit_mass.volume), o.vec(t.unit_mass.centroid);
+  for (const Vec3& r : t.unit_mass.inertia.row) o.vec(r);
+  o.real(t.reach), o.u64(t.parts.size()), o.u8(t.surface_grain ? 1 : 0);
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if ((x != 0) + (y != 0) + (z != 0) != 2 && (x | y | z) != 0) o.vec(support(t.shape, Vec3{Real(x), Real(y), Real(z)}));
+  for (const dem::TemplatePart& p : t.parts) o.vec(p.pose.translation), o.real(p.volume), o.real(p.radius);
+  if (t.wall_face)
+    for (const Vec3& v : t.wall_face->v) o.vec(v);
+  return fnv1a64(o.bytes());
+}
+
+constexpr const char* kKeepAsItWas =
+    " (a run goes on only with its bodies, shapes and walls as they were; materials, contact law settings, gravity, "
+    "motions, duration and outputs may change)";
+
+std::string body_text(const dem::World& w, std::uint64_t id) {
+  for (const dem::BodyName& n : w.names)
+    if (n.id == id) return "body " + std::to_string(id) + " ('" + n.name + "')";
+  return "body " + std::to_string(id);
+}
+
+std::uint64_t digest(const dem::PlaneWall& p) {
+  Out o;
+  o.vec(p.given_point), o.vec(p.given_normal);
+  return fnv1a64(o.bytes());
+}
+
 std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uint64_t fingerprint) {
   Out o;
   std::size_t s = o.begin("INFO");
@@ -155,6 +193,12 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   for (const Real v : w.cell_rate) o.real(v);
   for (const Real v : w.cell_stress) o.real(v);
   o.vec(w.search.cell.lo), o.vec(w.search.cell.hi), o.vec(w.search.cell.tilt);
+  o.end(s);
+  s = o.begin("MAKE");
+  o.u64(w.templates.size());
+  for (const dem::ShapeTemplate& t : w.templates) o.u64(digest(t));
+  o.u64(w.planes.size());
+  for (const dem::PlaneWall& p : w.planes) o.u64(digest(p));
   o.end(s);
   s = o.begin("BODY");
   o.u64(w.bodies.size());
@@ -198,7 +242,8 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   return head.bytes() + o.bytes();
 }
 
-Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_t fingerprint, const std::string& name) {
+Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_t fingerprint, const std::string& name,
+                             Restore how) {
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
     if (bytes.size() >= 7 && bytes.substr(0, 7) == "gjkdckp")
       throw CheckpointError(name + " is a checkpoint of an older gjkdem format; this gjkdem reads format " +
@@ -215,9 +260,11 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   const std::string_view payload = bytes.substr(kHeaderBytes);
   if (payload.size() != length) head.fail("its length does not match its header: truncated or extended");
   if (fnv1a64(payload) != checksum) head.fail("its checksum does not match");
-  if (scene != fingerprint)
+  if (how == Restore::SameRun && scene != fingerprint)
     throw CheckpointError(name + " was written for another scene (or the scene file changed since): refusing to "
-                          "continue it");
+                          "continue it as the same run; a new run may start from its state with changed materials, "
+                          "contact law, gravity, duration or outputs (gjkdem run SCENE --from RUN_FOLDER; Python: "
+                          "load_checkpoint(path, restart=True))");
 
   In in(payload, name);
   Checkpoint c;
@@ -255,6 +302,24 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
     if (cell.axes[a]) valid = valid && cell.hi[a] > cell.lo[a] && std::isfinite(cell.lo[a]) && std::isfinite(cell.hi[a]);
   if (!valid) in.fail("the periodic cell is not valid");
 
+  // What the world is made of must be as it was: its shapes and walls (by
+  // digest). Materials and settings are not compared: a run may go on with
+  // other ones.
+  const auto refuse = [&](const std::string& what) {
+    throw CheckpointError(name + ": " + what + kKeepAsItWas);
+  };
+  end = in.section("MAKE");
+  std::vector<std::uint64_t> shapes(in.count(8));
+  for (std::uint64_t& d : shapes) d = in.u64();
+  std::vector<std::uint64_t> planes(in.count(8));
+  for (std::uint64_t& d : planes) d = in.u64();
+  in.close(end, "MAKE");
+  if (planes.size() != w.planes.size())
+    refuse("the scene has " + std::to_string(w.planes.size()) + " plane walls, the checkpoint " +
+           std::to_string(planes.size()));
+  for (std::size_t k = 0; k < planes.size(); ++k)
+    if (planes[k] != digest(w.planes[k])) refuse("plane wall " + std::to_string(k) + " is not where it was built");
+
   // Into a copy: the world is changed only once everything has been read.
   // Bodies beyond the scene's were inserted by its inflows: moving, of the
   // inflows' templates (checked against the FLOW counts below).
@@ -262,15 +327,26 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   end = in.section("BODY");
   const std::uint64_t count = in.count(8 + 2 * 4 + 19 * 8);
   if (count < bodies.size() || (count > bodies.size() && w.inflows.empty()))
-    throw CheckpointError(name + ": the scene has a different number of bodies than the checkpoint");
+    refuse("the scene has " + std::to_string(bodies.size()) + " bodies, the checkpoint " + std::to_string(count) +
+           (count > bodies.size() ? " (and the scene has no inflow to have inserted them)" : ""));
+  if (shapes.size() != w.templates.size())
+    refuse("the scene has " + std::to_string(w.templates.size()) + " shape templates, the checkpoint " +
+           std::to_string(shapes.size()));
+  std::vector<bool> changed(shapes.size());
+  for (std::size_t k = 0; k < shapes.size(); ++k) changed[k] = shapes[k] != digest(w.templates[k]);
   const std::size_t scene_bodies = bodies.size();
+  std::string differs;  // the first body that is not as it was
   bodies.resize(count);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     dem::Body& b = bodies[i];
     const std::uint64_t id = in.u64();
     const std::uint32_t shape = in.u32(), material = in.u32();
-    if (i < scene_bodies && (id != b.id || shape != b.shape || material != b.material))
-      throw CheckpointError(name + ": body ids, shapes or materials differ from the scene's");
+    if (i < scene_bodies) {
+      if (id != b.id && differs.empty())
+        differs = body_text(w, b.id) + " is body " + std::to_string(id) + " in the checkpoint";
+      if ((shape != b.shape || changed[shape]) && differs.empty())
+        differs = body_text(w, b.id) + " has another shape than in the checkpoint";
+    }
     if (i >= scene_bodies) {
       if ((i > 0 && !(id > bodies[i - 1].id)) || id >= dem::kPlaneIdBase || shape >= w.templates.size() ||
           material >= w.materials.size())
@@ -278,7 +354,13 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
       b = dem::Body{};
       b.id = id, b.shape = shape, b.material = material;
     }
-    b.position = in.vec(), b.orientation = in.quat(), b.velocity = in.vec(), b.angular_momentum = in.vec();
+    const Vec3 position = in.vec();
+    const Quat orientation = in.quat();
+    if (b.fixed && b.motion == 0 &&
+        !(position == b.position && orientation.w == b.orientation.w && orientation.x == b.orientation.x &&
+          orientation.y == b.orientation.y && orientation.z == b.orientation.z))
+      if (differs.empty()) differs = body_text(w, b.id) + " (fixed) is not where it was in the checkpoint";
+    b.position = position, b.orientation = orientation, b.velocity = in.vec(), b.angular_momentum = in.vec();
     b.force = in.vec(), b.torque = in.vec();
   }
   in.close(end, "BODY");
@@ -295,7 +377,12 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   std::uint64_t inserted_before = 0;  // by the scene's own world (a continued one)
   for (const dem::InflowState& f : w.inflow_states) inserted_before += f.inserted;
   if (inserted < inserted_before || inserted - inserted_before != count - scene_bodies)
-    in.fail("the inflows' counts do not match the bodies");
+    refuse("the scene has " + std::to_string(scene_bodies) + " bodies, the checkpoint " + std::to_string(count) +
+           " of which its inflows inserted " + std::to_string(inserted - std::min(inserted, inserted_before)));
+  // The first body found to differ is named once the counts are known to agree.
+  if (!differs.empty()) refuse(differs);
+  for (std::size_t k = 0; k < shapes.size(); ++k)
+    if (changed[k]) refuse("shape template " + std::to_string(k) + " (of an inflow) differs from the checkpoint's");
   end = in.section("BOXS");
   const std::uint64_t anchors = in.count(7 * 8);
   if (anchors != 0 && anchors != bodies.size()) in.fail("box anchors do not match the bodies");
@@ -333,6 +420,10 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.forces_current = forces_current;
   w.stats = stats;
   w.wall_work = wall_work;
+  if (how == Restore::NewRun) {  // a new clock; forces under the new settings
+    w.time = 0, w.wall_work = 0, w.forces_current = false;
+    c.logs = {};
+  }
   w.cell = cell;
   w.cell_rate = rate;
   w.cell_stress = stress;
@@ -353,10 +444,10 @@ void save_checkpoint(const std::filesystem::path& file, const dem::World& w, con
   write_file_atomically(file, encode_checkpoint(w, c, fingerprint));
 }
 
-Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint) {
+Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint, Restore how) {
   const std::optional<std::string> bytes = read_file(file);
   if (!bytes) throw CheckpointError("cannot read checkpoint " + file.string());
-  return decode_checkpoint(*bytes, w, fingerprint, file.string());
+  return decode_checkpoint(*bytes, w, fingerprint, file.string(), how);
 }
 
 }  // namespace gjkdem::io

@@ -181,7 +181,10 @@ void Checkpointer::on_output(const dem::World& w, const dem::RunState& state) {
 }
 
 void Checkpointer::on_stop(const dem::World& w, const dem::RunState& state, const dem::RunOutcome& outcome) {
-  if (outcome.status == dem::RunStatus::Stopped) save(w, state);
+  // A stopped run goes on from here; a completed one's last state is where
+  // another run may start (--from).
+  if (outcome.status == dem::RunStatus::Stopped || (outcome.status == dem::RunStatus::Completed && every_ > 0))
+    save(w, state);
 }
 
 RunInfoWriter::RunInfoWriter(fs::path file, const std::string& info_json, const Checkpointer& clock)

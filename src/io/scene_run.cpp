@@ -103,6 +103,18 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   if (options.threads >= 0) r->scene.world.settings.threads = options.threads;
   r->state = plan_scene(r->scene, source);
   r->folder.dir = options.out.empty() ? fs::path(r->scene.output_dir) : options.out;
+  if (!options.start_from.empty()) {
+    std::error_code ec;
+    const fs::path file =
+        fs::is_directory(options.start_from, ec) ? RunPaths{options.start_from}.checkpoint() : options.start_from;
+    if (!fs::exists(file, ec))
+      throw SceneError(file.string() + " does not exist: --from takes a run folder holding a checkpoint.bin, or a "
+                       "checkpoint file");
+    if (fs::equivalent(fs::absolute(r->folder.dir), fs::absolute(file.parent_path()), ec))
+      throw SceneError("the run would write into " + r->folder.dir.string() + ", the folder it starts from: give "
+                       "it another output folder (--out)");
+    load_checkpoint(file, r->scene.world, 0, Restore::NewRun);
+  }
   if (options.follower) {
     r->scene.world.settings.threads = resolve_threads(r->scene.world.settings.threads);
     return r;
@@ -111,7 +123,7 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   r->lock_.emplace(r->folder.dir);
   prepare_run_folder(r->folder, options.overwrite || r->scene.overwrite);
   write_file_atomically(r->folder.scene(), text);
-  r->open_writers(text, scene_file, base, false);
+  r->open_writers(text, scene_file, base, false, options.start_from);
   return r;
 }
 
@@ -133,7 +145,7 @@ std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads, boo
   }
   r->lock_.emplace(r->folder.dir);
   remove_stale_temporaries(r->folder);
-  r->open_writers(saved.text, saved.scene_file, saved.base, true);
+  r->open_writers(saved.text, saved.scene_file, saved.base, true, {});
   return r;
 }
 
@@ -166,12 +178,13 @@ std::string run_info_json(const dem::World& world, Real dt) {
 }
 
 void SceneRun::open_writers(const std::string& text, const std::string& scene_file, const fs::path& base,
-                            bool resuming) {
+                            bool resuming, const fs::path& start_from) {
   dem::World& world = scene.world;
   world.settings.threads = resolve_threads(world.settings.threads);
   Json info = Json::parse(run_info_json(world, scene.dt));
   info["scene_file"] = scene_file;
   info["scene_base"] = fs::absolute(base).string();
+  if (!start_from.empty()) info["started_from"] = fs::absolute(start_from).string();
   info["scene"] = Json::parse(scene.resolved_json);
   info["warnings"] = scene.warnings;
   const RunWriterOptions options{.frames = scene.write_frames,

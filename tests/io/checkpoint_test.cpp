@@ -20,9 +20,9 @@ namespace {
 // that contacts, springs and warm starts exist. `driven`: the floor vibrates,
 // a paddle (a box) turns through the bed, an inflow adds grains from above
 // and an L-shaped compound stands on the floor.
-dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false) {
+dem::World pour(std::uint64_t seed, int grains = 40, bool driven = false, Real friction = 0.5) {
   dem::WorldBuilder b;
-  const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, 0.5});
+  const std::uint32_t rock = b.add_material({"rock", 2500, 1e6, 0.25, 0.4, friction});
   std::uint32_t shake = 0, turn = 0;
   if (driven) {
     shake = b.add_motion({.amplitude = {0, 0, 0.002}, .frequency = 30}, "shake");
@@ -140,7 +140,7 @@ TEST(Checkpoint, DamagedForeignAndEditedCheckpointsAreRefused) {
   dem::World other = pour(3);  // same body count, other shapes and places
   EXPECT_NE(refusal(encode_checkpoint(w, {run, {}}, 7), other, 42).find("another scene"), std::string::npos);
   dem::World fewer = pour(2, 30);
-  EXPECT_NE(refusal(good, fewer).find("number of bodies"), std::string::npos);
+  EXPECT_NE(refusal(good, fewer).find("the scene has 30 bodies, the checkpoint 40"), std::string::npos);
 
   // Every single-bit flip is caught: by the checksum, or the header's checks.
   std::mt19937_64 rng(5);
@@ -165,6 +165,68 @@ TEST(Checkpoint, DamagedForeignAndEditedCheckpointsAreRefused) {
   EXPECT_NE(refusal(v2, t).find("format 2"), std::string::npos);
   EXPECT_NE(refusal("gjkdckp2 old bytes", t).find("older gjkdem format"), std::string::npos);
   EXPECT_NE(refusal("hello", t).find("not a gjkdem checkpoint"), std::string::npos);
+}
+
+// A new run from a saved state (Restore::NewRun): the bodies, springs and
+// warm starts carry over, the clock starts at 0 and the forces are worked out
+// anew under the world's own materials and gravity; what the world is made of
+// (bodies, shapes, fixed bodies' places, plane walls) must be as it was, and
+// each difference is refused by name, the world left as it was.
+TEST(Checkpoint, ANewRunStartsFromAStateWithOtherMaterialsButNotOtherBodies) {
+  dem::World w = pour(2, 40, true);
+  dem::RunState run = dem::plan_run(0.03, 1e-4, 0.01);
+  ASSERT_EQ(dem::run(w, run, {}).status, dem::RunStatus::Completed);
+  ASSERT_GT(w.stats.contacts, 5);
+  ASSERT_NE(w.wall_work, 0);
+  const std::string bytes = encode_checkpoint(w, {run, {}}, 42);
+
+  dem::World slick = pour(2, 40, true, 0.1);  // other friction, other gravity, another scene's fingerprint
+  slick.settings.gravity = {0, 0, -3};
+  decode_checkpoint(bytes, slick, 7, "ck", Restore::NewRun);
+  EXPECT_EQ(slick.time, 0);
+  EXPECT_EQ(slick.wall_work, 0);
+  EXPECT_FALSE(slick.forces_current);
+  ASSERT_EQ(slick.bodies.size(), w.bodies.size());
+  for (std::size_t i = 0; i < w.bodies.size(); ++i)
+    if (!w.bodies[i].motion) EXPECT_TRUE(slick.bodies[i].position == w.bodies[i].position) << i;
+  EXPECT_EQ(slick.pairs.size(), w.pairs.size());
+  EXPECT_EQ(slick.materials[0].friction, 0.1);
+  dem::RunState next = dem::plan_run(0.01, 1e-4, 0.01);
+  EXPECT_EQ(dem::run(slick, next, {}).status, dem::RunStatus::Completed);
+  dem::World same_run = pour(2, 40, true, 0.1);
+  EXPECT_NE(refusal(bytes, same_run, 7).find("--from"), std::string::npos)
+      << "the same run with another fingerprint points to a new run";
+
+  const auto refused = [&](dem::World other) {
+    const dem::World before = other;
+    try {
+      decode_checkpoint(bytes, other, 42, "ck", Restore::NewRun);
+    } catch (const CheckpointError& e) {
+      EXPECT_TRUE(same_state(before, other)) << "the world changed on a refused checkpoint";
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const std::string fewer = refused(pour(2, 39, true));  // one grain fewer, with an inflow
+  EXPECT_NE(fewer.find("the scene has 41 bodies, the checkpoint"), std::string::npos) << fewer;
+  dem::World reshaped = pour(2, 40, true);
+  const std::uint32_t shape = reshaped.bodies.back().shape;
+  reshaped.templates[shape].reach *= 1.5;
+  std::size_t first = 0;  // the first body of that shape is named
+  while (reshaped.bodies[first].shape != shape) ++first;
+  const std::string why = refused(reshaped);
+  EXPECT_NE(why.find("body " + std::to_string(reshaped.bodies[first].id) + " has another shape"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("materials, contact law settings, gravity"), std::string::npos) << "what may change";
+  dem::World moved_wall = pour(2, 40, true);
+  moved_wall.planes[1].given_point.x -= 1e-3;
+  EXPECT_NE(refused(moved_wall).find("plane wall 1"), std::string::npos);
+  dem::World moved_obstacle = pour(2, 40, true);
+  std::size_t ell = 0;  // the compound, made fixed and moved a little
+  while (moved_obstacle.templates[moved_obstacle.bodies[ell].shape].parts.empty()) ++ell;
+  moved_obstacle.bodies[ell].fixed = 1;
+  moved_obstacle.bodies[ell].position.x += 1e-3;
+  EXPECT_NE(refused(moved_obstacle).find("(fixed) is not where it was"), std::string::npos);
 }
 
 // A count that claims more records than the file holds is refused before

@@ -5,6 +5,7 @@ import json
 import shutil
 import subprocess
 
+import numpy as np
 import pytest
 
 import gjkdem
@@ -38,6 +39,23 @@ def test_a_scene_run_from_python_gives_the_programs_bytes(cli, scene, tmp_path):
         assert (by_python / name).read_bytes() == (by_cli / name).read_bytes(), name
     info = json.loads((by_python / "run.json").read_text())
     assert info["status"] == "completed" and info["steps"] == 600
+
+
+def test_a_new_run_starts_from_a_finished_one_with_other_materials_not_other_bodies(scene, tmp_path):
+    settle = tmp_path / "settle"
+    assert gjkdem.SceneRun(str(scene), out=str(settle), threads=1).run() == "completed"
+    text = scene.read_text()
+    study = scene.parent / "study.toml"
+    study.write_text(text.replace("friction = 0.5", "friction = 0.1").replace("duration = 0.06", "duration = 0.02"))
+    r = gjkdem.SceneRun(str(study), out=str(tmp_path / "study"), threads=1, start_from=str(settle))
+    assert r.world.time == 0
+    ended = gjkdem.load_run(str(settle)).world
+    assert np.array_equal(r.world.positions, ended.positions)
+    assert r.run() == "completed"
+    changed = scene.parent / "changed.toml"
+    changed.write_text(text.replace('name = "octahedron"', 'name = "cube"'))
+    with pytest.raises(gjkdem.CheckpointError, match=r"\('tracer'\) has another shape"):
+        gjkdem.SceneRun(str(changed), out=str(tmp_path / "changed"), start_from=str(settle))
 
 
 def test_a_stopped_python_run_resumes_to_the_same_bytes(cli, scene, tmp_path):

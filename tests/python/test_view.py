@@ -137,9 +137,9 @@ def test_a_run_folder_loads_at_its_last_checkpoint(run_dir):
     out, seen = run_dir
     scene = gjkdem.load_run(str(out))
     w = scene.world
-    # small_pour checkpoints every 2 outputs: its last is output 6 of 7 (frame 5).
+    # small_pour checkpoints every 2 outputs and at its end: the last is its last frame.
     k = [s["time"] for s in seen].index(w.time)
-    assert k == 5
+    assert k == 6
     f = gjkdem.read_view(out).frame(k)
     np.testing.assert_allclose(w.positions, f.positions, atol=1e-7)
     assert w.contact_count == len(f.contact_second)
@@ -147,5 +147,9 @@ def test_a_run_folder_loads_at_its_last_checkpoint(run_dir):
     other = gjkdem.load_scene(str(out.parent / "small_pour.toml")).world
     with pytest.raises(ValueError, match="scene"):
         other.load_checkpoint(str(out / "checkpoint.bin"))
+    # ... unless it starts a new run from that state (its clock at 0).
+    assert other.load_checkpoint(str(out / "checkpoint.bin"), restart=True) == pytest.approx(1e-4)
+    assert other.time == 0
+    np.testing.assert_array_equal(other.positions, w.positions)
     with pytest.raises(ValueError, match="run.json is missing"):
         gjkdem.load_run(str(out.parent))  # not a run folder

@@ -10,7 +10,7 @@
 // field by field, never as a struct (no padding, no machine byte order). The
 // payload is a list of sections, each a four-letter tag and a u64 length:
 // INFO (text naming the format and its sections), RUN, STAT, BODY, BOXS,
-// PAIR, CELL, FLOW and LOGS (docs/checkpoints.md). A reader refuses another format version, a checksum that
+// PAIR, CELL, MAKE, FLOW and LOGS (docs/checkpoints.md). A reader refuses another format version, a checksum that
 // does not match, a checkpoint of another scene (its fingerprint), and any
 // count or length that does not fit in the file, each with a message saying so.
 #include <cstdint>
@@ -29,7 +29,7 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr std::uint32_t kCheckpointVersion = 6;
+inline constexpr std::uint32_t kCheckpointVersion = 7;
 
 /// What a run folder keeps beside the world and the run state.
 struct RunLogState {
@@ -51,16 +51,25 @@ std::uint64_t fnv1a64(std::string_view bytes) noexcept;
 /// The checkpoint as bytes.
 std::string encode_checkpoint(const dem::World& world, const Checkpoint& checkpoint, std::uint64_t fingerprint);
 
-/// Restores bytes into a world built from the same scene (same bodies and
-/// ids). Throws CheckpointError, naming `name`, for anything that does not fit.
+/// How a checkpoint is taken up.
+enum class Restore {
+  SameRun,  ///< the run it was saved from goes on (its clock; the scene's fingerprint must match)
+  NewRun,   ///< a new run starts from its state: time 0, no wall work yet, forces recomputed, any fingerprint
+};
+
+/// Restores bytes into a world built with the same bodies, shapes and walls
+/// (ids, shape digests, fixed bodies' places, plane walls; materials and
+/// settings may differ). Throws CheckpointError, naming `name` and what
+/// differs, for anything that does not fit.
 Checkpoint decode_checkpoint(std::string_view bytes, dem::World& world, std::uint64_t fingerprint,
-                             const std::string& name);
+                             const std::string& name, Restore how = Restore::SameRun);
 
 /// Written to a temporary file, flushed and renamed, so a crash never leaves
 /// half a checkpoint. Throws std::runtime_error when it cannot be written.
 void save_checkpoint(const std::filesystem::path& file, const dem::World& world, const Checkpoint& checkpoint,
                      std::uint64_t fingerprint);
 
-Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& world, std::uint64_t fingerprint);
+Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& world, std::uint64_t fingerprint,
+                           Restore how = Restore::SameRun);
 
 }  // namespace gjkdem::io

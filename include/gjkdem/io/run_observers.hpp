@@ -101,8 +101,9 @@ class CellWriter : public CsvLog {
   void on_output(const dem::World& world, const dem::RunState& state) override;
 };
 
-/// checkpoint.bin every `every` outputs (0: never) and when the run is
-/// stopped, so that it can continue.
+/// checkpoint.bin every `every` outputs (0: never), when the run is stopped,
+/// so that it can continue, and (unless `every` is 0) when it completes, so
+/// that another run can start from its last state.
 class Checkpointer : public dem::RunObserver {
  public:
   Checkpointer(std::filesystem::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,

@@ -26,6 +26,11 @@ struct SceneRunOptions {
   /// A rank other than 0 of a run on domains: the scene is read, nothing is
   /// written (rank 0 writes the run folder).
   bool follower = false;
+  /// Non-empty: the run starts from the last state saved in this run folder
+  /// (or checkpoint file), its clock at 0: the scene's bodies, shapes and
+  /// walls must be those of that run; its materials, contact law settings,
+  /// gravity, motions, duration and outputs may differ (io::Restore::NewRun).
+  std::filesystem::path start_from;
 };
 
 /// The library's version ("0.1.0"), written into run.json.
@@ -80,7 +85,7 @@ class SceneRun {
  private:
   SceneRun() = default;
   void open_writers(const std::string& text, const std::string& scene_file, const std::filesystem::path& base,
-                    bool resuming);
+                    bool resuming, const std::filesystem::path& start_from);
 
   std::optional<RunFolderLock> lock_;
   std::unique_ptr<RunFolderWriters> writers_;
