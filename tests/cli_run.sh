@@ -122,6 +122,21 @@ set -e
 [ "$rc" -eq 2 ] && grep -q "('tracer') has another shape" refused.txt ||
   { cat refused.txt; fail "a run --from with a changed body was not refused by name (got $rc)"; }
 
+# The completed run's state as a scene (gjkdem export), run from another
+# folder: it starts with the kinetic and potential energy the run ended with.
+mkdir -p exported
+"$gjkdem" export full --out exported/bed.toml 2> /dev/null || fail "gjkdem export failed"
+grep -q '^\[shapes\.state_' exported/bed.toml && ! grep -q '^\[\[generator\]\]' exported/bed.toml ||
+  fail "the exported scene should give its bodies' shapes and no generator"
+(cd exported && "$gjkdem" run bed.toml --out bed --quiet) || fail "the exported scene did not run"
+[ "$(sed -n 2p exported/bed/energy.csv | cut -d, -f2,3)" = "$(tail -1 full/energy.csv | cut -d, -f2,3)" ] ||
+  fail "the exported scene does not start with the energies the run ended with"
+set +e
+"$gjkdem" export "$work" 2> refused.txt
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q "run.json" refused.txt || fail "gjkdem export of a folder without a run should exit 2"
+
 # SIGTERM: a long run stops cleanly and keeps what it wrote.
 sed 's/^duration = 0.06/duration = 50.0/' "$scene" > long.toml
 "$gjkdem" run long.toml --out long --threads 1 --quiet &

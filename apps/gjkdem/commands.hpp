@@ -65,3 +65,14 @@ struct AnalyzeOptions {
 int analyze_run(const AnalyzeOptions& opt);
 
 }  // namespace gjkdem::app
+
+namespace gjkdem::app {
+
+struct ExportOptions {
+  std::string run;  ///< run folder
+  std::string out;  ///< scene file; empty: standard output
+};
+/// 0 written, 2 refused (no checkpoint, a state a scene cannot hold, a file that cannot be written).
+int export_state(const ExportOptions& opt);
+
+}  // namespace gjkdem::app

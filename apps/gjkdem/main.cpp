@@ -67,6 +67,12 @@ int main(int argc, char** argv) {
   a->add_option("--every", analyze.every, "analyse every Nth frame")->capture_default_str()->check(CLI::Range(1, 1 << 30));
   a->add_flag("--quiet", analyze.quiet, "no progress output");
 
+  gjkdem::app::ExportOptions exported;
+  CLI::App* x = app.add_subcommand("export", "write a run's last saved state as a scene: its moving bodies where "
+                                              "they were, to start other runs from (docs/scenes.md)");
+  x->add_option("run", exported.run, "run folder (written by gjkdem run)")->required()->check(CLI::ExistingDirectory);
+  x->add_option("--out", exported.out, "scene file to write (default: standard output)");
+
   // Bad options exit 2 like any refused input (CLI11's own codes are 100+).
   try {
     app.parse(argc, argv);
@@ -80,6 +86,7 @@ int main(int argc, char** argv) {
     if (r->parsed()) return gjkdem::app::run_simulation(run);
     if (v->parsed()) return gjkdem::app::view_run(view);
     if (a->parsed()) return gjkdem::app::analyze_run(analyze);
+    if (x->parsed()) return gjkdem::app::export_state(exported);
   } catch (const std::exception& e) {
     std::cerr << "gjkdem: " << e.what() << "\n";
     return 2;

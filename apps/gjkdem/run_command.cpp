@@ -16,6 +16,7 @@
 
 #include "commands.hpp"
 #include "gjkdem/io/scene_check.hpp"
+#include "gjkdem/io/scene_export.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "gjkdem/mpi/mpi_transport.hpp"
 
@@ -243,6 +244,22 @@ int run_simulation(const RunOptions& opt) {
   } catch (const std::runtime_error& e) {
     std::cerr << "gjkdem: error: " << e.what() << "\n";
     return 1;
+  }
+}
+
+int export_state(const ExportOptions& opt) {
+  try {
+    const std::string text = io::export_run_scene(opt.run);
+    if (opt.out.empty()) {
+      std::cout << text;
+    } else {
+      io::write_file_atomically(opt.out, text);
+      std::cerr << "gjkdem: wrote " << opt.out << "\n";
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "gjkdem: error: " << e.what() << "\n";
+    return 2;
   }
 }
 

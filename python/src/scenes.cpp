@@ -10,6 +10,7 @@
 #include "gjkdem/io/analysis.hpp"
 #include "gjkdem/io/scene_check.hpp"
 #include "gjkdem/io/scene.hpp"
+#include "gjkdem/io/scene_export.hpp"
 #include "gjkdem/io/scene_run.hpp"
 #include "py_run.hpp"
 
@@ -43,6 +44,17 @@ void bind_scenes(py::module_& m) {
       py::arg("run_dir"),
       "The scene of a run folder (written by `gjkdem run` or SceneRun) with its world restored from the\n"
       "folder's checkpoint: the run's last saved state, to measure or continue from Python.");
+  m.def(
+      "export_scene",
+      [](const std::string& run_dir, const std::optional<std::string>& path) {
+        const std::string text = io::export_run_scene(run_dir);
+        if (path) io::write_file_atomically(*path, text);
+        return text;
+      },
+      py::arg("run_dir"), py::arg("path") = py::none(),
+      "As `gjkdem export`: the run folder's last saved state as scene text (its moving bodies where they\n"
+      "were, their shapes in a [shapes] table; settings, materials, walls and fixed bodies the run's own),\n"
+      "written to `path` too when given. Edit it freely and run it as any scene.");
   m.def(
       "analyze",
       [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every,

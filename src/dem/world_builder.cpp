@@ -719,9 +719,9 @@ void WorldBuilder::prepare_shapes() {
     const std::string& who = labels_.empty() ? std::string("a body") : labels_[user[t]];
     if (world_.templates[t].surface_grain) continue;  // its hull only bounds it
     if (world_.templates[t].parts.empty()) {
-      prepare_for_volume_law(world_.templates[t].shape, who, user[t]);
+      prepare_for_volume_law(world_.templates[t].shape, world_.templates[t].given, who, user[t]);
     } else {  // the hull stays: it only bounds the parts
-      for (TemplatePart& part : world_.templates[t].parts) prepare_for_volume_law(part.shape, who, user[t]);
+      for (TemplatePart& part : world_.templates[t].parts) prepare_for_volume_law(part.shape, part.given, who, user[t]);
     }
   }
 }
@@ -763,7 +763,8 @@ void WorldBuilder::prepare_surfaces() {
 
 // Under the volume law: a solid polytope as it is, a curved shape as its
 // inscribed polytope; a shape without volume is refused.
-void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std::size_t user) const {
+void WorldBuilder::prepare_for_volume_law(Shape& s, std::optional<Shape>& given, const std::string& who,
+                                          std::size_t user) const {
   if (solid_polytope(s)) return;
   if (without_volume(s))
     throw BuildError(who + ": a shape without volume cannot take part in the volume law (give it a margin or "
@@ -772,6 +773,7 @@ void WorldBuilder::prepare_for_volume_law(Shape& s, const std::string& who, std:
   Tessellation tess = tessellate(s, settings_.tessellation);
   if (!solid_polytope(Shape{tess.polytope}))
     throw BuildError(who + ": the tessellation of this shape for the volume law is flat");
+  given = s;
   s = Shape{tess.polytope};
 }
 

@@ -1,6 +1,7 @@
 #include "gjkdem/io/scene_run.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <cstdlib>
 #include <stdexcept>
 #include <vector>
@@ -11,6 +12,7 @@
 #endif
 
 #include "gjkdem/io/checkpoint.hpp"
+#include "gjkdem/io/scene_export.hpp"
 
 namespace gjkdem::io {
 namespace {
@@ -164,6 +166,18 @@ Scene load_run_checkpoint(const fs::path& dir) {
                      "or it ended before its first)");
   load_checkpoint(folder.checkpoint(), scene.world, fnv1a64(saved.text));
   return scene;
+}
+
+std::string export_run_scene(const fs::path& dir) {
+  const RunPaths folder{dir};
+  const FolderScene saved = read_folder_scene(folder);
+  const Scene scene = load_run_checkpoint(dir);
+  std::ostringstream header;
+  header << "The state of the run in " << fs::absolute(dir).lexically_normal().string() << " at t = "
+         << scene.world.time << " s (its last checkpoint), exported by gjkdem " << version() << ":\n"
+         << "its moving bodies as they were then (generators and inflows removed), touching as they were\n"
+         << "(simulation.initial_overlaps = \"accept\"); contact springs start at 0, motions at t = 0.";
+  return export_scene(saved.text, saved.base, scene.world, header.str());
 }
 
 std::string run_info_json(const dem::World& world, Real dt) {

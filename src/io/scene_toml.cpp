@@ -93,6 +93,7 @@ class SceneBuilder {
     builder_.emplace(settings_);
     if (accept_overlaps_) builder_->accept_initial_overlaps();
     for_each_table(top, "material", [&](TableReader& r) { read_material(r); });
+    read_named_shapes(top);
     for_each_table(top, "wall", [&](TableReader& r) { read_wall(r); });
     for_each_table(top, "body", [&](TableReader& r) { read_body(r); });
     for_each_table(top, "generator", [&](TableReader& r) { read_generator(r); });
@@ -346,6 +347,8 @@ class SceneBuilder {
   // A closed mesh as it is (a surface grain), checked by make_surface; one
   // surface per file and scale, shared by every body that names it.
   std::shared_ptr<const Surface> mesh_surface(TableReader& r, Real scale) {
+    if (!r.has("file")) return inline_surface(r, scale);
+    if (r.has("vertices") || r.has("triangles")) r.fail("file", "give either a 'file' or 'vertices' and 'triangles'");
     const std::filesystem::path file = file_of(r, "file");
     std::shared_ptr<const Surface>& known = surfaces_[{file.string(), scale}];
     if (known) return known;
@@ -358,6 +361,32 @@ class SceneBuilder {
       r.fail("file", e.what());
     } catch (const SurfaceError& e) {
       r.fail("file", file.string() + " is not a closed surface a grain can have: " + e.what());
+    }
+  }
+
+  // A surface given in the scene: `vertices` [[x, y, z], ...] and
+  // `triangles` [[i, j, k], ...] (0-based, counter-clockwise seen from
+  // outside), as the query format's mesh; scaled by `scale`.
+  std::shared_ptr<const Surface> inline_surface(TableReader& r, Real scale) {
+    if (!r.has("vertices") || !r.has("triangles"))
+      r.fail("type", "a surface takes a mesh 'file', or 'vertices' and 'triangles'");
+    std::vector<Vec3> vertices;
+    for (const std::vector<Real>& v : r.rows("vertices", 3, "[x, y, z]")) vertices.push_back(Vec3{v[0], v[1], v[2]} * scale);
+    std::vector<TriangleIndices> triangles;
+    for (const std::vector<Real>& t : r.rows("triangles", 3, "[i, j, k] of vertex indices")) {
+      TriangleIndices ids{};
+      for (int k = 0; k < 3; ++k) {
+        if (!(t[k] >= 0 && t[k] < static_cast<Real>(vertices.size()) && t[k] == std::floor(t[k])))
+          r.fail("triangles", "must hold indices of vertices (integers from 0 to " +
+                                  std::to_string(vertices.size() - 1) + ")");
+        ids[k] = static_cast<std::uint32_t>(t[k]);
+      }
+      triangles.push_back(ids);
+    }
+    try {
+      return std::make_shared<const Surface>(make_surface(std::move(vertices), std::move(triangles)));
+    } catch (const SurfaceError& e) {
+      r.fail("triangles", std::string("not a closed surface a grain can have: ") + e.what());
     }
   }
 
@@ -400,9 +429,51 @@ class SceneBuilder {
   // A SHAPE table: the types of query-format.md, plus platonic and mesh, and
   // for generators random_polyhedron (drawn per variant by the caller).
   ShapeSpec read_shape(TableReader& owner, const std::string& key) {
+    if (const NamedShape* named = named_shape(owner, key)) {
+      if (!named->spec) owner.fail(key, "names a random_polyhedron, which generators and inflows draw: a body needs a shape");
+      return *named->spec;
+    }
     const toml::table* t = owner.table(key);
     if (!t) throw SceneError(owner.where() + ": missing required key '" + key + "'" + line_of(owner.table_node()));
     return read_shape_table(*t, owner.where() + "." + key);
+  }
+
+  // A shape of the [shapes] table, named by a string where a SHAPE goes:
+  // the moving bodies that name it share one template.
+  struct NamedShape {
+    const toml::table* table = nullptr;  // as written (generators and inflows read it so)
+    std::optional<ShapeSpec> spec;       // as read (none for a random_polyhedron)
+    std::int64_t shared = -1;            // the builder's shared shape, once a moving body took it
+  };
+
+  // The SHAPE table at `key`: written there, or named there.
+  const toml::table* shape_table_at(TableReader& owner, const std::string& key) {
+    if (const NamedShape* named = named_shape(owner, key)) return named->table;
+    return owner.table(key);
+  }
+
+  NamedShape* named_shape(TableReader& owner, const std::string& key) {
+    const toml::node* n = owner.find(key);
+    if (!n || !n->is_string()) return nullptr;
+    const std::string name = **n->as_string();
+    const auto it = named_shapes_.find(name);
+    if (it == named_shapes_.end())
+      owner.fail(key, "names no shape of the [shapes] table ('" + name + "')");
+    return &it->second;
+  }
+
+  void read_named_shapes(TableReader& top) {
+    const toml::table* shapes = top.table("shapes");
+    if (!shapes) return;
+    for (const auto& [key, node] : *shapes) {
+      const std::string name(key.str()), where = "shapes." + name;
+      if (!node.is_table())
+        throw SceneError(where + ": must be a SHAPE table, e.g. { type = \"box\", ... }" + line_of(node));
+      NamedShape& named = named_shapes_[name];
+      named.table = node.as_table();
+      if (!is_random_polyhedron(*named.table)) named.spec = read_shape_table(*named.table, where);
+      resolved_["shapes"].push_back(name);
+    }
   }
 
   // A SHAPE table; `where` names it in messages (as "body[2].shape").
@@ -454,6 +525,10 @@ class SceneBuilder {
     d.shape = read_shape(r, "shape");
     d.material = material_of(r);
     d.fixed = r.boolean("fixed", false);
+    if (NamedShape* named = named_shape(r, "shape"); named && !d.fixed) {
+      if (named->shared < 0) named->shared = building(r.table_node(), [&] { return builder_->add_shape(d.shape, d.label); });
+      d.shared_shape = named->shared;
+    }
     d.position = r.vec3("position").value_or(Vec3{});
     d.rotation = r.rotation("rotation").value_or(Quat{});
     d.velocity = r.vec3("velocity").value_or(Vec3{});
@@ -574,7 +649,7 @@ class SceneBuilder {
       const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
       if (variants <= 0 || variants > std::min<std::int64_t>(count, kMaxVariants))
         r.fail("variants", "must be a positive integer up to the count and " + std::to_string(kMaxVariants));
-      const toml::table* st = r.table("shape");
+      const toml::table* st = shape_table_at(r, "shape");
       if (!st) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
       if (is_random_polyhedron(*st)) {
         TableReader s(*st, r.where() + ".shape");
@@ -610,7 +685,7 @@ class SceneBuilder {
         r.fail("shapes", "must be an array of { shape = SHAPE, fraction = f } tables");
       for (std::size_t k = 0; k < a->size(); ++k) {
         TableReader part(*(*a)[k].as_table(), r.where() + ".shapes[" + std::to_string(k) + "]");
-        const toml::table* shape = part.table("shape");
+        const toml::table* shape = shape_table_at(part, "shape");
         if (!shape) throw SceneError(part.where() + ": missing required key 'shape'" + line_of(*(*a)[k].as_table()));
         const Real f = part.number("fraction").value_or(-1);
         if (!(f > 0)) part.fail("fraction", "must be > 0");
@@ -619,7 +694,7 @@ class SceneBuilder {
       }
       if (r.has("shape")) r.fail("shape", "give either 'shape' or 'shapes', not both");
     } else {
-      const toml::table* shape = r.table("shape");
+      const toml::table* shape = shape_table_at(r, "shape");
       if (!shape) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
       parts.push_back({shape, r.where() + ".shape", 1});
     }
@@ -877,6 +952,7 @@ class SceneBuilder {
   std::optional<dem::WorldBuilder> builder_;
   Json resolved_;
   std::map<std::pair<std::string, Real>, std::shared_ptr<const Surface>> surfaces_;  ///< by file and scale
+  std::map<std::string, NamedShape> named_shapes_;  ///< the [shapes] table, by name
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
   bool accept_overlaps_ = false;
   std::uint64_t generator_count_ = 0;

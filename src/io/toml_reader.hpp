@@ -2,7 +2,8 @@
 // Typed reading of one TOML table for the scene reader (scene_toml.cpp):
 // getters that refuse a wrong type or a non-finite number with the key's
 // line, and finish(), which refuses the keys nobody asked for. Internal to
-// src/io; the only other includer of toml++ is scene_toml.cpp.
+// src/io; toml++ is included by scene_toml.cpp and, to write scenes,
+// scene_export.cpp.
 #include <cmath>
 #include <cstdint>
 #include <limits>

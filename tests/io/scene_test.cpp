@@ -784,6 +784,57 @@ material = "rock"
 // Issue 35: a cylindrical container without a mesh file. Its pieces'
 // inner faces lie on the radius and the floor on the base; a region poking
 // out of a closed one is warned of, as for a drum mesh.
+// Named shapes ([shapes]): the moving bodies naming one share a template;
+// generators, mixes and inflows take names too (a random_polyhedron named
+// so is drawn by them, refused for a body); a surface may be given inline.
+TEST(Scene, NamedShapesAreSharedAndInlineSurfacesRead) {
+  const std::string shapes = R"(
+[shapes]
+cube = { type = "platonic", name = "cube", size = 0.01 }
+rock = { type = "random_polyhedron", vertices = 8, size = [0.008, 0.01] }
+tet = { type = "surface", vertices = [[0, 0, 0], [0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]], triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]] }
+)";
+  std::string bodies;
+  for (int k = 0; k < 3; ++k)
+    bodies += "[[body]]\nshape = \"cube\"\nmaterial = \"rock\"\nposition = [" + std::to_string(0.03 * k) + ", 0, 0.02]\n";
+  bodies += "[[body]]\nshape = \"cube\"\nmaterial = \"rock\"\nfixed = true\nposition = [0.5, 0, 0.02]\n";
+  const std::string generator = R"(
+[[generator]]
+count = 6
+shapes = [ { shape = "rock", fraction = 0.5 }, { shape = "cube", fraction = 0.5 } ]
+material = "rock"
+region = { min = [-0.05, -0.05, 0.1], max = [0.05, 0.05, 0.2] }
+)";
+  const Scene scene = load_scene(kHead + shapes + kPlane + bodies + generator, "test.toml", std::filesystem::temp_directory_path());
+  const dem::World& w = scene.world;
+  ASSERT_EQ(w.bodies.size(), 10u);
+  EXPECT_EQ(w.bodies[0].shape, w.bodies[1].shape);
+  EXPECT_EQ(w.bodies[1].shape, w.bodies[2].shape);
+  EXPECT_NE(w.bodies[3].shape, w.bodies[0].shape) << "a fixed body takes its own (wall) template";
+  const Real cube_volume = std::pow(0.01 / std::sqrt(3.0), 3);  // inscribed in a sphere of 0.01
+  EXPECT_NEAR(w.templates[w.bodies[0].shape].unit_mass.volume, cube_volume, 1e-12 * cube_volume);
+
+  const Scene tets = load_scene(kHead + shapes + kPlane + "[[body]]\nshape = \"tet\"\nmaterial = \"rock\"\n"
+                                "position = [0, 0, 0.02]\n", "test.toml", std::filesystem::temp_directory_path());
+  EXPECT_TRUE(tets.world.templates[tets.world.bodies[0].shape].surface_grain);
+  EXPECT_NEAR(tets.world.templates[tets.world.bodies[0].shape].unit_mass.volume, 1e-6 / 6, 1e-18);
+
+  EXPECT_NE(refusal(kHead + shapes + "[[body]]\nshape = \"pebble\"\nmaterial = \"rock\"\n")
+                .find("body[0].shape: names no shape of the [shapes] table ('pebble')"),
+            std::string::npos);
+  EXPECT_NE(refusal(kHead + shapes + "[[body]]\nshape = \"rock\"\nmaterial = \"rock\"\n").find("random_polyhedron"),
+            std::string::npos);
+  EXPECT_NE(refusal(kHead + "[shapes]\nbad = { type = \"surface\", vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+                            "triangles = [[0, 1, 3]] }\n" + kCube)
+                .find("shapes.bad.triangles: must hold indices of vertices"),
+            std::string::npos);
+  EXPECT_NE(refusal(kHead + "[shapes]\nopen = { type = \"surface\", vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+                            "triangles = [[0, 1, 2]] }\n" + kCube)
+                .find("not a closed surface"),
+            std::string::npos);
+  EXPECT_NE(refusal(kHead + "[shapes]\nbad = 3\n" + kCube).find("shapes.bad: must be a SHAPE table"), std::string::npos);
+}
+
 TEST(Scene, ACylinderWallIsAMeshOfFlatsWhoseInnerFacesLieOnItsRadius) {
   const std::string wall = R"(
 [[wall]]

@@ -58,6 +58,24 @@ def test_a_new_run_starts_from_a_finished_one_with_other_materials_not_other_bod
         gjkdem.SceneRun(str(changed), out=str(tmp_path / "changed"), start_from=str(settle))
 
 
+def test_a_runs_state_exported_as_a_scene_starts_where_it_ended(scene, tmp_path):
+    settle = tmp_path / "settle"
+    assert gjkdem.SceneRun(str(scene), out=str(settle), threads=1).run() == "completed"
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    text = gjkdem.export_scene(str(settle), path=str(elsewhere / "bed.toml"))
+    assert (elsewhere / "bed.toml").read_text() == text
+    bed = gjkdem.load_scene(str(elsewhere / "bed.toml")).world  # the chute's file found from elsewhere
+    ended = gjkdem.load_run(str(settle)).world
+    moving = ended.fixed == 0
+    assert bed.positions.shape == ended.positions.shape
+    np.testing.assert_allclose(bed.positions[moving], ended.positions[moving], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(bed.velocities[moving], ended.velocities[moving], rtol=0, atol=1e-12)
+    assert bed.names == ended.names
+    with pytest.raises(gjkdem.SceneError, match="run.json"):
+        gjkdem.export_scene(str(tmp_path))
+
+
 def test_a_stopped_python_run_resumes_to_the_same_bytes(cli, scene, tmp_path):
     whole = tmp_path / "whole"
     assert gjkdem.SceneRun(str(scene), out=str(whole), threads=1).run() == "completed"

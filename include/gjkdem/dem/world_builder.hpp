@@ -260,7 +260,8 @@ class WorldBuilder {
   void prepare_surfaces();
   void check_periodic_cell();
   void check_inflow_regions() const;
-  void prepare_for_volume_law(Shape& shape, const std::string& who, std::size_t user) const;
+  void prepare_for_volume_law(Shape& shape, std::optional<Shape>& given, const std::string& who,
+                              std::size_t user) const;
 
   WorldSettings settings_;
   World world_;
