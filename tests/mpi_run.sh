@@ -45,6 +45,13 @@ grep -q '"ranks": 2,' ranks2/run.json || fail "run.json of 2 ranks does not say 
 grep -q '"ranks": 1,' serial/run.json || fail "run.json of the serial run does not say 1 rank"
 same_run serial ranks2
 
+# A new run from the serial run's end with another friction (--from): 2 ranks give the serial bytes.
+sed -e 's/^friction = .*/friction = 0.2/' "$scene" > slick.toml
+grep -q "^friction = 0.2" slick.toml || fail "the slick scene was not made"
+"$gjkdem" run slick.toml --from serial --out slick1 --quiet || fail "the serial run --from did not complete"
+"${launch[@]}" -np 2 "$gjkdem" run slick.toml --from serial --out slick2 --quiet || fail "the run --from on 2 ranks did not complete"
+same_run slick1 slick2
+
 # A shaken floor (its work on the grains is in energy.csv): 2 ranks give the serial bytes.
 sed -e 's/^normal = \[0.0, 0.0, 1.0\]$/normal = [0.0, 0.0, 1.0]\nmotion = { vibration = { amplitude = [0.0, 0.0, 0.002], frequency = 16.0 } }/' \
   "$scene" > shaken.toml
