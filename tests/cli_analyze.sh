@@ -35,6 +35,22 @@ assert int(last["grains"]) > 0 and abs(float(last["region_volume"]) - 0.006) < 1
 assert float(last["pressure"]) > 0 and float(last["coordination"]) > 0, last
 PY
 
+# A cylinder and a ball around the bottom of the box: their volumes, grains in them.
+"$gjkdem" analyze pour --cylinder=0,0,-0.1,0,0,1,0.05,0.15 --every 6 --quiet > /dev/null || fail "analyze --cylinder failed"
+/usr/bin/python3 - pour/analysis/measures.csv <<'PY' || fail "the measures in a cylinder"
+import csv, math, sys
+last = list(csv.DictReader(open(sys.argv[1])))[-1]
+assert abs(float(last["region_volume"]) - math.pi * 0.05**2 * 0.15) < 1e-15, last
+assert int(last["grains"]) > 0 and 0 < float(last["solid_fraction"]) < 0.7, last
+PY
+"$gjkdem" analyze pour --sphere=0,0,0,0.1 --every 6 --quiet > /dev/null || fail "analyze --sphere failed"
+/usr/bin/python3 - pour/analysis/measures.csv <<'PY' || fail "the measures in a ball"
+import csv, math, sys
+last = list(csv.DictReader(open(sys.argv[1])))[-1]
+assert abs(float(last["region_volume"]) - 4 / 3 * math.pi * 0.1**3) < 1e-15, last
+assert int(last["grains"]) > 0, last
+PY
+
 refused() {  # refused EXPECTED_MESSAGE ARGS...
   local expected="$1"; shift
   set +e
@@ -43,9 +59,13 @@ refused() {  # refused EXPECTED_MESSAGE ARGS...
   set -e
   [ "$rc" -eq 2 ] && grep -q "$expected" err.txt || fail "analyze $* should be refused with \"$expected\" (rc $rc): $(cat err.txt)"
 }
-refused "six numbers" pour --region 1,2,3
+refused "6 numbers" pour --region 1,2,3
 refused "x0 < x1" pour --region=0,0,0,-1,1,1
-refused "six numbers" pour --region=0,0,0,1,1,1,5
+refused "6 numbers" pour --region=0,0,0,1,1,1,5
+refused "8 numbers" pour --cylinder=0,0,0,1,0.1,0.1
+refused "radius and height > 0" pour --cylinder=0,0,0,0,0,1,0.1,0
+refused "4 numbers" pour --sphere=0,0,0
+refused "one of --region, --cylinder and --sphere" pour --sphere=0,0,0,1 --region=0,0,0,1,1,1
 mkdir empty
 refused "view/index.csv" empty
 # A region whose volume underflows, and a frame holding a NaN (a blown-up run,

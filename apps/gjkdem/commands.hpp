@@ -57,7 +57,9 @@ namespace gjkdem::app {
 
 struct AnalyzeOptions {
   std::string run;              ///< run folder
-  std::string region;           ///< "x0,y0,z0,x1,y1,z1"; empty: around the moving bodies
+  std::string region;           ///< "x0,y0,z0,x1,y1,z1"; all three empty: around the moving bodies
+  std::string cylinder;         ///< "bx,by,bz,ax,ay,az,radius,height"
+  std::string sphere;           ///< "cx,cy,cz,radius"
   std::uint64_t every = 1;      ///< every this many frames
   bool quiet = false;
 };

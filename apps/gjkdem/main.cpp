@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
                                                "normal forces (writes OUT/analysis/)");
   a->add_option("run", analyze.run, "run folder (written by gjkdem run)")->required()->check(CLI::ExistingDirectory);
   a->add_option("--region", analyze.region, "box x0,y0,z0,x1,y1,z1 (m; default: around the moving bodies)");
+  a->add_option("--cylinder", analyze.cylinder, "cylinder bx,by,bz,ax,ay,az,radius,height: from base b along axis a");
+  a->add_option("--sphere", analyze.sphere, "ball cx,cy,cz,radius");
   a->add_option("--every", analyze.every, "analyse every Nth frame")->capture_default_str()->check(CLI::Range(1, 1 << 30));
   a->add_flag("--quiet", analyze.quiet, "no progress output");
 

@@ -98,4 +98,34 @@ const Shape& convex_of(const PyShape& s, const char* what) {
   return s.shape;
 }
 
+// A region given once: lo and hi (a box), cylinder={base, axis, radius,
+// height} or sphere={centre, radius}; the box into lo_out, hi_out.
+std::optional<dem::RoundRegion> region_arg(const char* who, const py::object& lo, const py::object& hi,
+                                           const py::object& cylinder, const py::object& sphere, Vec3& lo_out,
+                                           Vec3& hi_out) {
+  const int given = !lo.is_none() + !cylinder.is_none() + !sphere.is_none();
+  if (given != 1 || lo.is_none() != hi.is_none())
+    fail(who, "give the region once: lo and hi (a box), cylinder or sphere");
+  if (!lo.is_none()) {
+    lo_out = to_vec3(lo, "lo"), hi_out = to_vec3(hi, "hi");
+    return std::nullopt;
+  }
+  if (!cylinder.is_none()) {
+    const py::dict c = cylinder.cast<py::dict>();
+    for (const char* key : {"radius", "height"})
+      if (!c.contains(key)) fail("cylinder", std::string("needs '") + key + "'");
+    return dem::RoundRegion{.kind = dem::RoundRegion::Kind::Cylinder,
+                            .base = c.contains("base") ? to_vec3(c["base"], "cylinder base") : Vec3{},
+                            .axis = c.contains("axis") ? to_vec3(c["axis"], "cylinder axis") : Vec3{0, 0, 1},
+                            .radius = c["radius"].cast<double>(),
+                            .height = c["height"].cast<double>()};
+  }
+  const py::dict c = sphere.cast<py::dict>();
+  for (const char* key : {"centre", "radius"})
+    if (!c.contains(key)) fail("sphere", std::string("needs '") + key + "'");
+  return dem::RoundRegion{.kind = dem::RoundRegion::Kind::Ball,
+                          .base = to_vec3(c["centre"], "sphere centre"),
+                          .radius = c["radius"].cast<double>()};
+}
+
 }  // namespace gjkdem::py_bind

@@ -6,9 +6,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/round_region.hpp"
 #include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/shape.hpp"
 
@@ -34,6 +36,13 @@ const Shape& convex_of(const PyShape& s, const char* what);
 
 /// Three finite numbers.
 Vec3 to_vec3(const py::handle& value, const std::string& what);
+
+/// A region given once: lo and hi (a box, into lo_out and hi_out),
+/// cylinder={base, axis, radius, height} or sphere={centre, radius}
+/// (ValueError naming `who` otherwise).
+std::optional<dem::RoundRegion> region_arg(const char* who, const py::object& lo, const py::object& hi,
+                                           const py::object& cylinder, const py::object& sphere, Vec3& lo_out,
+                                           Vec3& hi_out);
 /// A unit quaternion [w, x, y, z] (to kUnitQuaternionTol), normalized.
 Quat to_quat(const py::handle& value, const std::string& what);
 /// None (identity) or 7 finite numbers [x, y, z, qw, qx, qy, qz] with a unit quaternion.

@@ -58,9 +58,14 @@ void bind_scenes(py::module_& m) {
   m.def(
       "analyze",
       [](const std::string& run_dir, const std::optional<std::pair<py::object, py::object>>& region, std::uint64_t every,
-         const dem::World* world) {
+         const dem::World* world, const py::object& cylinder, const py::object& sphere) {
         io::AnalysisOptions options;
-        if (region) options.region = dem::MeasureRegion{to_vec3(region->first, "region lo"), to_vec3(region->second, "region hi")};
+        if (region || !cylinder.is_none() || !sphere.is_none()) {
+          dem::MeasureRegion r;
+          r.round = region_arg("analyze", region ? region->first : py::none(), region ? region->second : py::none(),
+                               cylinder, sphere, r.lo, r.hi);
+          options.region = r;
+        }
         options.every = every;
         if (world) idle(*world);
         const io::AnalysisSummary s = io::analyze_run(run_dir, options, {}, world);
@@ -69,7 +74,9 @@ void bind_scenes(py::module_& m) {
         return d;
       },
       py::arg("run_dir"), py::arg("region") = py::none(), py::arg("every") = 1, py::arg("world") = py::none(),
-      "As `gjkdem analyze`: measures every `every`th frame of a run's view/ in the box region = (lo, hi)\n"
+      py::arg("cylinder") = py::none(), py::arg("sphere") = py::none(),
+      "As `gjkdem analyze`: measures every `every`th frame of a run's view/ in the box region = (lo, hi),\n"
+      "or cylinder={base, axis, radius, height}, or sphere={centre, radius}\n"
       "(None: around the moving bodies, frame by frame) and writes run_dir/analysis/measures.csv and\n"
       "normal_forces.csv (docs/measurements.md). Returns {frames, seconds, largest_frame}. The shapes come\n"
       "from the folder's scene, or from `world`: the World whose run(out=...) wrote a folder from Python.");

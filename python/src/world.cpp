@@ -439,28 +439,7 @@ void bind_world(py::module_& m) {
             f.variants = body_shapes(shapes);
             if (!weights.is_none()) f.weights = weights.cast<std::vector<double>>();
             f.count = count;
-            const int given = !lo.is_none() + !cylinder.is_none() + !sphere.is_none();
-            if (given != 1 || lo.is_none() != hi.is_none())
-              fail("fill_region", "give the region once: lo and hi (a box), cylinder or sphere");
-            if (!lo.is_none()) f.lo = to_vec3(lo, "lo"), f.hi = to_vec3(hi, "hi");
-            if (!cylinder.is_none()) {
-              const py::dict c = cylinder.cast<py::dict>();
-              for (const char* key : {"radius", "height"})
-                if (!c.contains(key)) fail("cylinder", std::string("needs '") + key + "'");
-              f.round = dem::RoundRegion{.kind = dem::RoundRegion::Kind::Cylinder,
-                                         .base = c.contains("base") ? to_vec3(c["base"], "cylinder base") : Vec3{},
-                                         .axis = c.contains("axis") ? to_vec3(c["axis"], "cylinder axis") : Vec3{0, 0, 1},
-                                         .radius = c["radius"].cast<double>(),
-                                         .height = c["height"].cast<double>()};
-            }
-            if (!sphere.is_none()) {
-              const py::dict c = sphere.cast<py::dict>();
-              for (const char* key : {"centre", "radius"})
-                if (!c.contains(key)) fail("sphere", std::string("needs '") + key + "'");
-              f.round = dem::RoundRegion{.kind = dem::RoundRegion::Kind::Ball,
-                                         .base = to_vec3(c["centre"], "sphere centre"),
-                                         .radius = c["radius"].cast<double>()};
-            }
+            f.round = region_arg("fill_region", lo, hi, cylinder, sphere, f.lo, f.hi);
             f.material = material_index(b, material);
             f.velocity = to_vec3(velocity, "velocity");
             f.fixed = fixed;
@@ -480,11 +459,11 @@ void bind_world(py::module_& m) {
           [](dem::WorldBuilder& b, const py::object& shapes, const py::object& lo, const py::object& hi,
              const py::object& material, double rate, double mass_rate, double start, double stop,
              std::uint64_t count, const py::object& velocity, const py::object& weights, std::uint64_t seed,
-             const std::string& label) {
+             const std::string& label, const py::object& cylinder, const py::object& sphere) {
             dem::InflowDef d;
             d.variants = body_shapes(shapes);
             if (!weights.is_none()) d.weights = weights.cast<std::vector<double>>();
-            d.lo = to_vec3(lo, "lo"), d.hi = to_vec3(hi, "hi");
+            d.round = region_arg("add_inflow", lo, hi, cylinder, sphere, d.lo, d.hi);
             d.material = material_index(b, material);
             d.rate = rate, d.mass_rate = mass_rate;
             d.start = start, d.stop = stop;
@@ -494,12 +473,13 @@ void bind_world(py::module_& m) {
             d.label = label.empty() ? "inflow" : label;
             return b.add_inflow(d);
           },
-          py::arg("shapes"), py::arg("lo"), py::arg("hi"), py::arg("material"), py::arg("rate") = 0.0,
-          py::arg("mass_rate") = 0.0, py::arg("start") = 0.0,
+          py::arg("shapes"), py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("material") = py::none(),
+          py::arg("rate") = 0.0, py::arg("mass_rate") = 0.0, py::arg("start") = 0.0,
           py::arg("stop") = std::numeric_limits<double>::infinity(), py::arg("count") = 0,
           py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("weights") = py::none(),
-          py::arg("seed") = 1, py::arg("label") = "",
-          "A region [lo, hi] inserting bodies during runs at `rate` bodies/s or `mass_rate` kg/s, from `start`\n"
+          py::arg("seed") = 1, py::arg("label") = "", py::arg("cylinder") = py::none(), py::arg("sphere") = py::none(),
+          "A region [lo, hi] (or cylinder={base, axis, radius, height}, height 0 a disc, or sphere={centre,\n"
+          "radius}) inserting bodies during runs at `rate` bodies/s or `mass_rate` kg/s, from `start`\n"
           "until `stop` s or `count` bodies (give one), each one of `shapes` (number probabilities `weights`) at\n"
           "a random place and orientation where it touches nothing. Returns its index. The world keeps room for\n"
           "every body its inflows can insert, so views stay valid; they show the bodies there when made.")
@@ -682,9 +662,10 @@ void bind_world(py::module_& m) {
       .def("stable_time_step", &dem::stable_time_step)
       .def(
           "measure",
-          [](const World& w, py::object lo, py::object hi) {
+          [](const World& w, py::object lo, py::object hi, const py::object& cylinder, const py::object& sphere) {
             idle(w);
-            const dem::MeasureRegion region{to_vec3(lo, "lo"), to_vec3(hi, "hi")};
+            dem::MeasureRegion region;
+            region.round = region_arg("measure", lo, hi, cylinder, sphere, region.lo, region.hi);
             dem::MeasureWorkspace work;
             dem::Measures r;
             try {
@@ -703,8 +684,10 @@ void bind_world(py::module_& m) {
             d["normal_forces"] = py::array_t<double>(static_cast<py::ssize_t>(r.normal_forces.size()), r.normal_forces.data());
             return d;
           },
-          py::arg("lo"), py::arg("hi"),
-          "Measurements in the box [lo, hi] from the last force evaluation (docs/measurements.md): a dict of\n"
+          py::arg("lo") = py::none(), py::arg("hi") = py::none(), py::arg("cylinder") = py::none(),
+          py::arg("sphere") = py::none(),
+          "Measurements in the box [lo, hi] (or cylinder={base, axis, radius, height}, or sphere={centre,\n"
+          "radius}) from the last force evaluation (docs/measurements.md): a dict of\n"
           "solid_fraction, solid_volume, region_volume, grains, coordination, contacts, mean_normal_force,\n"
           "stress (3, 3; Love-Weber, compression positive, Pa), pressure and normal_forces (the contacts' |F.n|).")
       .def("contacts", &contacts_of,

@@ -137,7 +137,8 @@ std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> 
       for (int a = 0; a < kInflowAttemptsPerStep && !placed; ++a) {
         const std::uint64_t attempt = s.attempts++;
         const auto u = [&](Draw d) { return keyed_uniform(f.seed, s.inserted, attempt, d); };
-        body.position = f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
+        body.position = f.round ? round_point(*f.round, u(kX), u(kY), u(kZ))
+                                : f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
         body.orientation = uniform_rotation(u(kTurn1), u(kTurn2), u(kTurn3));
         placed = is_free(bodies, site, near, shifts, t, body);
       }

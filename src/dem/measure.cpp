@@ -11,11 +11,13 @@ namespace gjkdem::dem {
 namespace {
 
 bool inside(const MeasureRegion& r, const Vec3& p) noexcept {
+  if (r.round) return ball_inside(*r.round, p, 0);
   return p.x >= r.lo.x && p.x <= r.hi.x && p.y >= r.lo.y && p.y <= r.hi.y && p.z >= r.lo.z && p.z <= r.hi.z;
 }
 
 /// Distance from p to the region (0 inside).
 Real distance_to(const MeasureRegion& r, const Vec3& p) noexcept {
+  if (r.round) return distance_to(*r.round, p);
   const Vec3 d{std::fmax(std::fmax(r.lo.x - p.x, p.x - r.hi.x), 0.0), std::fmax(std::fmax(r.lo.y - p.y, p.y - r.hi.y), 0.0),
                std::fmax(std::fmax(r.lo.z - p.z, p.z - r.hi.z), 0.0)};
   return length(d);
@@ -23,6 +25,7 @@ Real distance_to(const MeasureRegion& r, const Vec3& p) noexcept {
 
 /// Distance from p to the region's boundary, p inside.
 Real depth_in(const MeasureRegion& r, const Vec3& p) noexcept {
+  if (r.round) return depth_in(*r.round, p);
   return std::fmin(std::fmin(std::fmin(p.x - r.lo.x, r.hi.x - p.x), std::fmin(p.y - r.lo.y, r.hi.y - p.y)),
                    std::fmin(p.z - r.lo.z, r.hi.z - p.z));
 }
@@ -66,8 +69,19 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   if (distance_to(region, b.position) >= t.reach) return 0;
   if (inside(region, b.position) && depth_in(region, b.position) >= t.reach) return t.unit_mass.volume;
   const Vec3 half = (region.hi - region.lo) * 0.5;
-  const Shape box{Box{half}};
-  const Transform box_pose = Transform::from(region.lo + half, Quat{});
+  Shape clip{Box{half}};  // the region as a solid
+  Transform clip_pose = Transform::from(region.lo + half, Quat{});
+  if (region.round) {
+    const RoundRegion& g = *region.round;
+    const std::optional<RoundRegion>& made = work.tessellated_region;
+    if (!made || made->kind != g.kind || !(made->base == g.base) || !(made->axis == g.axis) ||
+        made->radius != g.radius || made->height != g.height) {
+      work.region_solid = Shape{tessellate(round_shape(g), kMeasureTessellation).polytope};
+      work.tessellated_region = g;
+    }
+    clip = work.region_solid;
+    clip_pose = round_pose(g);
+  }
   const std::uint32_t parts = t.parts.empty() ? 1 : static_cast<std::uint32_t>(t.parts.size());
   Real volume = 0;
   for (std::uint32_t k = 0; k < parts; ++k) {
@@ -86,7 +100,7 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
     }
     const MeasureWorkspace::ClippedShape& c = found->second;
     const Shape& solid = c.tessellated ? c.tessellation : *part.shape;
-    volume += overlap(box, box_pose, solid, part.pose, work.overlap).volume / c.volume * part_volume;
+    volume += overlap(clip, clip_pose, solid, part.pose, work.overlap).volume / c.volume * part_volume;
   }
   return volume;
 }
@@ -95,9 +109,16 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
                  MeasureWorkspace& work) {
   Measures m;
   m.region_volume = region.volume();
-  if (!(region.lo.x < region.hi.x && region.lo.y < region.hi.y && region.lo.z < region.hi.z) ||
-      !std::isfinite(m.region_volume))
+  if (region.round) {
+    const RoundRegion& g = *region.round;
+    if (!is_finite(g.base) || !is_finite(g.axis) || !(length(g.axis) > 0) || !(g.radius > 0) ||
+        !std::isfinite(m.region_volume) || (g.kind == RoundRegion::Kind::Cylinder && !(g.height > 0)))
+      throw std::invalid_argument("the measurement region's base and axis must be finite, the axis not zero, its "
+                                  "radius (and a cylinder's height) finite and > 0");
+  } else if (!(region.lo.x < region.hi.x && region.lo.y < region.hi.y && region.lo.z < region.hi.z) ||
+             !std::isfinite(m.region_volume)) {
     throw std::invalid_argument("the measurement region must have lo < hi on every axis, all finite");
+  }
   // Fractions and stresses divide by it: a volume that underflows (a region
   // of 1e-120 m sides) would turn every measure into inf or nan.
   if (!std::isnormal(m.region_volume))

@@ -458,8 +458,11 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   const std::string label = d.label.empty() ? "inflow " + std::to_string(world_.inflows.size()) : d.label;
   check_material(d.material, label);
   if (d.variants.empty()) throw BuildError(label + ": no shape to insert");
-  if (!is_finite(d.lo) || !is_finite(d.hi) || !(d.hi.x >= d.lo.x && d.hi.y >= d.lo.y && d.hi.z >= d.lo.z))
+  if (d.round) {
+    check_round_region(*d.round, label, true);
+  } else if (!is_finite(d.lo) || !is_finite(d.hi) || !(d.hi.x >= d.lo.x && d.hi.y >= d.lo.y && d.hi.z >= d.lo.z)) {
     throw BuildError(label + ": the region's max must not be below its min on any axis");
+  }
   if (!is_finite(d.velocity)) throw BuildError(label + ": the velocity must be finite");
   if (!(std::isfinite(d.rate) && std::isfinite(d.mass_rate) && d.rate >= 0 && d.mass_rate >= 0 &&
         (d.rate > 0) != (d.mass_rate > 0)))
@@ -470,7 +473,12 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   Inflow f;
   f.cumulative = cumulative_weights(d.weights, d.variants.size(), label);
   for (const BodyShape& v : d.variants) f.templates.push_back(add_template(v, false, label));
-  f.lo = d.lo, f.hi = d.hi;
+  if (d.round) {
+    const Aabb box = round_box(*d.round);
+    f.lo = box.lo, f.hi = box.hi, f.round = d.round;
+  } else {
+    f.lo = d.lo, f.hi = d.hi;
+  }
   f.material = d.material;
   f.velocity = d.velocity;
   f.rate = d.rate, f.mass_rate = d.mass_rate;
@@ -486,41 +494,13 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   return static_cast<std::uint32_t>(world_.inflows.size() - 1);
 }
 
-namespace {
-
-// A round region's bounding box, and whether a ball of radius r at c lies
-// inside it.
-Aabb round_box(const RoundRegion& g) {
-  if (g.kind == RoundRegion::Kind::Ball)
-    return {g.base - Vec3{g.radius, g.radius, g.radius}, g.base + Vec3{g.radius, g.radius, g.radius}};
-  // A disc of radius r about the unit axis a reaches r sqrt(1 - a_k^2) along axis k.
-  const Vec3 a = normalized(g.axis);
-  const Vec3 reach{g.radius * std::sqrt(std::fmax(0, 1 - a.x * a.x)), g.radius * std::sqrt(std::fmax(0, 1 - a.y * a.y)),
-                   g.radius * std::sqrt(std::fmax(0, 1 - a.z * a.z))};
-  const Vec3 top = g.base + a * g.height;
-  return {min(g.base, top) - reach, max(g.base, top) + reach};
-}
-
-bool ball_inside(const RoundRegion& g, const Vec3& c, Real r) {
-  const Vec3 rel = c - g.base;
-  if (g.kind == RoundRegion::Kind::Ball) return length(rel) + r <= g.radius;
-  const Vec3 a = normalized(g.axis);
-  const Real along = dot(rel, a);
-  return along >= r && along <= g.height - r && length(rel - a * along) + r <= g.radius;
-}
-
-}  // namespace
 
 std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
   Vec3 region_lo = f.lo, region_hi = f.hi;  // a round region's: its bounding box
   if (f.round) {
     const RoundRegion& g = *f.round;
-    if (!is_finite(g.base) || !is_finite(g.axis) || !(length(g.axis) > 0))
-      throw BuildError(label + ": the region's base and a non-zero axis must be finite");
-    if (!(g.radius > 0) || !std::isfinite(g.radius) ||
-        (g.kind == RoundRegion::Kind::Cylinder && (!(g.height > 0) || !std::isfinite(g.height))))
-      throw BuildError(label + ": the region's radius (and a cylinder's height) must be finite and > 0");
+    check_round_region(g, label, false);
     const Aabb box = round_box(g);
     region_lo = box.lo, region_hi = box.hi;
   }

@@ -552,21 +552,22 @@ class SceneBuilder {
 
   // A region { min, max } of a generator or an inflow; `strict`: max must
   // exceed min on every axis (an inflow may be a plane or a point).
-  // A generator's region: a box (min, max), or with `type` a "cylinder"
-  // (base, axis, radius, height) or a "sphere" (centre, radius).
-  struct GeneratorRegion {
+  // A generator's or inflow's region: a box (min, max), or with `type` a
+  // "cylinder" (base, axis, radius, height) or a "sphere" (centre, radius).
+  // An inflow's may be flat: a box of no extent along an axis, a disc.
+  struct Region {
     Vec3 lo, hi;
     std::optional<dem::RoundRegion> round;
     Json resolved;
   };
-  GeneratorRegion read_generator_region(TableReader& r) {
+  Region read_region(TableReader& r, bool flat) {
     const toml::table* t = r.table("region");
     if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
     TableReader region(*t, r.where() + ".region");
     const std::string type = region.string("type").value_or("box");
-    GeneratorRegion g;
+    Region g;
     if (type == "box") {
-      std::tie(g.lo, g.hi) = read_region(r, true);
+      std::tie(g.lo, g.hi) = read_box_region(region, *t, !flat);
       g.resolved = {{"min", to_json(g.lo)}, {"max", to_json(g.hi)}};
       return g;
     }
@@ -576,7 +577,12 @@ class SceneBuilder {
       round.axis = region.vec3("axis").value_or(Vec3{0, 0, 1});
       if (!(length(round.axis) > 0)) region.fail("axis", "must not be zero");
       round.radius = region.positive("radius");
-      round.height = region.positive("height");
+      if (flat) {
+        round.height = region.number("height").value_or(-1);
+        if (!(round.height >= 0)) region.fail("height", "must be >= 0 (0: a disc)");
+      } else {
+        round.height = region.positive("height");
+      }
       g.resolved = {{"type", type}, {"base", to_json(round.base)}, {"axis", to_json(round.axis)},
                     {"radius", round.radius}, {"height", round.height}};
     } else if (type == "sphere") {
@@ -594,15 +600,10 @@ class SceneBuilder {
     return g;
   }
 
-  std::pair<Vec3, Vec3> read_region(TableReader& r, bool strict) {
-    const toml::table* t = r.table("region");
-    if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
-    TableReader region(*t, r.where() + ".region");
-    if (region.string("type").value_or("box") != "box")
-      region.fail("type", "an inflow's region is a box (min, max); cylinders and spheres are for generators");
+  std::pair<Vec3, Vec3> read_box_region(TableReader& region, const toml::table& t, bool strict) {
     const Vec3 lo = region.vec3("min").value_or(Vec3{}), hi = region.vec3("max").value_or(Vec3{});
     if (!region.has("min") || !region.has("max"))
-      throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(*t));
+      throw SceneError(region.where() + ": needs 'min' and 'max'" + line_of(t));
     if (strict ? !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z) : !(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z))
       region.fail("max", strict ? "must exceed 'min' on every axis" : "must not be below 'min' on any axis");
     region.finish();
@@ -762,7 +763,7 @@ class SceneBuilder {
     fill.label = r.where();
     fill.count = static_cast<std::size_t>(count);
     fill.material = material_of(r);
-    const GeneratorRegion region = read_generator_region(r);
+    const Region region = read_region(r, false);
     fill.lo = region.lo, fill.hi = region.hi, fill.round = region.round;
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
     fill.fixed = r.boolean("fixed", false);
@@ -783,7 +784,8 @@ class SceneBuilder {
     dem::InflowDef d;
     d.label = r.where();
     d.material = material_of(r);
-    std::tie(d.lo, d.hi) = read_region(r, false);
+    const Region region = read_region(r, true);
+    d.lo = region.lo, d.hi = region.hi, d.round = region.round;
     d.velocity = r.vec3("velocity").value_or(Vec3{});
     const std::optional<Real> rate = r.number("rate"), mass_rate = r.number("mass_rate");
     if (rate.has_value() == mass_rate.has_value())
@@ -809,7 +811,7 @@ class SceneBuilder {
     building(r.table_node(), [&] { return builder_->add_inflow(d); });
     ++inflow_count_;
     Json j = {{"material", r.required_string("material")},
-              {"region", {{"min", to_json(d.lo)}, {"max", to_json(d.hi)}}}, {"velocity", to_json(d.velocity)},
+              {"region", region.resolved}, {"velocity", to_json(d.velocity)},
               {"start", d.start}, {"stop", d.stop}};
     if (rate) j["rate"] = *rate;
     if (mass_rate) j["mass_rate"] = *mass_rate;

@@ -119,6 +119,58 @@ TEST(Measure, ABedsSolidFractionMatchesMonteCarlo) {
   EXPECT_NEAR(measured.solid_fraction, fraction, 4 * sigma) << "Monte Carlo: " << fraction << " +- " << sigma;
 }
 
+// A tilted cylinder and a ball (round_region.hpp) over the same bed: the
+// solid fraction against Monte Carlo points drawn uniformly in them; a
+// cylinder's flat caps clip a cube exactly, and a body deep inside counts
+// whole.
+TEST(Measure, CylindersAndBallsMatchMonteCarloAndCutCubesExactly) {
+  WorldBuilder b;
+  const std::uint32_t m = b.add_material(rock());
+  std::mt19937_64 rng(12);
+  test::fill_polyhedra(b, {.count = 120, .variants = 6, .vertices = 9, .size = 0.2, .lo = {0, 0, 0}, .hi = {1.2, 1.2, 1.2}, .material = m},
+                       rng);
+  const World w = b.build();
+  for (const RoundRegion& g : {RoundRegion{.base = {0.3, 0.4, 0.2}, .axis = {0.3, 0.2, 1}, .radius = 0.35, .height = 0.7},
+                               RoundRegion{.kind = RoundRegion::Kind::Ball, .base = {0.6, 0.6, 0.6}, .radius = 0.45}}) {
+    SCOPED_TRACE(g.kind == RoundRegion::Kind::Ball ? "ball" : "cylinder");
+    MeasureRegion region;
+    region.round = g;
+    MeasureWorkspace work;
+    const Measures measured = measure(w, {}, region, work);
+    EXPECT_DOUBLE_EQ(measured.region_volume, round_volume(g));
+    std::uniform_real_distribution<Real> u(0, 1);
+    const Shape point{Point{}};
+    const int samples = 200000;
+    int hits = 0;
+    for (int k = 0; k < samples; ++k) {
+      const Vec3 p = round_point(g, u(rng), u(rng), u(rng));
+      for (const Body& body : w.bodies)
+        if (length(p - body.position) < w.templates[body.shape].reach &&
+            intersect(point, Transform::from(p, Quat{}), w.templates[body.shape].shape, shape_pose(w, body))) {
+          ++hits;
+          break;
+        }
+    }
+    const Real fraction = static_cast<Real>(hits) / samples;
+    const Real sigma = std::sqrt(fraction * (1 - fraction) / samples);
+    EXPECT_GT(measured.solid_fraction, 0.04);
+    EXPECT_NEAR(measured.solid_fraction, fraction, 4 * sigma + 2e-3) << "Monte Carlo: " << fraction << " +- " << sigma;
+  }
+  // A cube of side 0.2 cut by the caps of a wide cylinder 0.1 high through its middle: a slab of 0.2 x 0.2 x 0.1;
+  // a ball of radius 2 holds the cube whole.
+  const World cube = with_bodies({{Shape{Box{{0.1, 0.1, 0.1}}}, Vec3{}}});
+  MeasureRegion slab, ball;
+  slab.round = RoundRegion{.base = {0, 0, -0.05}, .axis = {0, 0, 1}, .radius = 1.0, .height = 0.1};
+  ball.round = RoundRegion{.kind = RoundRegion::Kind::Ball, .base = {0.01, 0, 0}, .radius = 2.0};
+  MeasureWorkspace work;
+  EXPECT_NEAR(measure(cube, {}, slab, work).solid_volume, 0.004, 1e-15);
+  EXPECT_DOUBLE_EQ(measure(cube, {}, ball, work).solid_volume, 0.008);
+  EXPECT_EQ(measure(cube, {}, slab, work).grains, 1u);
+  MeasureRegion flat;
+  flat.round = RoundRegion{.radius = 1.0, .height = 0};
+  EXPECT_THROW(measure(cube, {}, flat, work), std::invalid_argument);
+}
+
 // Two grains pushed apart by a force F along x at a contact halfway: the
 // stress is 2 r F / V on xx (compression positive), zero elsewhere.
 TEST(Measure, TwoGrainsPushedApartCompressAlongTheirLine) {

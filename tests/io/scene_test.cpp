@@ -931,18 +931,35 @@ region = )" + region + "\n",
       EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   }
+  // An inflow takes a disc (a cylinder of height 0), a cylinder or a ball;
+  // a generator's cylinder must have a height.
+  const auto inflow = [](const std::string& region) {
+    return load_scene(kHead + "[[inflow]]\nrate = 100.0\ncount = 20\nshape = { type = \"sphere\", radius = 0.004 }\n"
+                      "material = \"rock\"\nregion = " + region + "\n",
+                      "regions", ".");
+  };
+  const Scene disc = inflow(R"({ type = "cylinder", base = [0.0, 0.0, 0.5], radius = 0.03, height = 0 })");
+  ASSERT_TRUE(disc.world.inflows[0].round.has_value());
+  EXPECT_EQ(disc.world.inflows[0].round->height, 0);
+  EXPECT_NE(disc.resolved_json.find("\"cylinder\""), std::string::npos);
+  const Scene ball_inflow = inflow(R"({ type = "sphere", centre = [0.0, 0.0, 0.5], radius = 0.02 })");
+  EXPECT_EQ(ball_inflow.world.inflows[0].round->kind, dem::RoundRegion::Kind::Ball);
+  EXPECT_EQ(ball_inflow.world.inflows[0].lo.z, 0.48) << "its bounding box";
+  for (const auto& [region, expected] :
+       {std::pair{R"({ type = "cylinder", radius = 0.03, height = -0.1 })", "height: must be >= 0"},
+        std::pair{R"({ type = "cone", radius = 0.03 })", "must be \"box\", \"cylinder\" or \"sphere\""}}) {
+    try {
+      inflow(region);
+      ADD_FAILURE() << region << " was read";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
   try {
-    load_scene(kHead + R"(
-[[inflow]]
-rate = 100.0
-shape = { type = "sphere", radius = 0.004 }
-material = "rock"
-region = { type = "cylinder", radius = 0.03, height = 0.1 }
-)",
-               "regions", ".");
-    ADD_FAILURE() << "an inflow took a cylinder";
+    filled(R"({ type = "cylinder", radius = 0.03, height = 0 })", 10);
+    ADD_FAILURE() << "a generator took a flat cylinder";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("an inflow's region is a box"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("height: must be > 0"), std::string::npos) << e.what();
   }
 }
 

@@ -291,6 +291,23 @@ def test_an_inflow_adds_bodies_and_old_views_stay_valid():
         bad.add_inflow(gjkdem.Shape("sphere", radius=0.004), [0, 0, 0], [1, 1, 1], "glass", rate=1)
 
 
+def test_an_inflow_from_a_disc_places_its_bodies_on_it():
+    s = gjkdem.Settings()
+    s.gravity = [0, 0, 0]
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("glass", density=2500, youngs_modulus=1e7)
+    b.add_inflow(gjkdem.Shape("sphere", radius=0.002), material="glass", rate=1000, count=50,
+                 cylinder={"base": [0.1, 0, 0.3], "axis": [0, 0, 1], "radius": 0.03, "height": 0})
+    w = b.build()
+    w.run(0.06, dt=1e-4)
+    assert w.body_count == 50
+    r = np.linalg.norm(w.positions[:, :2] - [0.1, 0], axis=1)
+    assert r.max() <= 0.03 and np.all(w.positions[:, 2] == pytest.approx(0.3, abs=1e-12))
+    with pytest.raises(ValueError, match="give the region once"):
+        b.add_inflow(gjkdem.Shape("sphere", radius=0.002), [0, 0, 0], [1, 1, 1], "glass", rate=1, count=1,
+                     sphere={"centre": [0, 0, 0], "radius": 1})
+
+
 def test_a_compound_grain_from_python():
     foot = gjkdem.Shape("box", half_extents=[0.02, 0.005, 0.005], center=[0.02, 0, 0.005])
     leg = gjkdem.Shape("box", half_extents=[0.005, 0.005, 0.015], center=[0.005, 0, 0.025])

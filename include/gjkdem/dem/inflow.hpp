@@ -1,5 +1,5 @@
 #pragma once
-// Inflow: a box region that inserts bodies during a run, at a rate in bodies
+// Inflow: a region (a box, a cylinder or disc, a ball) that inserts bodies during a run, at a rate in bodies
 // or kilograms per second, each at a random place and orientation where it
 // touches nothing (an exact test against every body near it and the plane
 // walls). What each body looks like (its variant, drawn with the inflow's
@@ -15,11 +15,13 @@
 // (InflowState::behind counts the steps) until its region clears.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/periodic.hpp"
+#include "gjkdem/dem/round_region.hpp"
 #include "gjkdem/math/vec3.hpp"
 
 namespace gjkdem::dem {
@@ -32,7 +34,8 @@ inline constexpr int kInflowAttemptsPerStep = 8;
 struct Inflow {
   std::vector<std::uint32_t> templates;  ///< one per variant (World::templates)
   std::vector<Real> cumulative;          ///< number probabilities of the variants, summed; the last is 1
-  Vec3 lo, hi;                           ///< the region where bodies' centres of mass are placed (m)
+  Vec3 lo, hi;                           ///< the region where bodies' centres of mass are placed (m), or its bounding box
+  std::optional<RoundRegion> round;      ///< a cylinder (a disc when flat) or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;                         ///< of inserted bodies (m/s)
   Real rate = 0;                         ///< bodies per second (0: mass_rate instead)

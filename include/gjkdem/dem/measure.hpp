@@ -1,5 +1,5 @@
 #pragma once
-// Measurements of a granular state in a box region: the solid fraction (the
+// Measurements of a granular state in a region (a box, a cylinder, a ball): the solid fraction (the
 // grains clipped by the region), the mean coordination number, the
 // Love-Weber stress and the normal contact forces. They read the world's
 // bodies and a list of touching contacts, so that they apply to a live world
@@ -12,14 +12,19 @@
 #include <vector>
 
 #include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/dem/round_region.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
 
-/// An axis-aligned box of the world (m).
+/// An axis-aligned box of the world (m), or a cylinder or ball (`round`;
+/// lo and hi are then ignored).
 struct MeasureRegion {
   Vec3 lo, hi;
-  Real volume() const noexcept { return (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z); }
+  std::optional<RoundRegion> round;
+  Real volume() const noexcept {
+    return round ? round_volume(*round) : (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
+  }
 };
 
 /// A touching contact: the force acts on `second`, its opposite on `first`.
@@ -55,6 +60,9 @@ struct MeasureWorkspace {
   };
   OverlapWorkspace overlap;
   std::unordered_map<std::uint64_t, ClippedShape> clipped;  ///< key: template << 32 | part
+  /// A round region's tessellation (kMeasureTessellation directions), the one it was made for.
+  std::optional<RoundRegion> tessellated_region;
+  Shape region_solid;
 };
 
 /// Directions of the tessellation of curved grains clipped by the region.
@@ -68,8 +76,9 @@ std::vector<MeasuredContact> touching_contacts(const World& world);
 std::optional<MeasureRegion> moving_bodies_box(const World& world);
 
 /// Volume (m^3) of the part of a body inside the region: its shape (or each
-/// part) clipped by the region, exact for polytope-like shapes; a curved one
-/// is clipped as its tessellation (kMeasureTessellation directions). The
+/// part) clipped by the region, exact for polytope-like shapes in a box; a
+/// curved one is clipped as its tessellation (kMeasureTessellation
+/// directions), and so is a round region's curved side. The
 /// clipped volume is scaled by the body's volume over the clipped solid's, so
 /// that a body wholly inside counts whole (the volume law's contact shapes
 /// are inscribed tessellations of the bodies' shapes).

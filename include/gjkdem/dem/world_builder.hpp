@@ -130,15 +130,6 @@ Real cylinder_wall_thickness(const CylinderWall& wall);
 void cylinder_wall_mesh(const CylinderWall& wall, const std::string& label, std::vector<Vec3>& vertices,
                         std::vector<std::array<std::uint32_t, 3>>& triangles);
 
-/// A region that is not a box: a cylinder from `base` along `axis` (made
-/// unit) of `radius` and `height`, or a ball about `base` of `radius`.
-struct RoundRegion {
-  enum class Kind { Cylinder, Ball } kind = Kind::Cylinder;
-  Vec3 base{};
-  Vec3 axis{0, 0, 1};
-  Real radius = 0, height = 0;
-};
-
 /// Bodies placed without overlap in the box [lo, hi] (or in `round`), in
 /// cells one bounding diameter wide filled layer by layer from the bottom,
 /// each with a random orientation and offset; cells that touch a body
@@ -163,6 +154,7 @@ struct InflowDef {
   std::vector<BodyShape> variants;  ///< shapes (their pose is ignored: bodies are turned at random)
   std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
   Vec3 lo, hi;                      ///< where centres of mass go
+  std::optional<RoundRegion> round; ///< a cylinder (height 0: a disc) or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;
   Real rate = 0;                    ///< bodies/s
