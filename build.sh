@@ -16,8 +16,9 @@ base_pkgs=(cmake make g++ pkg-config libgmp-dev libgtest-dev libbenchmark-dev nl
            libopenmpi-dev openmpi-bin)  # mpirun -np N gjkdem run (docs/scaling.md)
 # VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
 # example plots with matplotlib.
-# Chromium runs the viewer's browser tests (tests/browser), headless.
-test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib chromium)
+# Chromium runs the viewer's browser tests (tests/browser), headless. pip, setuptools and venv:
+# the offline `pip install .` of the Python module (tests/pip_install.sh).
+test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib chromium python3-pip python3-setuptools python3-venv)
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev yade)  # yade: bench/yade_*.py
 
 install_missing() {

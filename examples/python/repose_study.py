@@ -26,8 +26,8 @@ import numpy as np
 
 import gjkdem
 
-RADIUS = 0.03  # m, the cylinder's
-HEIGHT = 0.2   # m
+RADIUS = 0.035  # m, the cylinder's
+HEIGHT = 0.6    # m
 
 
 def scene_text(grains, friction, lift_speed, duration, settle_grains_in=True, seed=1):
@@ -35,7 +35,7 @@ def scene_text(grains, friction, lift_speed, duration, settle_grains_in=True, se
     generator = f"""
 [[generator]]
 count = {grains}
-shape = {{ type = "random_polyhedron", vertices = 10, size = [0.006, 0.008] }}
+shape = {{ type = "random_polyhedron", vertices = 10, size = [0.010, 0.014] }}
 material = "grain"
 region = {{ type = "cylinder", base = [0.0, 0.0, 0.002], axis = [0.0, 0.0, 1.0], radius = {RADIUS * 0.95}, height = {HEIGHT * 0.9} }}
 """ if settle_grains_in else ""
@@ -116,7 +116,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--grains", type=int, default=300)
     p.add_argument("--frictions", type=float, nargs="+", default=[0.3, 0.8])
-    p.add_argument("--settle", type=float, default=0.5, help="simulated seconds for the bed to settle")
+    p.add_argument("--settle", type=float, default=0.8, help="simulated seconds for the bed to settle")
     p.add_argument("--lift-speed", type=float, default=0.1, help="m/s, the cylinder's")
     p.add_argument("--rest", type=float, default=0.5, help="simulated seconds after the cylinder cleared the bed")
     p.add_argument("--out", default="repose")
