@@ -89,6 +89,26 @@ TEST(Measure, ACurvedGrainNearTheRegionDoesNotHideTheNextOnesVolume) {
 
 // A bed of random polyhedra (placed without overlap) in a box that cuts many
 // of them, against the fraction of random points that fall in a grain.
+// The fraction of 200,000 points drawn by `draw` that lie in a body, and its
+// standard error.
+template <class Draw>
+std::pair<Real, Real> monte_carlo_fraction(const World& w, Draw draw) {
+  const Shape point{Point{}};
+  const int samples = 200000;
+  int hits = 0;
+  for (int k = 0; k < samples; ++k) {
+    const Vec3 p = draw();
+    for (const Body& body : w.bodies)
+      if (length(p - body.position) < w.templates[body.shape].reach &&
+          intersect(point, Transform::from(p, Quat{}), w.templates[body.shape].shape, shape_pose(w, body))) {
+        ++hits;
+        break;
+      }
+  }
+  const Real fraction = static_cast<Real>(hits) / samples;
+  return {fraction, std::sqrt(fraction * (1 - fraction) / samples)};
+}
+
 TEST(Measure, ABedsSolidFractionMatchesMonteCarlo) {
   WorldBuilder b;
   const std::uint32_t m = b.add_material(rock());
@@ -100,21 +120,10 @@ TEST(Measure, ABedsSolidFractionMatchesMonteCarlo) {
   MeasureWorkspace work;
   const Measures measured = measure(w, {}, region, work);
   std::uniform_real_distribution<Real> u(0, 1);
-  const Shape point{Point{}};
-  const int samples = 200000;
-  int hits = 0;
-  for (int s = 0; s < samples; ++s) {
-    const Vec3 p{region.lo.x + u(rng) * (region.hi.x - region.lo.x), region.lo.y + u(rng) * (region.hi.y - region.lo.y),
-                 region.lo.z + u(rng) * (region.hi.z - region.lo.z)};
-    for (const Body& body : w.bodies)
-      if (length(p - body.position) < w.templates[body.shape].reach &&
-          intersect(point, Transform::from(p, Quat{}), w.templates[body.shape].shape, shape_pose(w, body))) {
-        ++hits;
-        break;
-      }
-  }
-  const Real fraction = static_cast<Real>(hits) / samples;
-  const Real sigma = std::sqrt(fraction * (1 - fraction) / samples);
+  const auto [fraction, sigma] = monte_carlo_fraction(w, [&] {
+    return Vec3{region.lo.x + u(rng) * (region.hi.x - region.lo.x), region.lo.y + u(rng) * (region.hi.y - region.lo.y),
+                region.lo.z + u(rng) * (region.hi.z - region.lo.z)};
+  });
   EXPECT_GT(measured.solid_fraction, 0.04);
   EXPECT_NEAR(measured.solid_fraction, fraction, 4 * sigma) << "Monte Carlo: " << fraction << " +- " << sigma;
 }
@@ -139,20 +148,7 @@ TEST(Measure, CylindersAndBallsMatchMonteCarloAndCutCubesExactly) {
     const Measures measured = measure(w, {}, region, work);
     EXPECT_DOUBLE_EQ(measured.region_volume, round_volume(g));
     std::uniform_real_distribution<Real> u(0, 1);
-    const Shape point{Point{}};
-    const int samples = 200000;
-    int hits = 0;
-    for (int k = 0; k < samples; ++k) {
-      const Vec3 p = round_point(g, u(rng), u(rng), u(rng));
-      for (const Body& body : w.bodies)
-        if (length(p - body.position) < w.templates[body.shape].reach &&
-            intersect(point, Transform::from(p, Quat{}), w.templates[body.shape].shape, shape_pose(w, body))) {
-          ++hits;
-          break;
-        }
-    }
-    const Real fraction = static_cast<Real>(hits) / samples;
-    const Real sigma = std::sqrt(fraction * (1 - fraction) / samples);
+    const auto [fraction, sigma] = monte_carlo_fraction(w, [&] { return round_point(g, u(rng), u(rng), u(rng)); });
     EXPECT_GT(measured.solid_fraction, 0.04);
     EXPECT_NEAR(measured.solid_fraction, fraction, 4 * sigma + 2e-3) << "Monte Carlo: " << fraction << " +- " << sigma;
   }
