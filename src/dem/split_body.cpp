@@ -1,0 +1,66 @@
+#include "gjkdem/dem/split_body.hpp"
+
+#include <stdexcept>
+
+#include "gjkdem/shape/split.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+// The template's solid as a polytope, or none.
+std::optional<Polytope> solid_polytope_of(const ShapeTemplate& t) {
+  if (!t.parts.empty() || t.surface_grain || t.given || t.shape.margin != 0) return std::nullopt;
+  if (const Polytope* p = std::get_if<Polytope>(&t.shape.core)) return *p;
+  if (const Box* box = std::get_if<Box>(&t.shape.core)) {
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 8; ++k)
+      corners.push_back({k & 1 ? box->half_extents.x : -box->half_extents.x,
+                         k & 2 ? box->half_extents.y : -box->half_extents.y,
+                         k & 4 ? box->half_extents.z : -box->half_extents.z});
+    return make_polytope(corners);
+  }
+  return std::nullopt;
+}
+
+// The world inertia's action R diag(m) R^T on w, R a body's principal frame.
+Vec3 principal_times(const Quat& r, const Vec3& moments, const Vec3& w) {
+  const Vec3 local = rotate(conjugate(r), w);
+  return rotate(r, Vec3{moments.x * local.x, moments.y * local.y, moments.z * local.z});
+}
+
+}  // namespace
+
+std::vector<Fragment> split_body(const ShapeTemplate& t, const Body& b, Real density, const Vec3& point,
+                                 const Vec3& normal) {
+  if (b.fixed) throw std::invalid_argument("split_body: fixed bodies do not split");
+  if (!is_finite(point)) throw std::invalid_argument("split_body: the plane's point must be finite");
+  const std::optional<Polytope> solid = solid_polytope_of(t);
+  if (!solid)
+    throw std::invalid_argument("split_body: only solid polyhedra and boxes split (curved shapes, compounds and "
+                                "surface grains do not yet)");
+  const Transform pose = shape_pose(t, b);
+  const Vec3 local_normal = apply_inverse_rotation(pose, normal);
+  const PolytopeSplit pieces = split_polytope(*solid, local_normal, dot(local_normal, apply_inverse(pose, point)));
+  if (!pieces.below || !pieces.above) return {};
+
+  // The parent's spin: w = R I^-1 R^T L.
+  const Vec3 moments = t.principal.moments * density;
+  const Vec3 inverse{1 / moments.x, 1 / moments.y, 1 / moments.z};
+  const Vec3 spin = principal_times(b.orientation, inverse, b.angular_momentum);
+  const Quat shape_q = shape_orientation(t, b);
+  std::vector<Fragment> out;
+  for (const Polytope& piece : {*pieces.below, *pieces.above}) {
+    Fragment f;
+    f.shape = Shape{piece};
+    f.unit_mass = mass_properties(f.shape);
+    f.principal = principal_axes(f.unit_mass.inertia);
+    f.position = apply(pose, f.unit_mass.centroid);
+    f.orientation = normalized(shape_q * f.principal.rotation);
+    f.velocity = b.velocity + cross(spin, f.position - b.position);
+    f.angular_momentum = principal_times(f.orientation, f.principal.moments * density, spin);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+}  // namespace gjkdem::dem

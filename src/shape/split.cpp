@@ -1,0 +1,65 @@
+#include "gjkdem/shape/split.hpp"
+
+#include <cmath>
+#include <array>
+#include <stdexcept>
+#include <vector>
+
+#include "gjkdem/shape/convex_hull.hpp"
+
+namespace gjkdem {
+namespace {
+
+// A side's points as a polytope, or none when they span no volume.
+std::optional<Polytope> solid_of(const std::vector<Vec3>& points) {
+  if (points.size() < 4) return std::nullopt;
+  if (convex_hull(points).dimension != HullDimension::Solid) return std::nullopt;
+  Polytope p = make_polytope(points);
+  if (!(p.data->volume > 0)) return std::nullopt;
+  return p;
+}
+
+}  // namespace
+
+PolytopeSplit split_polytope(const Polytope& polytope, const Vec3& normal, Real offset) {
+  const PolytopeData& d = *polytope.data;
+  if (!is_finite(normal) || !(length(normal) > 0) || !std::isfinite(offset))
+    throw std::invalid_argument("split_polytope: the plane's normal must be finite and not zero, its offset finite");
+  if (!(d.volume > 0) || d.triangles.empty())
+    throw std::invalid_argument("split_polytope: the polytope has no volume");
+  // Signed distances in units of |normal|: the sign decides the side, the
+  // ratio places a crossing on its edge.
+  const std::size_t n = d.vertices.size();
+  std::vector<Real> side(n);
+  for (std::size_t i = 0; i < n; ++i) side[i] = dot(normal, d.vertices[i]) - offset;
+  std::vector<Vec3> below, above;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (side[i] <= 0) below.push_back(d.vertices[i]);
+    if (side[i] >= 0) above.push_back(d.vertices[i]);
+  }
+  if (above.empty() || below.empty()) {  // the plane misses the solid (or only touches it)
+    PolytopeSplit whole;
+    (above.empty() ? whole.below : whole.above) = polytope;
+    return whole;
+  }
+  // Each edge of the hull's triangles with its ends strictly on either side
+  // crosses the plane once (a diagonal of a facet crosses inside the cut
+  // polygon: the hulls stay the same). Each edge is met from its two
+  // triangles: taken from the one that runs it from the lower index.
+  for (const std::array<std::uint32_t, 3>& t : d.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = t[k], j = t[(k + 1) % 3];
+      if (j <= i || !((side[i] < 0 && side[j] > 0) || (side[i] > 0 && side[j] < 0))) continue;
+      const Real f = side[i] / (side[i] - side[j]);
+      const Vec3 cross = d.vertices[i] + (d.vertices[j] - d.vertices[i]) * f;
+      below.push_back(cross);
+      above.push_back(cross);
+    }
+  PolytopeSplit out{solid_of(below), solid_of(above)};
+  if (!out.below && !out.above) throw std::logic_error("split_polytope: neither side of the cut holds volume");
+  if (!out.below) out.above = polytope;  // a sliver below the hull's tolerance: no cut
+  if (!out.above) out.below = polytope;
+  return out;
+}
+
+}  // namespace gjkdem
