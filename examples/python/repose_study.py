@@ -146,8 +146,8 @@ def main(argv=None):
         w = run.world
         angle, radius, height = heap_angle(w.positions[w.fixed == 0])
         rows.append((friction, angle, radius, height))
-        print(f"friction {friction:g}: angle of repose {angle:.1f} degrees (heap {radius * 1e3:.0f} mm across its "
-              f"radius, {height * 1e3:.0f} mm high)", flush=True)
+        print(f"friction {friction:g}: angle of repose {angle:.1f} degrees (heap radius {radius * 1e3:.0f} mm, "
+              f"height {height * 1e3:.0f} mm)", flush=True)
 
     with open(out / "repose.csv", "w", newline="") as f:
         writer = csv.writer(f)
