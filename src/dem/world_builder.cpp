@@ -273,10 +273,12 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   if (d.shared_shape >= 0) {
     if (d.shared_shape >= static_cast<std::int64_t>(shared_.size()))
       throw BuildError(label + ": shared shape " + std::to_string(d.shared_shape) + " was never added");
-    if (d.fixed) throw BuildError(label + ": shared shapes are for moving bodies");
-    const auto& [index, pose] = shared_[static_cast<std::size_t>(d.shared_shape)];
-    b.shape = index;
-    place(b, {given_shapes_[index], pose}, d.position, d.rotation, d.velocity, d.angular_velocity);
+    const SharedShape& shared = shared_[static_cast<std::size_t>(d.shared_shape)];
+    if (d.fixed != shared.fixed)
+      throw BuildError(label + ": shared shape " + std::to_string(d.shared_shape) + " was added for " +
+                       (shared.fixed ? "fixed" : "moving") + " bodies");
+    b.shape = shared.index;
+    place(b, {given_shapes_[shared.index], shared.pose}, d.position, d.rotation, d.velocity, d.angular_velocity);
   } else {
     b.shape = add_template(d.shape, d.fixed, label);
     place(b, d.shape, d.position, d.rotation, d.velocity, d.angular_velocity);
@@ -290,8 +292,8 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   return index;
 }
 
-std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string& label) {
-  shared_.emplace_back(add_template(shape, false, label), shape.pose);
+std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string& label, bool fixed) {
+  shared_.push_back({add_template(shape, fixed, label), shape.pose, fixed});
   return static_cast<std::uint32_t>(shared_.size() - 1);
 }
 

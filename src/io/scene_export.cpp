@@ -110,14 +110,16 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     throw SceneError(std::string("the scene to export is not valid TOML: ") + std::string(e.description()));
   }
   scene.erase("generator"), scene.erase("inflow");
-  // Fixed bodies stay as the scene gives them (with their motions); moving ones are the world's.
+  // Driven bodies stay as the scene gives them (their motions with them);
+  // every other body, moving or fixed (a generator's rough floor), is the
+  // world's. Wall pieces come from the scene's walls.
   if (toml::array* bodies = scene["body"].as_array()) {
-    bodies->prune(true);
-    toml::array fixed;
+    toml::array driven;
     for (toml::node& b : *bodies)
-      if (b.is_table() && b.as_table()->get("fixed") && b.as_table()->get("fixed")->value_or(false)) fixed.push_back(b);
-    if (fixed.empty()) scene.erase("body");
-    else scene.insert_or_assign("body", std::move(fixed));
+      if (const toml::table* t = b.as_table(); t && t->get("motion") && t->get("fixed") && t->get("fixed")->value_or(false))
+        driven.push_back(b);
+    if (driven.empty()) scene.erase("body");
+    else scene.insert_or_assign("body", std::move(driven));
   }
   absolute_files(scene, base_dir);
   // A bed in contact overlaps its neighbours and walls a little: that is its start.
@@ -140,7 +142,7 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
   toml::array bodies = scene["body"].as_array() ? *scene["body"].as_array() : toml::array{};
   const dem::Makeup makeup{w.templates, w.materials};
   for (const dem::Body& b : w.bodies) {
-    if (b.fixed) continue;
+    if (b.fixed && (b.group != 0 || b.motion != 0)) continue;
     const dem::ShapeTemplate& t = w.templates[b.shape];
     const std::string shape = "state_" + std::to_string(b.shape);
     if (!written[b.shape]) {
@@ -149,10 +151,6 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
       written[b.shape] = true;
     }
     const Transform pose = dem::shape_pose(t, b);
-    // w = R I^-1 R^T L, with I the principal moments.
-    const Vec3 moments = makeup.moments(b);
-    const Vec3 local = rotate(conjugate(b.orientation), b.angular_momentum);
-    const Vec3 spin = rotate(b.orientation, Vec3{local.x / moments.x, local.y / moments.y, local.z / moments.z});
     toml::table body;
     for (const dem::BodyName& n : w.names)
       if (n.id == b.id) body.insert("name", n.name);
@@ -160,8 +158,15 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     body.insert("material", w.materials[b.material].name);
     body.insert("position", array_of(pose.translation));
     body.insert("rotation", array_of(quat_from_matrix(pose.rotation)));
-    body.insert("velocity", array_of(b.velocity));
-    body.insert("angular_velocity", array_of(spin));
+    if (b.fixed) {
+      body.insert("fixed", true);
+    } else {  // w = R I^-1 R^T L, with I the principal moments
+      const Vec3 moments = makeup.moments(b);
+      const Vec3 local = rotate(conjugate(b.orientation), b.angular_momentum);
+      const Vec3 spin = rotate(b.orientation, Vec3{local.x / moments.x, local.y / moments.y, local.z / moments.z});
+      body.insert("velocity", array_of(b.velocity));
+      body.insert("angular_velocity", array_of(spin));
+    }
     bodies.push_back(std::move(body));
   }
   if (named->empty()) scene.erase("shapes");

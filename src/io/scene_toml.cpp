@@ -444,6 +444,7 @@ class SceneBuilder {
     const toml::table* table = nullptr;  // as written (generators and inflows read it so)
     std::optional<ShapeSpec> spec;       // as read (none for a random_polyhedron)
     std::int64_t shared = -1;            // the builder's shared shape, once a moving body took it
+    std::int64_t shared_fixed = -1;      // ... once a fixed body took it
   };
 
   // The SHAPE table at `key`: written there, or named there.
@@ -525,9 +526,10 @@ class SceneBuilder {
     d.shape = read_shape(r, "shape");
     d.material = material_of(r);
     d.fixed = r.boolean("fixed", false);
-    if (NamedShape* named = named_shape(r, "shape"); named && !d.fixed) {
-      if (named->shared < 0) named->shared = building(r.table_node(), [&] { return builder_->add_shape(d.shape, d.label); });
-      d.shared_shape = named->shared;
+    if (NamedShape* named = named_shape(r, "shape")) {  // one template for its moving bodies, one for its fixed ones
+      std::int64_t& shared = d.fixed ? named->shared_fixed : named->shared;
+      if (shared < 0) shared = building(r.table_node(), [&] { return builder_->add_shape(d.shape, d.label, d.fixed); });
+      d.shared_shape = shared;
     }
     d.position = r.vec3("position").value_or(Vec3{});
     d.rotation = r.rotation("rotation").value_or(Quat{});

@@ -67,6 +67,13 @@ velocity = [0.1, 0.0, -0.5]
 angular_velocity = [3.0, 5.0, -1.0]
 
 [[generator]]
+count = 4
+fixed = true
+shape = { type = "platonic", name = "tetrahedron", size = 0.01 }
+material = "steel"
+region = { min = [0.06, -0.04, 0.0], max = [0.1, 0.04, 0.01] }
+
+[[generator]]
 count = 12
 shapes = [ { shape = { type = "random_polyhedron", vertices = 9, size = [0.008, 0.012] }, fraction = 0.5 },
            { shape = { type = "sphere", radius = 0.004 }, fraction = 0.25 },
@@ -145,7 +152,7 @@ TEST(SceneExport, AnExportedStateIsTheSameWorldReadFromAnotherFolder) {
   EXPECT_EQ(v.templates.size(), w.templates.size()) << "bodies of one template share one after the export too";
   EXPECT_EQ(v.names.size(), w.names.size());
   const dem::Makeup before{w.templates, w.materials}, after{v.templates, v.materials};
-  // Fixed bodies (the mesh wall's pieces, the post) come first in both.
+  // The same bodies in the same order: the mesh wall's pieces, the post, the moving ones, the fixed generator's.
   int moving = 0;
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const dem::Body &a = w.bodies[i], &b = v.bodies[i];

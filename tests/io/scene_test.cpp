@@ -797,7 +797,8 @@ tet = { type = "surface", vertices = [[0, 0, 0], [0.01, 0, 0], [0, 0.01, 0], [0,
   std::string bodies;
   for (int k = 0; k < 3; ++k)
     bodies += "[[body]]\nshape = \"cube\"\nmaterial = \"rock\"\nposition = [" + std::to_string(0.03 * k) + ", 0, 0.02]\n";
-  bodies += "[[body]]\nshape = \"cube\"\nmaterial = \"rock\"\nfixed = true\nposition = [0.5, 0, 0.02]\n";
+  for (const char* x : {"0.5", "0.6"})
+    bodies += "[[body]]\nshape = \"cube\"\nmaterial = \"rock\"\nfixed = true\nposition = [" + std::string(x) + ", 0, 0.02]\n";
   const std::string generator = R"(
 [[generator]]
 count = 6
@@ -807,10 +808,11 @@ region = { min = [-0.05, -0.05, 0.1], max = [0.05, 0.05, 0.2] }
 )";
   const Scene scene = load_scene(kHead + shapes + kPlane + bodies + generator, "test.toml", std::filesystem::temp_directory_path());
   const dem::World& w = scene.world;
-  ASSERT_EQ(w.bodies.size(), 10u);
+  ASSERT_EQ(w.bodies.size(), 11u);
   EXPECT_EQ(w.bodies[0].shape, w.bodies[1].shape);
   EXPECT_EQ(w.bodies[1].shape, w.bodies[2].shape);
-  EXPECT_NE(w.bodies[3].shape, w.bodies[0].shape) << "a fixed body takes its own (wall) template";
+  EXPECT_NE(w.bodies[3].shape, w.bodies[0].shape) << "fixed bodies take a (wall) template of their own";
+  EXPECT_EQ(w.bodies[3].shape, w.bodies[4].shape) << "and share it";
   const Real cube_volume = std::pow(0.01 / std::sqrt(3.0), 3);  // inscribed in a sphere of 0.01
   EXPECT_NEAR(w.templates[w.bodies[0].shape].unit_mass.volume, cube_volume, 1e-12 * cube_volume);
 

@@ -186,8 +186,10 @@ class WorldBuilder {
   /// Adds one body; returns its index (and id).
   std::uint32_t add_body(const BodyDef& body);
 
-  /// A shape many moving bodies share (BodyDef::shared_shape); returns its index.
-  std::uint32_t add_shape(const BodyShape& shape, const std::string& label);
+  /// A shape many moving bodies share (BodyDef::shared_shape), or with
+  /// `fixed` many fixed ones (a fixed body's template has no mass); returns
+  /// its index.
+  std::uint32_t add_shape(const BodyShape& shape, const std::string& label, bool fixed = false);
 
   /// Explicit bodies may start overlapping each other and the walls: a state
   /// saved from a settled bed, or a stack started at its resting overlaps.
@@ -263,7 +265,12 @@ class WorldBuilder {
   std::vector<Shape> given_shapes_;     ///< per template, as given (before preparation)
   std::vector<std::uint32_t> explicit_; ///< bodies from add_body
   std::size_t prepared_templates_ = 0;  ///< templates of a continued world, prepared already
-  std::vector<std::pair<std::uint32_t, Transform>> shared_;  ///< add_shape: template and shape pose
+  struct SharedShape {
+    std::uint32_t index;  ///< template
+    Transform pose;       ///< of the shape in its body's frame
+    bool fixed;
+  };
+  std::vector<SharedShape> shared_;  ///< add_shape
   bool check_overlaps_ = true;
   std::uint32_t groups_ = 0;
   bool continued_ = false;              ///< made from a world: its periodic cell is state to keep

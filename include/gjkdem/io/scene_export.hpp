@@ -10,13 +10,15 @@
 
 namespace gjkdem::io {
 
-/// The scene `scene_text` (its files relative to `base_dir`) with its moving
-/// bodies, generators and inflows replaced by `world`'s moving bodies as they
-/// are now: one [[body]] each (material, position, rotation, velocity,
-/// angular velocity, name), their shapes in the [shapes] table, one per
-/// template (`state_<k>`). Everything else (settings, materials, walls, fixed
-/// bodies) is the scene's own, its files named by absolute paths; a periodic
-/// cell takes the world's bounds. `header` opens the text as a comment.
+/// The scene `scene_text` (its files relative to `base_dir`) with its bodies,
+/// generators and inflows replaced by `world`'s bodies as they are now: one
+/// [[body]] each (material, position, rotation, velocity, angular velocity,
+/// name; fixed ones, a generator's rough floor included, as fixed), their
+/// shapes in the [shapes] table, one per template (`state_<k>`).
+/// Everything else (settings, materials, walls, driven bodies with their
+/// motions) is the scene's own, its files named by absolute paths; a
+/// periodic cell takes the world's bounds. `header` opens the text as a
+/// comment.
 /// Throws SceneError for what a scene cannot express yet (a sheared cell).
 std::string export_scene(std::string_view scene_text, const std::filesystem::path& base_dir, const dem::World& world,
                          std::string_view header);
