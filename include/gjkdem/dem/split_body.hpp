@@ -3,9 +3,8 @@
 // its rigid motion (issue 31, breakage): each fragment's velocity is the
 // parent's rigid velocity at its centre of mass and its spin the parent's, so
 // mass, linear and angular momentum and kinetic energy are kept to round-off
-// (tests/dem/split_body_test.cpp). Choosing the plane and when to cut (the
-// breakage criterion) is the caller's.
-#include <span>
+// (tests/dem/split_body_test.cpp). When and where to cut is the breakage
+// criterion's (break_criterion.hpp).
 #include <vector>
 
 #include "gjkdem/dem/body.hpp"
@@ -22,27 +21,6 @@ struct Fragment {
   Vec3 velocity;             ///< m/s
   Vec3 angular_momentum;     ///< world, about its centre of mass (kg m^2/s)
 };
-
-/// The stress in a grain (Pa, compression positive) from the forces on it:
-/// -1/V sum over its contacts of (x_c - x_p) (x) f_c, the symmetric part
-/// (the Love-Weber average over one grain, as measure.hpp's over a region).
-/// `points` and `forces` pair up: where each force acts and the force.
-Mat3 grain_stress(const Vec3& centre, Real volume, std::span<const Vec3> points, std::span<const Vec3> forces);
-
-/// Where a stressed grain breaks: the plane through its centre whose normal
-/// is its most tensile (least compressed) principal direction, so that the
-/// crack holds the direction of the largest compression (a disc squeezed
-/// across a diameter splits along it: the Brazilian test). Yade's
-/// PolyhedraSplitter (J. Elias, 2013) splits on the stress of the same
-/// contact sum; its strength compares with `deviatoric`, the von Mises
-/// measure sqrt(((s1-s2)^2 + (s1-s3)^2 + (s2-s3)^2) / 2).
-struct BreakPlane {
-  Vec3 normal;           ///< unit, world
-  Real smallest = 0;     ///< principal stress along the normal (negative: tension), Pa
-  Real largest = 0;      ///< the largest principal stress (compression), Pa
-  Real deviatoric = 0;   ///< Pa
-};
-BreakPlane break_plane(const Mat3& stress);
 
 /// The fragments of body `b` (of template `t`, density `density`) on either
 /// side of the plane through `point` with `normal` (world): two, or none when
