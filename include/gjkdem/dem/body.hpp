@@ -26,7 +26,7 @@ struct TemplatePart {
   Real radius = 0;               ///< of a sphere about the part frame's origin holding the part
   Real curvature_radius = 0;     ///< for the Hertz law: of the part alone (as for a template)
   Real volume = 0;               ///< of the part (0 for fixed pieces)
-  std::optional<Shape> given;    ///< the part as given, where `shape` is its tessellation (volume law)
+  std::optional<Shape> given{};  ///< the part as given, where `shape` is its tessellation (volume law)
 };
 
 /// A shape and its mass properties per unit density, computed once and
@@ -36,7 +36,7 @@ struct ShapeTemplate {
   /// The shape as given, where `shape` is its inscribed tessellation (a
   /// curved shape under the volume law; the mass properties are the given
   /// shape's): what an exported scene writes.
-  std::optional<Shape> given;
+  std::optional<Shape> given{};
   MassProperties unit_mass;      ///< per unit density, in the shape's frame (zero for walls)
   PrincipalAxes principal;       ///< of unit_mass.inertia
   /// Radius of curvature for the Hertz law (m): exact for spheres and capsules;

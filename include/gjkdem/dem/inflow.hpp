@@ -35,7 +35,7 @@ struct Inflow {
   std::vector<std::uint32_t> templates;  ///< one per variant (World::templates)
   std::vector<Real> cumulative;          ///< number probabilities of the variants, summed; the last is 1
   Vec3 lo, hi;                           ///< the region where bodies' centres of mass are placed (m), or its bounding box
-  std::optional<RoundRegion> round;      ///< a cylinder (a disc when flat) or ball instead of the box
+  std::optional<RoundRegion> round{};    ///< a cylinder (a disc when flat) or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;                         ///< of inserted bodies (m/s)
   Real rate = 0;                         ///< bodies per second (0: mass_rate instead)

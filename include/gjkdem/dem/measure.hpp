@@ -21,7 +21,7 @@ namespace gjkdem::dem {
 /// lo and hi are then ignored).
 struct MeasureRegion {
   Vec3 lo, hi;
-  std::optional<RoundRegion> round;
+  std::optional<RoundRegion> round{};
   Real volume() const noexcept {
     return round ? round_volume(*round) : (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
   }

@@ -140,7 +140,7 @@ struct RegionFill {
   std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
   std::size_t count = 0;
   Vec3 lo, hi;                      ///< the box (ignored with `round`: its bounding box is filled)
-  std::optional<RoundRegion> round; ///< a cylinder or ball instead of the box
+  std::optional<RoundRegion> round{}; ///< a cylinder or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;
   bool fixed = false;               ///< fixed bodies (a rough floor, an obstacle field): no velocity
@@ -154,7 +154,7 @@ struct InflowDef {
   std::vector<BodyShape> variants;  ///< shapes (their pose is ignored: bodies are turned at random)
   std::vector<Real> weights;        ///< number probabilities of the variants (empty: equal)
   Vec3 lo, hi;                      ///< where centres of mass go
-  std::optional<RoundRegion> round; ///< a cylinder (height 0: a disc) or ball instead of the box
+  std::optional<RoundRegion> round{}; ///< a cylinder (height 0: a disc) or ball instead of the box
   std::uint32_t material = 0;
   Vec3 velocity;
   Real rate = 0;                    ///< bodies/s

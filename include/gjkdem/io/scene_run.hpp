@@ -30,7 +30,7 @@ struct SceneRunOptions {
   /// (or checkpoint file), its clock at 0: the scene's bodies, shapes and
   /// walls must be those of that run; its materials, contact law settings,
   /// gravity, motions, duration and outputs may differ (io::Restore::NewRun).
-  std::filesystem::path start_from;
+  std::filesystem::path start_from{};
 };
 
 /// The library's version ("0.1.0"), written into run.json.
