@@ -6,7 +6,7 @@
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"gjkdem: GJK-based contact detection for convex particles"};
+  CLI::App app{"gjkdem: exact contact detection and DEM simulation of convex and non-convex particles"};
   app.require_subcommand(1);
 
   gjkdem::app::QueryOptions query;
