@@ -73,9 +73,7 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   Transform clip_pose = Transform::from(region.lo + half, Quat{});
   if (region.round) {
     const RoundRegion& g = *region.round;
-    const std::optional<RoundRegion>& made = work.tessellated_region;
-    if (!made || made->kind != g.kind || !(made->base == g.base) || !(made->axis == g.axis) ||
-        made->radius != g.radius || made->height != g.height) {
+    if (work.tessellated_region != g) {
       work.region_solid = Shape{tessellate(round_shape(g), kMeasureTessellation).polytope};
       work.tessellated_region = g;
     }

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "gjkdem/dem/rigid_rotation.hpp"
 #include "gjkdem/shape/split.hpp"
 
 namespace gjkdem::dem {
@@ -22,7 +23,7 @@ std::optional<Polytope> solid_polytope_of(const ShapeTemplate& t) {
   return std::nullopt;
 }
 
-// The world inertia's action R diag(m) R^T on w, R a body's principal frame.
+// A fragment's angular momentum R diag(moments) R^T w, R its principal frame.
 Vec3 principal_times(const Quat& r, const Vec3& moments, const Vec3& w) {
   const Vec3 local = rotate(conjugate(r), w);
   return rotate(r, Vec3{moments.x * local.x, moments.y * local.y, moments.z * local.z});
@@ -43,10 +44,7 @@ std::vector<Fragment> split_body(const ShapeTemplate& t, const Body& b, Real den
   const PolytopeSplit pieces = split_polytope(*solid, local_normal, dot(local_normal, apply_inverse(pose, point)));
   if (!pieces.below || !pieces.above) return {};
 
-  // The parent's spin: w = R I^-1 R^T L.
-  const Vec3 moments = t.principal.moments * density;
-  const Vec3 inverse{1 / moments.x, 1 / moments.y, 1 / moments.z};
-  const Vec3 spin = principal_times(b.orientation, inverse, b.angular_momentum);
+  const Vec3 spin = angular_velocity(b.orientation, b.angular_momentum, t.principal.moments * density);
   const Quat shape_q = shape_orientation(t, b);
   std::vector<Fragment> out;
   for (const Polytope& piece : {*pieces.below, *pieces.above}) {

@@ -3,8 +3,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "gjkdem/io/scene.hpp"
 #include <toml++/toml.h>
+
+#include "gjkdem/io/scene.hpp"
 
 namespace gjkdem::io {
 namespace {
@@ -140,7 +141,6 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
   if (!named) named = scene.insert_or_assign("shapes", toml::table{}).first->second.as_table();
   std::vector<bool> written(w.templates.size());
   toml::array bodies = scene["body"].as_array() ? *scene["body"].as_array() : toml::array{};
-  const dem::Makeup makeup{w.templates, w.materials};
   for (const dem::Body& b : w.bodies) {
     if (b.fixed && (b.group != 0 || b.motion != 0)) continue;
     const dem::ShapeTemplate& t = w.templates[b.shape];
@@ -160,12 +160,9 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     body.insert("rotation", array_of(quat_from_matrix(pose.rotation)));
     if (b.fixed) {
       body.insert("fixed", true);
-    } else {  // w = R I^-1 R^T L, with I the principal moments
-      const Vec3 moments = makeup.moments(b);
-      const Vec3 local = rotate(conjugate(b.orientation), b.angular_momentum);
-      const Vec3 spin = rotate(b.orientation, Vec3{local.x / moments.x, local.y / moments.y, local.z / moments.z});
+    } else {
       body.insert("velocity", array_of(b.velocity));
-      body.insert("angular_velocity", array_of(spin));
+      body.insert("angular_velocity", array_of(dem::angular_velocity_of(w, b)));
     }
     bodies.push_back(std::move(body));
   }

@@ -120,7 +120,9 @@ TEST(Inflow, RoundRegionsPlaceBodiesUniformlyInside) {
       const Vec3 rel = body.position - g.base;
       const Real h = ball ? 0 : dot(rel, a), r = length(ball ? rel : rel - a * h);
       ASSERT_LE(r, g.radius * (1 + 1e-12));
-      if (!ball) ASSERT_TRUE(h >= -1e-12 && h <= g.height + 1e-12) << h;
+      if (!ball) {
+        ASSERT_TRUE(h >= -1e-12 && h <= g.height + 1e-12) << h;
+      }
       radial += ball ? std::pow(r / g.radius, 3) : std::pow(r / g.radius, 2);
       along += disc || ball ? 0.5 : h / g.height;
     }

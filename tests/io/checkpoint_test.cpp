@@ -188,7 +188,9 @@ TEST(Checkpoint, ANewRunStartsFromAStateWithOtherMaterialsButNotOtherBodies) {
   EXPECT_FALSE(slick.forces_current);
   ASSERT_EQ(slick.bodies.size(), w.bodies.size());
   for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    if (!w.bodies[i].motion) EXPECT_TRUE(slick.bodies[i].position == w.bodies[i].position) << i;
+    if (!w.bodies[i].motion) {
+      EXPECT_TRUE(slick.bodies[i].position == w.bodies[i].position) << i;
+    }
   EXPECT_EQ(slick.pairs.size(), w.pairs.size());
   EXPECT_EQ(slick.materials[0].friction, 0.1);
   dem::RunState next = dem::plan_run(0.01, 1e-4, 0.01);

@@ -18,6 +18,7 @@ struct RoundRegion {
   Vec3 base{};
   Vec3 axis{0, 0, 1};
   Real radius = 0, height = 0;
+  friend bool operator==(const RoundRegion&, const RoundRegion&) = default;
 };
 
 /// Throws BuildError (naming `label`) unless base and axis are finite, the
