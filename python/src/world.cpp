@@ -290,15 +290,30 @@ void bind_world(py::module_& m) {
           "add_material",
           [](dem::WorldBuilder& b, const std::string& name, double density, double youngs_modulus,
              double poisson_ratio, double restitution, double friction, double rolling_friction,
-             double rolling_damping) {
-            return b.add_material({name, density, youngs_modulus, poisson_ratio, restitution, friction,
-                                   rolling_friction, rolling_damping});
+             double rolling_damping, double strength, double weibull_modulus, double strength_size,
+             double unbreakable_below, std::uint64_t strength_seed) {
+            return b.add_material({.name = name,
+                                   .density = density,
+                                   .youngs_modulus = youngs_modulus,
+                                   .poisson_ratio = poisson_ratio,
+                                   .restitution = restitution,
+                                   .friction = friction,
+                                   .rolling_friction = rolling_friction,
+                                   .rolling_damping = rolling_damping,
+                                   .strength = {.mean = strength,
+                                                .weibull_modulus = weibull_modulus,
+                                                .reference_size = strength_size,
+                                                .smallest = unbreakable_below,
+                                                .seed = strength_seed}});
           },
           py::arg("name"), py::arg("density"), py::arg("youngs_modulus"),
           py::arg("poisson_ratio") = dem::Material{}.poisson_ratio, py::arg("restitution") = dem::Material{}.restitution,
           py::arg("friction") = dem::Material{}.friction, py::arg("rolling_friction") = dem::Material{}.rolling_friction,
-          py::arg("rolling_damping") = dem::Material{}.rolling_damping,
-          "Returns the material's index (the defaults are a scene's: dem::Material).")
+          py::arg("rolling_damping") = dem::Material{}.rolling_damping, py::arg("strength") = 0.0,
+          py::arg("weibull_modulus") = dem::Strength{}.weibull_modulus, py::arg("strength_size") = 0.0,
+          py::arg("unbreakable_below") = 0.0, py::arg("strength_seed") = dem::Strength{}.seed,
+          "Returns the material's index (the defaults are a scene's: dem::Material). A strength > 0 (Pa, the "
+          "mean at strength_size, m) lets its polyhedral grains break (docs/breakage.md).")
       .def(
           "add_body",
           [](py::object self, const py::object& shape_object, const py::object& material, const py::object& position,

@@ -29,14 +29,6 @@ BreakPlane break_plane(const Mat3& stress) {
           std::sqrt(((s.x - s.y) * (s.x - s.y) + (s.x - s.z) * (s.x - s.z) + (s.y - s.z) * (s.y - s.z)) / 2)};
 }
 
-void check_strength(const Strength& s) {
-  if (!(s.mean >= 0) || !std::isfinite(s.mean)) throw std::invalid_argument("strength: mean must be finite and >= 0");
-  if (!(s.weibull_modulus > 0) || !std::isfinite(s.weibull_modulus))
-    throw std::invalid_argument("strength: weibull_modulus must be finite and > 0");
-  if (s.mean > 0 && (!(s.reference_size > 0) || !std::isfinite(s.reference_size)))
-    throw std::invalid_argument("strength: reference_size must be finite and > 0");
-}
-
 Real grain_strength(const Strength& s, Real size, Real u) {
   const Real m = s.weibull_modulus;
   const Real scale = s.mean / std::tgamma(1 + 1 / m) * std::pow(size / s.reference_size, -3 / m);

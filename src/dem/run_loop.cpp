@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "domain_records.hpp"
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/domains.hpp"
 #include "run_guard.hpp"
 
@@ -93,6 +94,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
   const bool root = t.rank() == 0;
+  if (t.size() > 1 && world_breaks(whole))  // every rank refuses alike, before any collective
+    throw std::invalid_argument("grains that break (a material with a strength) run on one rank only for now: "
+                                "run without mpirun, or with -n 1");
   Rank rank(whole, t);
   World& stepped = rank.stepped();
   StepContext ctx{.dt = state.dt, .domain = rank.role()};

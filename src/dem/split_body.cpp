@@ -10,7 +10,7 @@ namespace {
 
 // The template's solid as a polytope, or none.
 std::optional<Polytope> solid_polytope_of(const ShapeTemplate& t) {
-  if (!t.parts.empty() || t.surface_grain || t.given || t.shape.margin != 0) return std::nullopt;
+  if (!can_split(t)) return std::nullopt;
   if (const Polytope* p = std::get_if<Polytope>(&t.shape.core)) return *p;
   if (const Box* box = std::get_if<Box>(&t.shape.core)) {
     std::vector<Vec3> corners;
@@ -30,6 +30,11 @@ Vec3 principal_times(const Quat& r, const Vec3& moments, const Vec3& w) {
 }
 
 }  // namespace
+
+bool can_split(const ShapeTemplate& t) noexcept {
+  return t.parts.empty() && !t.surface_grain && !t.given && t.shape.margin == 0 &&
+         (std::holds_alternative<Polytope>(t.shape.core) || std::holds_alternative<Box>(t.shape.core));
+}
 
 std::vector<Fragment> split_body(const ShapeTemplate& t, const Body& b, Real density, const Vec3& point,
                                  const Vec3& normal) {

@@ -4,6 +4,7 @@
 #include <limits>
 #include <span>
 
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/contact_force.hpp"
 #include "gjkdem/dem/integrator.hpp"
@@ -173,6 +174,9 @@ StepReport finish_step(World& w, StepContext& ctx) {
   const std::size_t kicked = std::min(ctx.kicked_bodies, w.bodies.size());
   kick(std::span(w.bodies).first(kicked), {w.templates, w.materials}, dt / 2, thread_count(w.settings.threads));
   w.wall_work += 0.5 * dt * (ctx.power_before + w.stats.wall_power);  // trapezoid rule
+  // Grains break between steps, on their step's forces (a domain run
+  // refuses breakage: run_loop.cpp).
+  if (!ctx.domain && world_breaks(w)) w.stats.broken = break_grains(w);
   return r;
 }
 

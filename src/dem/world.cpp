@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/contact_law.hpp"
 #include "gjkdem/dem/rigid_rotation.hpp"
 
@@ -89,6 +90,16 @@ Real critical_time_step(const World& w) {
     if (mu_roll > 0 && inertia > 0) {
       const Real faster = mu_roll * r * std::sqrt(2.25 * m / inertia);
       if (faster > 1) dt /= faster;
+    }
+    // Grains that break (breakage.hpp) leave fragments as small as 3/4 of
+    // `unbreakable_below` across (a plane through a convex body's centroid
+    // leaves at least (3/4)^3 of its volume on each side, Gruenbaum 1960):
+    // the step is the one of the smallest fragment, as short as their size
+    // (k grows as the size, m as its cube), or as its power 3/2 under a
+    // given linear stiffness.
+    if (mat.strength.mean > 0) {
+      const Real shrink = std::fmin(1, 0.75 * mat.strength.smallest / grain_size(t));
+      dt *= s.model == ContactModel::Linear && s.linear_stiffness > 0 ? shrink * std::sqrt(shrink) : shrink;
     }
     best = std::fmin(best, dt);
   }

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/contact/half_space.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/shape/polytope.hpp"
@@ -63,6 +64,18 @@ void check_material(const Material& m) {
   need(m.friction >= 0, who, "friction", "must be >= 0");
   need(m.rolling_friction >= 0, who, "rolling_friction", "must be >= 0");
   need(m.rolling_damping >= 0 && m.rolling_damping <= 1, who, "rolling_damping", "must lie in [0, 1]");
+  // Breakage (docs/breakage.md), by the scene's keys.
+  const Strength& s = m.strength;
+  need(std::isfinite(s.mean) && s.mean >= 0, who, "strength", "must be finite and >= 0 (Pa; 0: never breaks)");
+  need(std::isfinite(s.weibull_modulus) && s.weibull_modulus > 0, who, "weibull_modulus", "must be finite and > 0");
+  need(std::isfinite(s.reference_size) && s.reference_size >= 0, who, "strength_size", "must be finite and > 0 (m)");
+  need(std::isfinite(s.smallest) && s.smallest >= 0, who, "unbreakable_below", "must be finite and > 0 (m)");
+  if (s.mean > 0) {
+    need(s.reference_size > 0, who, "strength_size",
+         "must be given, > 0 (m): the size whose grains' mean strength is `strength`");
+    need(s.smallest > 0, who, "unbreakable_below",
+         "must be given, > 0 (m): grains smaller than this no longer break, which ends the cascade");
+  }
 }
 
 void check_contact_settings(const WorldSettings& s) {
@@ -844,13 +857,27 @@ World WorldBuilder::build() {
   check_explicit_bodies();
   check_inflow_regions();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);
-  // Room for every body the inflows can insert: the bodies never move in memory.
-  std::size_t room = world_.bodies.size();
+  // Room for every body the inflows can insert and every fragment breakage
+  // can make: the bodies never move in memory.
+  Real room = static_cast<Real>(world_.bodies.size());  // a real: no overflow
+  const auto fragments = [&](std::uint32_t shape, std::uint32_t material) {
+    return static_cast<Real>(most_fragments(world_.templates[shape], world_.materials[material]));
+  };
+  for (const Body& b : world_.bodies)
+    if (!b.fixed) room += fragments(b.shape, b.material);
   for (std::size_t k = 0; k < world_.inflows.size(); ++k) {
-    const std::uint64_t most = inflow_capacity(world_.inflows[k], {world_.templates, world_.materials});
-    room += most - std::min(most, world_.inflow_states[k].inserted);
+    const Inflow& f = world_.inflows[k];
+    const std::uint64_t most = inflow_capacity(f, {world_.templates, world_.materials});
+    Real each = 1;
+    for (const std::uint32_t t : f.templates) each = std::fmax(each, 1 + fragments(t, f.material));
+    room += static_cast<Real>(most - std::min(most, world_.inflow_states[k].inserted)) * each;
   }
-  world_.bodies.reserve(room);
+  if (room > static_cast<Real>(kMostBodies))
+    throw BuildError("the world could hold " + number_text(room) + " bodies with its inflows and the fragments of "
+                     "its grains that break (at most " + std::to_string(kMostBodies) +
+                     "): fewer bodies, or a larger unbreakable_below (a grain ends in up to (64/27) (d / "
+                     "unbreakable_below)^3 fragments)");
+  world_.bodies.reserve(static_cast<std::size_t>(room));
   World out = std::move(world_);
   world_ = World{};
   world_.settings = settings_;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/run_output.hpp"
 
@@ -15,11 +16,12 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 7. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 8. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
     "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
     "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); MAKE count, per shape "
-    "template digest(u64), count, per plane wall digest(u64); BODY count, per body id(u64) shape(u32) "
+    "template the builder made digest(u64), count, per plane wall digest(u64); FRAG grains broken(u64) count, per "
+    "fragment template generation(u32) surface(u8) count, per hull vertex (3); BODY count, per body id(u64) shape(u32) "
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
@@ -194,11 +196,22 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   for (const Real v : w.cell_stress) o.real(v);
   o.vec(w.search.cell.lo), o.vec(w.search.cell.hi), o.vec(w.search.cell.tilt);
   o.end(s);
+  const std::size_t built = dem::built_templates(w);
   s = o.begin("MAKE");
-  o.u64(w.templates.size());
-  for (const dem::ShapeTemplate& t : w.templates) o.u64(digest(t));
+  o.u64(built);
+  for (std::size_t k = 0; k < built; ++k) o.u64(digest(w.templates[k]));
   o.u64(w.planes.size());
   for (const dem::PlaneWall& p : w.planes) o.u64(digest(p));
+  o.end(s);
+  s = o.begin("FRAG");  // fragments' templates in full: a restore makes them again with the same bits
+  o.u64(w.broken), o.u64(w.templates.size() - built);
+  for (std::size_t k = built; k < w.templates.size(); ++k) {
+    const dem::ShapeTemplate& t = w.templates[k];
+    o.u32(t.generation), o.u8(t.surface ? 1 : 0);
+    const std::span<const Vec3> vertices = std::get<Polytope>(t.shape.core).data->vertices;
+    o.u64(vertices.size());
+    for (const Vec3& v : vertices) o.vec(v);
+  }
   o.end(s);
   s = o.begin("BODY");
   o.u64(w.bodies.size());
@@ -319,6 +332,25 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
            std::to_string(planes.size()));
   for (std::size_t k = 0; k < planes.size(); ++k)
     if (planes[k] != digest(w.planes[k])) refuse("plane wall " + std::to_string(k) + " is not where it was built");
+  end = in.section("FRAG");
+  const std::uint64_t broken = in.u64();
+  std::vector<dem::ShapeTemplate> fragments(in.count(4 + 1 + 8));
+  for (dem::ShapeTemplate& t : fragments) {
+    const std::uint32_t generation = in.u32();
+    const bool surface = in.u8() != 0;
+    std::vector<Vec3> vertices(in.count(3 * 8));
+    for (Vec3& v : vertices) v = in.vec();
+    if (generation == 0 || vertices.size() < 4) in.fail("a fragment's template is not valid");
+    try {
+      t = dem::fragment_template(vertices, generation, surface);
+    } catch (const std::invalid_argument&) {
+      in.fail("a fragment's template is not valid");
+    }
+    if (!(t.unit_mass.volume > 0)) in.fail("a fragment's template is not valid");
+  }
+  in.close(end, "FRAG");
+  const std::size_t scene_templates = dem::built_templates(w);
+  const std::size_t all_templates = scene_templates + fragments.size();
 
   // Into a copy: the world is changed only once everything has been read.
   // Bodies beyond the scene's were inserted by its inflows: moving, of the
@@ -326,11 +358,11 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   std::vector<dem::Body> bodies = w.bodies;
   end = in.section("BODY");
   const std::uint64_t count = in.count(8 + 2 * 4 + 19 * 8);
-  if (count < bodies.size() || (count > bodies.size() && w.inflows.empty()))
+  if (count < bodies.size() || (count > bodies.size() && w.inflows.empty() && broken == 0))
     refuse("the scene has " + std::to_string(bodies.size()) + " bodies, the checkpoint " + std::to_string(count) +
            (count > bodies.size() ? " (and the scene has no inflow to have inserted them)" : ""));
-  if (shapes.size() != w.templates.size())
-    refuse("the scene has " + std::to_string(w.templates.size()) + " shape templates, the checkpoint " +
+  if (shapes.size() != scene_templates)
+    refuse("the scene has " + std::to_string(scene_templates) + " shape templates, the checkpoint " +
            std::to_string(shapes.size()));
   std::vector<bool> changed(shapes.size());
   for (std::size_t k = 0; k < shapes.size(); ++k) changed[k] = shapes[k] != digest(w.templates[k]);
@@ -341,15 +373,18 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
     dem::Body& b = bodies[i];
     const std::uint64_t id = in.u64();
     const std::uint32_t shape = in.u32(), material = in.u32();
+    if (shape >= all_templates) in.fail("a body's shape out of range");
+    const bool fragment = shape >= scene_templates;  // the grain broke: its place and id kept by a fragment
     if (i < scene_bodies) {
       if (id != b.id && differs.empty())
         differs = body_text(w, b.id) + " is body " + std::to_string(id) + " in the checkpoint";
-      if ((shape != b.shape || changed[shape]) && differs.empty())
+      if (fragment && b.fixed) in.fail("a fixed body has a fragment's shape");
+      if (fragment) b.shape = shape;
+      if (!fragment && (shape != b.shape || changed[shape]) && differs.empty())
         differs = body_text(w, b.id) + " has another shape than in the checkpoint";
     }
     if (i >= scene_bodies) {
-      if ((i > 0 && !(id > bodies[i - 1].id)) || id >= dem::kPlaneIdBase || shape >= w.templates.size() ||
-          material >= w.materials.size())
+      if ((i > 0 && !(id > bodies[i - 1].id)) || id >= dem::kPlaneIdBase || material >= w.materials.size())
         in.fail("an inserted body out of range");
       b = dem::Body{};
       b.id = id, b.shape = shape, b.material = material;
@@ -376,9 +411,12 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   in.close(end, "FLOW");
   std::uint64_t inserted_before = 0;  // by the scene's own world (a continued one)
   for (const dem::InflowState& f : w.inflow_states) inserted_before += f.inserted;
-  if (inserted < inserted_before || inserted - inserted_before != count - scene_bodies)
+  // Bodies beyond the scene's came from its inflows and from grains that broke.
+  if (inserted < inserted_before || broken < w.broken ||
+      (inserted - inserted_before) + (broken - w.broken) != count - scene_bodies)
     refuse("the scene has " + std::to_string(scene_bodies) + " bodies, the checkpoint " + std::to_string(count) +
-           " of which its inflows inserted " + std::to_string(inserted - std::min(inserted, inserted_before)));
+           " of which its inflows inserted " + std::to_string(inserted - std::min(inserted, inserted_before)) +
+           " and broken grains made " + std::to_string(broken - std::min(broken, w.broken)));
   // The first body found to differ is named once the counts are known to agree.
   if (!differs.empty()) refuse(differs);
   for (std::size_t k = 0; k < shapes.size(); ++k)
@@ -414,6 +452,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   if (in.position() != payload.size()) in.fail("bytes after the last section");
 
   w.bodies.assign(bodies.begin(), bodies.end());  // in place: views of the bodies stay valid
+  w.templates.resize(scene_templates);
+  for (dem::ShapeTemplate& t : fragments) w.templates.push_back(std::move(t));
+  w.broken = broken;
   w.inflow_states = std::move(flows);
   w.pairs = std::move(pairs);
   w.time = time;

@@ -291,11 +291,23 @@ class SceneBuilder {
                               {"friction", &m.friction}, {"rolling_friction", &m.rolling_friction},
                               {"rolling_damping", &m.rolling_damping}})
       *value = r.number(key).value_or(*value);
+    dem::Strength& st = m.strength;  // breakage (docs/breakage.md)
+    for (auto [key, value] : {std::pair{"strength", &st.mean}, {"weibull_modulus", &st.weibull_modulus},
+                              {"strength_size", &st.reference_size}, {"unbreakable_below", &st.smallest}})
+      *value = r.number(key).value_or(*value);
+    if (const std::optional<std::int64_t> seed = r.integer("strength_seed")) {
+      if (*seed < 0) r.fail("strength_seed", "must be >= 0");
+      st.seed = static_cast<std::uint64_t>(*seed);
+    }
     building(r, [&] { return builder_->add_material(m); });
-    resolved_["material"].push_back({{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
-                                     {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution},
-                                     {"friction", m.friction}, {"rolling_friction", m.rolling_friction},
-                                     {"rolling_damping", m.rolling_damping}});
+    Json& resolved = resolved_["material"].emplace_back(
+        Json{{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
+                       {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution}, {"friction", m.friction},
+                       {"rolling_friction", m.rolling_friction}, {"rolling_damping", m.rolling_damping}});
+    if (st.mean > 0)
+      resolved.update({{"strength", st.mean}, {"weibull_modulus", st.weibull_modulus},
+                       {"strength_size", st.reference_size}, {"unbreakable_below", st.smallest},
+                       {"strength_seed", st.seed}});
   }
 
   std::uint32_t material_of(TableReader& r) {

@@ -4,6 +4,7 @@
 // the material's at the reference size, whose modulus comes back from the
 // draws, and whose median falls with size as d^(-3/m).
 #include "gjkdem/dem/break_criterion.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -83,9 +84,28 @@ TEST(BreakCriterion, StrengthsFollowTheirWeibullDistributionAndSizeEffect) {
   EXPECT_EQ(strength_draw(11, 7, 0), strength_draw(11, 7, 0));
   EXPECT_NE(strength_draw(11, 7, 0), strength_draw(11, 7, 1));
   EXPECT_NE(strength_draw(11, 7, 0), strength_draw(12, 7, 0));
-  EXPECT_THROW(check_strength({.mean = 1e6, .weibull_modulus = 0, .reference_size = 0.01}), std::invalid_argument);
-  EXPECT_THROW(check_strength({.mean = 1e6, .weibull_modulus = 3, .reference_size = 0}), std::invalid_argument);
-  EXPECT_NO_THROW(check_strength({}));
+  // A material's strength is checked with its other values, naming the key.
+  Material rock{.name = "rock"};
+  EXPECT_NO_THROW(check_material(rock));
+  rock.strength = {.mean = 1e6, .weibull_modulus = 3, .reference_size = 0.01, .smallest = 0.002};
+  EXPECT_NO_THROW(check_material(rock));
+  const auto refused_key = [](const Material& bad) {
+    try {
+      check_material(bad);
+    } catch (const BuildError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Material bad = rock;
+  bad.strength.weibull_modulus = 0;
+  EXPECT_NE(refused_key(bad).find("weibull_modulus"), std::string::npos) << refused_key(bad);
+  bad = rock, bad.strength.reference_size = 0;
+  EXPECT_NE(refused_key(bad).find("strength_size"), std::string::npos) << refused_key(bad);
+  bad = rock, bad.strength.smallest = 0;
+  EXPECT_NE(refused_key(bad).find("unbreakable_below"), std::string::npos) << refused_key(bad);
+  bad = rock, bad.strength.mean = -1;
+  EXPECT_NE(refused_key(bad).find("strength"), std::string::npos) << refused_key(bad);
 }
 
 }  // namespace

@@ -73,9 +73,13 @@ TEST(SplitBody, FragmentsKeepMassMomentaAndKineticEnergy) {
       const bool in_parent = intersect(Shape{Point{}}, at, t.shape, shape_pose(t, b));
       if (std::fabs(dot(normalized(normal), q - point)) < 1e-9 * size) continue;
       int in_pieces = 0;
-      for (const Fragment& f : pieces)
-        in_pieces += intersect(Shape{Point{}}, at, f.shape, shape_pose(ShapeTemplate{.shape = f.shape, .unit_mass = f.unit_mass, .principal = f.principal},
-                                                                        Body{.position = f.position, .orientation = f.orientation}));
+      for (const Fragment& f : pieces) {
+        ShapeTemplate own;
+        own.shape = f.shape, own.unit_mass = f.unit_mass, own.principal = f.principal;
+        Body placed;
+        placed.position = f.position, placed.orientation = f.orientation;
+        in_pieces += intersect(Shape{Point{}}, at, f.shape, shape_pose(own, placed));
+      }
       EXPECT_EQ(in_pieces, in_parent ? 1 : 0) << "point " << k;
     }
   }

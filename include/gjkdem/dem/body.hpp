@@ -63,6 +63,10 @@ struct ShapeTemplate {
   /// shape's frame: a moving body whose centre crosses it during a step has
   /// gone through the wall (StepStatus::ThroughWall). Unset for other shapes.
   std::optional<Triangle> wall_face;
+  /// A fragment's: how many splits made it from a template of the builder
+  /// (0: the builder's own). Fragments' templates are added during a run,
+  /// after the builder's (breakage.hpp).
+  std::uint32_t generation = 0;
 };
 
 /// A template for a moving particle (throws std::invalid_argument for shapes

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 
+#include "gjkdem/dem/material.hpp"
 #include "gjkdem/math/mat3.hpp"
 #include "gjkdem/math/vec3.hpp"
 
@@ -31,20 +32,6 @@ struct BreakPlane {
   Real deviatoric = 0;   ///< Pa
 };
 BreakPlane break_plane(const Mat3& stress);
-
-/// A material's strength: a Weibull distribution of modulus m whose mean is
-/// `mean` for grains of `reference_size` (m, the diameter of the sphere of
-/// equal volume); for a grain of size d the scale is multiplied by
-/// (d / reference_size)^(-3/m), the weakest-link size effect (a grain of
-/// twice the volume holds twice the flaws).
-struct Strength {
-  Real mean = 0;            ///< Pa at the reference size; 0: the grains never break
-  Real weibull_modulus = 3; ///< m > 0
-  Real reference_size = 0;  ///< m, > 0
-};
-
-/// Throws std::invalid_argument naming the field for values out of range.
-void check_strength(const Strength& strength);
 
 /// The strength (Pa) of a grain of size d (m) whose draw is u in [0, 1):
 /// mean / Gamma(1 + 1/m) * (d / d0)^(-3/m) * (-ln(1 - u))^(1/m).

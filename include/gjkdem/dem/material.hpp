@@ -11,6 +11,22 @@
 
 namespace gjkdem::dem {
 
+/// A material's strength (docs/breakage.md): a grain of it breaks when the
+/// stress of its contacts reaches its own strength, drawn from a Weibull
+/// distribution of modulus m whose mean is `mean` for grains of
+/// `reference_size` (m, the diameter of the sphere of equal volume); for a
+/// grain of size d the scale is multiplied by (d / reference_size)^(-3/m),
+/// the weakest-link size effect (a grain of twice the volume holds twice the
+/// flaws). Grains smaller than `smallest` never break, which ends the
+/// cascade.
+struct Strength {
+  Real mean = 0;                ///< Pa at the reference size; 0: the grains never break
+  Real weibull_modulus = 3;     ///< m > 0
+  Real reference_size = 0;      ///< m, > 0 where mean > 0
+  Real smallest = 0;            ///< m, > 0 where mean > 0: grains smaller do not break
+  std::uint64_t seed = 1;       ///< keys the draws (with each grain's id and generation)
+};
+
 struct Material {
   std::string name;
   Real density = 2500;          ///< kg/m^3, > 0
@@ -25,6 +41,8 @@ struct Material {
   /// Damping ratio of the rolling spring below its limit, in [0, 1]
   /// (Ai et al.'s eta_r; 0.3 is their suggestion).
   Real rolling_damping = 0.3;
+  /// Breakage (docs/breakage.md); by default the grains never break.
+  Strength strength{};
 };
 
 /// The contact law between bodies (docs/dem.md).

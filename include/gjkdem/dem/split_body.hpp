@@ -22,6 +22,10 @@ struct Fragment {
   Vec3 angular_momentum;     ///< world, about its centre of mass (kg m^2/s)
 };
 
+/// Whether split_body takes a body of template `t`: one solid polyhedron or
+/// box.
+bool can_split(const ShapeTemplate& t) noexcept;
+
 /// The fragments of body `b` (of template `t`, density `density`) on either
 /// side of the plane through `point` with `normal` (world): two, or none when
 /// the plane leaves a side without volume. Throws std::invalid_argument for

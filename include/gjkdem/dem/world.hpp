@@ -28,6 +28,8 @@
 //     laws          contact_force.cpp forces from geometry, material pair, the sides (contact_sides.cpp)
 //                                     and the pair's springs
 //     sums          force_sums.cpp    forces on bodies, springs kept, stats, wall power, the cell's stress
+//   then, where a material has a strength:
+//     breakage      breakage.cpp      grains whose stress reached their strength split in two
 //
 // Threads: boxes, the sweep's strips, narrow phase and laws run in parallel
 // (OpenMP), each contact writing only its own slot; forces are then summed in
@@ -56,6 +58,7 @@ struct StepStats {
   int wall_contacts = 0;    ///< of which with a plane wall or a fixed body
   int box_updates = 0;      ///< moving bodies whose box was recomputed
   int inserted = 0;         ///< bodies the inflows inserted in this step
+  int broken = 0;           ///< grains that broke at the end of this step (breakage.hpp)
   Real wall_power = 0;      ///< power of the driven walls and bodies on the others (W)
 };
 
@@ -99,7 +102,8 @@ struct BodyName {
 };
 
 struct World {
-  // Made by the builder, constant during a run.
+  // Made by the builder, constant during a run (but for the fragments'
+  // templates breakage appends).
   WorldSettings settings;
   std::vector<ShapeTemplate> templates;
   std::vector<Material> materials;
@@ -119,6 +123,9 @@ struct World {
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
   std::vector<InflowState> inflow_states;  ///< one per inflow
+  /// Grains broken so far (breakage.hpp): each split added a body, and
+  /// the fragments' templates follow the builder's in `templates`.
+  std::uint64_t broken = 0;
   /// The periodic cell now: the settings' cell, deformed by its control
   /// (periodic.hpp); its velocity gradient in the last step (1/s) and the
   /// contacts' stress at the last force evaluation (Pa, compression

@@ -70,6 +70,10 @@ void check_fill_count(std::int64_t count);
 
 /// Plane walls get ids from here up, above every body's.
 inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
+/// The most bodies a world may come to hold, with what its inflows insert
+/// and its grains' fragments (memory is reserved for all of them, untouched
+/// until used).
+inline constexpr std::uint64_t kMostBodies = std::uint64_t{1} << 24;
 
 /// A shape as an author gives it: its frame placed in the body's frame
 /// (identity: centred on the body's origin, unrotated).

@@ -1,0 +1,59 @@
+#pragma once
+// Grains that break during a run (issue 31; docs/breakage.md): at the end of
+// a step, each breakable grain whose stress (from the step's contact forces,
+// break_criterion.hpp) reaches its strength splits in two along its break
+// plane (split_body.hpp). The first fragment keeps the grain's id, the
+// second takes the next free id; fragments get templates of their own, added
+// after the builder's, and their draws of strength come from their
+// generation, so that a fragment is stronger as it is smaller.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gjkdem/dem/world.hpp"
+
+namespace gjkdem::dem {
+
+/// Whether a body of template `t` and material `m` can break: moving, of a
+/// material with a strength, one solid polyhedron or box (curved shapes,
+/// compounds and surface grains do not split yet), and not smaller than the
+/// material's `unbreakable_below`.
+bool breakable(const ShapeTemplate& t, const Material& m, const Body& b) noexcept;
+
+/// The most bodies a grain of template `t` and material `m` can add by
+/// breaking again and again: each split leaves at least (3/4)^3 of a grain
+/// on either side (a plane through a convex body's centroid, Gruenbaum
+/// 1960) and only grains of volume pi s^3 / 6 or more break (s:
+/// `unbreakable_below`), so it ends in at most (64/27) (d / s)^3 fragments
+/// (d: its size, grain_size). 0 for a grain that cannot break. The builder
+/// reserves room for them: the bodies never move in memory (Python's views
+/// of them stay valid).
+std::uint64_t most_fragments(const ShapeTemplate& t, const Material& m) noexcept;
+
+/// Whether any material of the world has a strength (then every step ends
+/// with break_grains).
+bool world_breaks(const World& world) noexcept;
+
+/// A grain's size for its strength: the diameter of the sphere of its
+/// volume (m).
+Real grain_size(const ShapeTemplate& t) noexcept;
+
+/// A fragment's template: the hull of `vertices` (in the fragment's shape
+/// frame), its generation, and its closed surface where the world has
+/// surface grains. The one way a fragment's template is made, at the split
+/// and from a checkpoint, so that both give the same bits.
+ShapeTemplate fragment_template(std::span<const Vec3> vertices, std::uint32_t generation, bool with_surface);
+
+/// How many of the world's templates its builder made: those of generation
+/// 0, which come first.
+std::size_t built_templates(const World& world) noexcept;
+
+/// Splits every breakable grain of the world whose stress at the last force
+/// evaluation (world.work.contacts, whose forces are current) reaches its
+/// strength, in id order; its pairs' springs are dropped, its fragments
+/// start with no force (the world's forces are no longer current) and the
+/// boxes are remade at the next step. Returns how many grains broke. Not for
+/// domains of a domain run (the run refuses breakage on several ranks).
+int break_grains(World& world);
+
+}  // namespace gjkdem::dem

@@ -1,0 +1,166 @@
+// Grains that break during a run (breakage.hpp, docs/breakage.md): a split
+// keeps mass, volume, momenta and kinetic energy; a cube pressed between
+// two platens splits along the press's axis, again and again until its
+// fragments are smaller than unbreakable_below; a run stopped and restored
+// from its checkpoint across the splits gives the same bits.
+#include "gjkdem/dem/breakage.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/io/checkpoint.hpp"
+
+namespace gjkdem::dem {
+namespace {
+
+constexpr Real kHalf = 0.005;  // the cube's half side (m)
+
+// A cube between a fixed floor and a plate coming down at `speed` (m/s),
+// turning and drifting a little so that every momentum is in play.
+World press(Real strength, Real speed = 0.05, ContactModel model = ContactModel::Volume) {
+  WorldSettings s;
+  s.gravity = {};
+  s.model = model;
+  WorldBuilder b(s);
+  Material rock{.name = "rock", .density = 2500, .youngs_modulus = 1e7};
+  // The strength's size is the cube's: its mean is `strength`; quarters of it
+  // are the last to break (an eighth is 0.0062 m across, a sixteenth 0.0049).
+  rock.strength = {.mean = strength, .weibull_modulus = 5, .reference_size = 0.0124, .smallest = 0.0055, .seed = 3};
+  const std::uint32_t m = b.add_material(rock);
+  const std::uint32_t down = b.add_motion({.velocity = {0, 0, -speed}}, "press");
+  b.add_plane({0, 0, 0}, {0, 0, 1}, m, "floor");
+  b.add_plane({0, 0, 2 * kHalf + 1e-5}, {0, 0, -1}, m, "plate", down);
+  b.add_body({.shape = {Shape{Box{{kHalf, kHalf, kHalf}}}, {}}, .material = m, .position = {0, 0, kHalf},
+              .rotation = quat_from_axis_angle({0, 0, 1}, 0.3), .velocity = {0.001, -0.002, 0},
+              .angular_velocity = {0, 0, 0.5}, .label = "cube"});
+  return b.build();
+}
+
+struct Totals {
+  Real mass = 0, volume = 0, energy = 0;
+  Vec3 momentum, angular_momentum;  // about the origin
+};
+
+Totals totals(const World& w) {
+  Totals t;
+  for (const Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const Real m = mass_of(w, b);
+    t.mass += m, t.volume += w.templates[b.shape].unit_mass.volume;
+    t.momentum += b.velocity * m;
+    t.angular_momentum += cross(b.position, b.velocity * m) + b.angular_momentum;
+  }
+  t.energy = kinetic_energy(w);
+  return t;
+}
+
+void expect_same(const Totals& a, const Totals& b) {
+  EXPECT_NEAR(b.mass, a.mass, 1e-12 * a.mass);
+  EXPECT_NEAR(b.volume, a.volume, 1e-12 * a.volume);
+  const Real p = length(a.momentum), l = length(a.angular_momentum);
+  EXPECT_LE(length(b.momentum - a.momentum), 1e-12 * p);
+  EXPECT_LE(length(b.angular_momentum - a.angular_momentum), 1e-12 * l);
+  EXPECT_NEAR(b.energy, a.energy, 1e-12 * a.energy);
+}
+
+TEST(Breakage, ASplitKeepsMassMomentaAndEnergyAndCutsAlongThePress) {
+  World w = press(1e12);  // too strong to break: forces first
+  const Real dt = critical_time_step(w);
+  for (int k = 0; k < 200 && w.stats.contacts < 2; ++k) ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
+  ASSERT_EQ(w.stats.contacts, 2);
+  const Totals before = totals(w);
+  const Body parent = w.bodies[0];
+  w.materials[0].strength.mean = 1;  // now the stress is past any draw
+  ASSERT_EQ(break_grains(w), 1);
+  ASSERT_EQ(w.bodies.size(), 2u);
+  expect_same(before, totals(w));
+  EXPECT_EQ(w.broken, 1u);
+  EXPECT_FALSE(w.forces_current);
+  // The first fragment keeps the id, the second takes the next one; both
+  // have templates of their own, one generation on.
+  EXPECT_EQ(w.bodies[0].id, parent.id);
+  EXPECT_EQ(w.bodies[1].id, parent.id + 1);
+  EXPECT_EQ(w.templates.size(), 3u);
+  EXPECT_EQ(built_templates(w), 1u);
+  for (const Body& b : w.bodies) EXPECT_EQ(w.templates[b.shape].generation, 1u);
+  EXPECT_TRUE(w.pairs.empty());  // the cube's springs are forgotten
+  // Pressed along z, the cube splits on a plane holding z (but for the
+  // friction of its slide and spin): the fragments' centres lie side by side.
+  const Vec3 a = w.bodies[0].position, c = w.bodies[1].position;
+  EXPECT_GT(length(a - c), 0.5 * kHalf);
+  EXPECT_LT(std::fabs(a.z - c.z), 0.01 * length(a - c));
+  // A split with nothing past its strength changes nothing.
+  w.materials[0].strength.mean = 1e12;
+  ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
+  EXPECT_EQ(w.stats.broken, 0);
+  EXPECT_EQ(w.bodies.size(), 2u);
+}
+
+// Runs the press for `steps` steps; returns the grains broken.
+std::uint64_t run_press(World& w, Real dt, int steps) {
+  for (int k = 0; k < steps; ++k) {
+    const StepReport r = step(w, dt);
+    EXPECT_EQ(r.status, StepStatus::Ok) << "step " << k;
+    if (r.status != StepStatus::Ok) break;
+  }
+  return w.broken;
+}
+
+TEST(Breakage, APressedCubeBreaksUntilItsFragmentsAreTooSmall) {
+  World w = press(2e4);
+  const Totals start = totals(w);
+  const Real dt = critical_time_step(w);
+  run_press(w, dt, 300);  // the plate comes down 0.12 mm
+  EXPECT_GE(w.broken, 3u);
+  EXPECT_EQ(w.bodies.size(), 1 + w.broken);
+  // Volume is kept through every split, and the ids stay in order.
+  Real volume = 0;
+  for (const Body& b : w.bodies) volume += w.templates[b.shape].unit_mass.volume;
+  EXPECT_NEAR(volume, start.volume, 1e-12 * start.volume);
+  for (std::size_t i = 1; i < w.bodies.size(); ++i) EXPECT_LT(w.bodies[i - 1].id, w.bodies[i].id);
+  // A fragment broke only while as large as unbreakable_below: none is
+  // smaller than 3/4 of it (Gruenbaum's bound on a cut through the centroid).
+  for (const Body& b : w.bodies) EXPECT_GE(grain_size(w.templates[b.shape]), 0.75 * 0.0055);
+  EXPECT_LE(w.bodies.capacity(), 1 + most_fragments(w.templates[0], w.materials[0]));
+  EXPECT_GE(w.bodies.capacity(), w.bodies.size());
+}
+
+TEST(Breakage, ARunRestoredAcrossSplitsGivesTheSameBits) {
+  World whole = press(2e4);
+  const Real dt = critical_time_step(whole);
+  const int steps = 300;
+  run_press(whole, dt, steps);
+  ASSERT_GE(whole.broken, 3u);
+
+  World first = press(2e4);
+  run_press(first, dt, 135);  // the first splits at step 107, the last at 164
+  ASSERT_GE(first.broken, 1u);
+  ASSERT_LT(first.broken, whole.broken);  // splits on both sides of the stop
+  io::Checkpoint c;
+  c.run.dt = dt, c.run.steps_total = steps, c.run.steps_per_output = 1, c.run.step = 135;
+  const std::string bytes = io::encode_checkpoint(first, c, 7);
+  World restored = press(2e4);
+  io::decode_checkpoint(bytes, restored, 7, "test");
+  EXPECT_EQ(restored.templates.size(), first.templates.size());
+  EXPECT_EQ(restored.broken, first.broken);
+  run_press(restored, dt, steps - 135);
+  ASSERT_EQ(restored.bodies.size(), whole.bodies.size());
+  EXPECT_EQ(restored.time, whole.time);
+  for (std::size_t i = 0; i < whole.bodies.size(); ++i)
+    EXPECT_EQ(std::memcmp(&restored.bodies[i], &whole.bodies[i], sizeof(Body)), 0) << "body " << i;
+}
+
+TEST(Breakage, TheBuilderRefusesMoreFragmentsThanItCanHold) {
+  WorldBuilder b;
+  Material rock{.name = "rock"};
+  rock.strength = {.mean = 1e6, .weibull_modulus = 3, .reference_size = 0.01, .smallest = 1e-6};
+  const std::uint32_t m = b.add_material(rock);
+  b.add_body({.shape = {Shape{Box{{kHalf, kHalf, kHalf}}}, {}}, .material = m, .label = "cube"});
+  EXPECT_THROW(b.build(), BuildError);
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
