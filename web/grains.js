@@ -27,17 +27,35 @@ function equalVolumeRadius(vertices, triangles) {
 export class Grains {
   constructor(scene, shapes) {
     this.scene = scene;
-    this.geometries = shapes.templates.map(({ vertices, triangles }) => {
+    this.geometries = [];
+    // Each template's circumradius (its reach from the body's centre), the
+    // radius of the sphere of its volume, and its box.
+    this.radius = [];
+    this.volumeRadius = [];
+    this.boxes = [];
+    this.addTemplates(shapes);
+    // Flat shading shows the facets of polyhedra without per-vertex normals.
+    this.freeMaterial = new THREE.MeshLambertMaterial({ flatShading: true });
+    this.fixedMaterial = new THREE.MeshLambertMaterial({ flatShading: true, transparent: true, opacity: 0.25, depthWrite: false });
+    this.batches = []; // index 2 * template + fixed: {mesh, capacity} or undefined
+    this.planes = [];
+    this.planeMaterial = new THREE.MeshBasicMaterial({ color: 0x6f8fb0, transparent: true, opacity: 0.22, side: THREE.DoubleSide, depthWrite: false });
+    this.planeEdge = new THREE.LineBasicMaterial({ color: 0x9fb8d0, transparent: true, opacity: 0.6 });
+  }
+
+  // The templates of `shapes` past those already taken: all at first, then
+  // the fragments of grains that broke as the run adds them.
+  addTemplates(shapes) {
+    const from = this.geometries.length;
+    const added = shapes.templates.slice(from);
+    for (const { vertices, triangles } of added) {
       const g = new THREE.BufferGeometry();
       g.setAttribute('position', new THREE.BufferAttribute(vertices, 3));
       g.setIndex(new THREE.BufferAttribute(triangles, 1));
-      return g;
-    });
-    // Each template's circumradius (its reach from the body's centre), the
-    // radius of the sphere of its volume, and its box.
-    this.radius = new Float32Array(shapes.templates.length);
-    this.volumeRadius = new Float32Array(shapes.templates.length);
-    this.boxes = shapes.templates.map(({ vertices }, t) => {
+      this.geometries.push(g);
+    }
+    added.forEach(({ vertices, triangles }, k) => {
+      const t = from + k;
       let r2 = 0;
       const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
       for (let i = 0; i < vertices.length; i += 3) {
@@ -48,18 +66,12 @@ export class Grains {
         }
       }
       this.radius[t] = Math.sqrt(r2);
-      this.volumeRadius[t] = equalVolumeRadius(vertices, shapes.templates[t].triangles);
-      if (vertices.length === 0) return { center: [0, 0, 0], half: [0, 0, 0] };
-      return { center: lo.map((l, a) => (l + hi[a]) / 2), half: lo.map((l, a) => (hi[a] - l) / 2) };
+      this.volumeRadius[t] = equalVolumeRadius(vertices, triangles);
+      this.boxes[t] = vertices.length === 0
+        ? { center: [0, 0, 0], half: [0, 0, 0] }
+        : { center: lo.map((l, a) => (l + hi[a]) / 2), half: lo.map((l, a) => (hi[a] - l) / 2) };
     });
-    // Flat shading shows the facets of polyhedra without per-vertex normals.
-    this.freeMaterial = new THREE.MeshLambertMaterial({ flatShading: true });
-    this.fixedMaterial = new THREE.MeshLambertMaterial({ flatShading: true, transparent: true, opacity: 0.25, depthWrite: false });
-    this.batches = []; // index 2 * template + fixed: {mesh, capacity} or undefined
-    this.counts = new Int32Array(2 * shapes.templates.length);
-    this.planes = [];
-    this.planeMaterial = new THREE.MeshBasicMaterial({ color: 0x6f8fb0, transparent: true, opacity: 0.22, side: THREE.DoubleSide, depthWrite: false });
-    this.planeEdge = new THREE.LineBasicMaterial({ color: 0x9fb8d0, transparent: true, opacity: 0.6 });
+    this.counts = new Int32Array(2 * this.geometries.length);
   }
 
   // Free grains shown as meshes (or not: drawn as spheres meanwhile).

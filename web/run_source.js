@@ -33,7 +33,22 @@ export class RunSource {
     const response = await fetch(this.base + 'view/shapes.bin', { cache: 'no-store' });
     if (response.status === 404) return null;
     if (!response.ok) throw new Error(`view/shapes.bin: HTTP ${response.status}`);
-    return parseShapes(await response.arrayBuffer());
+    const shapes = parseShapes(await response.arrayBuffer());
+    this.shapeCount = shapes.templates.length;
+    return shapes;
+  }
+
+  // A frame naming templates past those loaded (fragments of grains that
+  // broke: the run writes shapes.bin again before such a frame) waits for
+  // shapes.bin to be read again, and onShapes(shapes) to take them.
+  async withShapes(frame) {
+    let most = -1;
+    for (let i = 0; i < frame.n; i++) most = Math.max(most, frame.template[i]);
+    if (this.shapeCount === undefined || most < this.shapeCount) return frame;
+    this.reloading ??= this.loadShapes().finally(() => (this.reloading = null));
+    const shapes = await this.reloading;
+    if (shapes && this.onShapes) this.onShapes(shapes);
+    return frame;
   }
 
   // Re-reads index.csv; true when it changed. A resumed run may cut it back,
@@ -71,8 +86,11 @@ export class RunSource {
         entry.bytes = buffer.byteLength;
         this.cachedBytes += entry.bytes;
         this.evict(k);
-        entry.frame = parseFrame(buffer);
-        return entry.frame;
+        return this.withShapes(parseFrame(buffer));
+      })
+      .then((frame) => {
+        entry.frame = frame;
+        return frame;
       })
       .catch((error) => {
         entry.error = error; // kept so that playback stops on it rather than refetch every tick

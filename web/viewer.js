@@ -462,6 +462,7 @@ async function start() {
   }
   await loadRunJson();
   grains = new Grains(scene, shapes);
+  source.onShapes = (more) => grains.addTemplates(more); // fragments of grains that broke
   setAxes(run?.scene?.simulation?.gravity);
   camera.up.copy(axes.up); // OrbitControls takes its up axis when made
   controls = new OrbitControls(camera, canvas);
@@ -555,6 +556,9 @@ window.gjkdemViewer = {
   },
   get bodyCount() {
     return state.frame ? state.frame.n : 0;
+  },
+  get templateCount() {
+    return grains ? grains.geometries.length : 0;
   },
   get chainsShown() {
     return state.chains ? chains.shown : 0;

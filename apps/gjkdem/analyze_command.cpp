@@ -76,7 +76,7 @@ int analyze_run(const AnalyzeOptions& opt) {
   });
   if (progress) std::fprintf(stderr, "\n");
   std::printf("gjkdem analyze: %zu frames (up to %zu bodies) in %.3f s (%.1f ms a frame); wrote %s/analysis/measures.csv "
-              "and normal_forces.csv\n",
+              ", normal_forces.csv and sizes.csv\n",
               s.frames, s.largest_frame, s.seconds, s.frames ? 1e3 * s.seconds / static_cast<double>(s.frames) : 0.0,
               opt.run.c_str());
   return 0;

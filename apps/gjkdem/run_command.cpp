@@ -215,8 +215,9 @@ int run_simulation(const RunOptions& opt) {
     switch (outcome.status) {
       case dem::RunStatus::Completed:
         if (!opt.quiet)
-          std::cerr << "gjkdem: completed " << run->state.step << " steps (" << world.bodies.size()
-                    << " bodies) in " << io::duration_text(run->wall_seconds()) << "; results in "
+          std::cerr << "gjkdem: completed " << run->state.step << " steps (" << world.bodies.size() << " bodies"
+                    << (world.broken > 0 ? ", " + std::to_string(world.broken) + " grains broken" : std::string())
+                    << ") in " << io::duration_text(run->wall_seconds()) << "; results in "
                     << run->folder.dir.string() << "\n";
         return 0;
       case dem::RunStatus::Stopped:

@@ -724,6 +724,8 @@ void bind_world(py::module_& m) {
           "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, the work driven\n"
           "walls and bodies did on the others so far, and the energy inserted bodies brought in (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
+      .def_property_readonly("grains_broken", [](const World& w) { return w.broken; },
+                             "Grains that broke so far (docs/breakage.md); each added a body.")
       .def(
           "save_checkpoint",
           [](const World& w, const std::string& path, std::optional<double> dt) {

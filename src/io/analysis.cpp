@@ -1,11 +1,14 @@
 #include "gjkdem/io/analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 
+#include "gjkdem/dem/breakage.hpp"
+#include "gjkdem/io/checkpoint.hpp"
 #include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/run_output.hpp"
 #include "gjkdem/io/scene_run.hpp"
@@ -40,7 +43,8 @@ std::vector<dem::MeasuredContact> load_frame(dem::World& w, const ViewFrame& f) 
     if (f.templates[k] >= w.templates.size())
       throw ViewFormatError("frame at t = " + std::to_string(f.time) + " names shape template " +
                             std::to_string(f.templates[k]) + "; the run's scene has " +
-                            std::to_string(w.templates.size()) + ": scene.toml was changed");
+                            std::to_string(w.templates.size()) +
+                            " (with the fragments its checkpoint holds): scene.toml or checkpoint.bin was changed");
     dem::Body& b = w.bodies[k];
     b = dem::Body{};
     b.id = f.ids[k];
@@ -88,6 +92,39 @@ std::string measures_row(std::uint64_t frame, double time, const dem::Measures& 
                          static_cast<double>(m.grains), m.region_volume}) {
     row += ',';
     append_number(row, x);
+  }
+  return row + "\n";
+}
+
+// The moving grains' sizes (docs/breakage.md: the diameter of the sphere of
+// a grain's volume), and the sizes below which 10, 50 and 90% of their
+// volume lies: the product size distribution of grains that break.
+std::string sizes_header() { return "frame,time,grains,smallest,d10,d50,d90,largest\n"; }
+
+std::string sizes_row(std::uint64_t frame, double time, const dem::World& w) {
+  std::vector<std::pair<Real, Real>> grains;  // size, volume
+  Real total = 0;
+  for (const dem::Body& b : w.bodies) {
+    if (b.fixed) continue;
+    const dem::ShapeTemplate& t = w.templates[b.shape];
+    grains.emplace_back(dem::grain_size(t), t.unit_mass.volume);
+    total += t.unit_mass.volume;
+  }
+  std::sort(grains.begin(), grains.end());
+  std::string row = std::to_string(frame);
+  row += ',';
+  append_number(row, time);
+  row += ',' + std::to_string(grains.size());
+  const auto passing = [&](Real fraction) {  // the smallest size with `fraction` of the volume at or below it
+    Real below = 0;
+    for (const auto& [size, volume] : grains)
+      if ((below += volume) >= fraction * total) return size;
+    return grains.back().first;
+  };
+  for (const Real fraction : {0.0, 0.1, 0.5, 0.9, 1.0}) {
+    row += ',';
+    if (grains.empty()) row += '0';
+    else append_number(row, fraction == 0 ? grains.front().first : passing(fraction));
   }
   return row + "\n";
 }
@@ -140,13 +177,27 @@ AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
   dem::World world = given ? *given : load_run_scene(dir).world;
 
   fs::create_directories(dir / "analysis");
-  std::string measures = measures_header(), forces = normal_forces_header();
+  std::string measures = measures_header(), forces = normal_forces_header(), sizes = sizes_header();
+  bool fragments_loaded = given != nullptr;  // a given world holds its fragments' templates
   dem::MeasureWorkspace work;
   AnalysisSummary summary;
   const std::size_t todo = (index.size() + options.every - 1) / options.every;
   for (std::size_t k = 0; k < index.size(); k += options.every) {
     const ViewFrame frame = read_view_frame(view_frame_file(view, index[k].frame));
     const auto started = std::chrono::steady_clock::now();
+    // Frames after grains broke name their fragments' templates: the run's
+    // checkpoint holds them (its last state names every template made).
+    const bool names_more = std::any_of(frame.templates.begin(), frame.templates.end(),
+                                        [&](std::uint32_t t) { return t >= world.templates.size(); });
+    if (names_more && !fragments_loaded) {
+      fragments_loaded = true;
+      try {
+        load_fragment_templates(RunPaths{dir}.checkpoint(), world);
+      } catch (const CheckpointError& e) {
+        throw ViewFormatError("frame " + std::to_string(index[k].frame) + " names fragments of broken grains; " +
+                              e.what());
+      }
+    }
     const std::vector<dem::MeasuredContact> contacts = load_frame(world, frame);
     const std::optional<dem::MeasureRegion> region = options.region ? options.region : dem::moving_bodies_box(world);
     dem::Measures m;  // zeros: no region given and no moving body
@@ -159,12 +210,14 @@ AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
     summary.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     measures += measures_row(index[k].frame, frame.time, m);
     forces += normal_forces_rows(index[k].frame, frame.time, m);
+    sizes += sizes_row(index[k].frame, frame.time, world);
     summary.largest_frame = std::max(summary.largest_frame, frame.body_count());
     ++summary.frames;
     if (progress) progress(summary.frames, todo);
   }
   write_file_atomically(dir / "analysis" / "measures.csv", measures);
   write_file_atomically(dir / "analysis" / "normal_forces.csv", forces);
+  write_file_atomically(dir / "analysis" / "sizes.csv", sizes);
   return summary;
 }
 

@@ -118,6 +118,7 @@ class In {
     if (at_ != end) fail(std::string("section ") + tag + " has the wrong length");
   }
   std::size_t position() const { return at_; }
+  void skip_to(std::size_t end) { at_ = end; }
 
  private:
   void need(std::uint64_t n) const {
@@ -127,6 +128,33 @@ class In {
   std::string name_;
   std::size_t at_ = 0;
 };
+
+// The FRAG section: grains broken so far and the fragments' templates.
+struct Fragments {
+  std::uint64_t broken = 0;
+  std::vector<dem::ShapeTemplate> templates;
+};
+Fragments read_fragments(In& in) {
+  const std::size_t end = in.section("FRAG");
+  Fragments f;
+  f.broken = in.u64();
+  f.templates.resize(in.count(4 + 1 + 8));
+  for (dem::ShapeTemplate& t : f.templates) {
+    const std::uint32_t generation = in.u32();
+    const bool surface = in.u8() != 0;
+    std::vector<Vec3> vertices(in.count(3 * 8));
+    for (Vec3& v : vertices) v = in.vec();
+    if (generation == 0 || vertices.size() < 4) in.fail("a fragment's template is not valid");
+    try {
+      t = dem::fragment_template(vertices, generation, surface);
+    } catch (const std::invalid_argument&) {
+      in.fail("a fragment's template is not valid");
+    }
+    if (!(t.unit_mass.volume > 0)) in.fail("a fragment's template is not valid");
+  }
+  in.close(end, "FRAG");
+  return f;
+}
 
 }  // namespace
 
@@ -255,8 +283,11 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   return head.bytes() + o.bytes();
 }
 
-Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_t fingerprint, const std::string& name,
-                             Restore how) {
+namespace {
+
+// The payload of a checkpoint whose magic, format, length and checksum are
+// right, and the scene fingerprint its header holds.
+std::pair<std::string_view, std::uint64_t> checked_payload(std::string_view bytes, const std::string& name) {
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
     if (bytes.size() >= 7 && bytes.substr(0, 7) == "gjkdckp")
       throw CheckpointError(name + " is a checkpoint of an older gjkdem format; this gjkdem reads format " +
@@ -273,6 +304,14 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   const std::string_view payload = bytes.substr(kHeaderBytes);
   if (payload.size() != length) head.fail("its length does not match its header: truncated or extended");
   if (fnv1a64(payload) != checksum) head.fail("its checksum does not match");
+  return {payload, scene};
+}
+
+}  // namespace
+
+Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_t fingerprint, const std::string& name,
+                             Restore how) {
+  const auto [payload, scene] = checked_payload(bytes, name);
   if (how == Restore::SameRun && scene != fingerprint)
     throw CheckpointError(name + " was written for another scene (or the scene file changed since): refusing to "
                           "continue it as the same run; a new run may start from its state with changed materials, "
@@ -332,23 +371,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
            std::to_string(planes.size()));
   for (std::size_t k = 0; k < planes.size(); ++k)
     if (planes[k] != digest(w.planes[k])) refuse("plane wall " + std::to_string(k) + " is not where it was built");
-  end = in.section("FRAG");
-  const std::uint64_t broken = in.u64();
-  std::vector<dem::ShapeTemplate> fragments(in.count(4 + 1 + 8));
-  for (dem::ShapeTemplate& t : fragments) {
-    const std::uint32_t generation = in.u32();
-    const bool surface = in.u8() != 0;
-    std::vector<Vec3> vertices(in.count(3 * 8));
-    for (Vec3& v : vertices) v = in.vec();
-    if (generation == 0 || vertices.size() < 4) in.fail("a fragment's template is not valid");
-    try {
-      t = dem::fragment_template(vertices, generation, surface);
-    } catch (const std::invalid_argument&) {
-      in.fail("a fragment's template is not valid");
-    }
-    if (!(t.unit_mass.volume > 0)) in.fail("a fragment's template is not valid");
-  }
-  in.close(end, "FRAG");
+  Fragments made = read_fragments(in);
+  const std::uint64_t broken = made.broken;
+  std::vector<dem::ShapeTemplate>& fragments = made.templates;
   const std::size_t scene_templates = dem::built_templates(w);
   const std::size_t all_templates = scene_templates + fragments.size();
 
@@ -483,6 +508,20 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
 void save_checkpoint(const std::filesystem::path& file, const dem::World& w, const Checkpoint& c,
                      std::uint64_t fingerprint) {
   write_file_atomically(file, encode_checkpoint(w, c, fingerprint));
+}
+
+void load_fragment_templates(const std::filesystem::path& file, dem::World& w) {
+  const std::optional<std::string> bytes = read_file(file);
+  if (!bytes) throw CheckpointError("cannot read checkpoint " + file.string());
+  In in(checked_payload(*bytes, file.string()).first, file.string());
+  for (const char* tag : {"INFO", "RUN ", "STAT", "CELL", "MAKE"}) {
+    char t[5] = {};
+    std::memcpy(t, tag, 4);
+    in.skip_to(in.section(t));
+  }
+  Fragments made = read_fragments(in);
+  w.templates.resize(dem::built_templates(w));
+  for (dem::ShapeTemplate& t : made.templates) w.templates.push_back(std::move(t));
 }
 
 Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& w, std::uint64_t fingerprint, Restore how) {

@@ -75,6 +75,7 @@ FrameWriter::FrameWriter(fs::path dir, const dem::World& world, bool enabled) : 
 
 void FrameWriter::on_output(const dem::World& w, const dem::RunState& state) {
   if (!enabled_) return;
+  while (meshes_.size() < w.templates.size()) meshes_.push_back(display_mesh(w.templates[meshes_.size()]));  // fragments
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06llu.vtk", static_cast<unsigned long long>(state.outputs - 1));
   write_vtk_frame(dir_ / name, w, meshes_);
@@ -87,6 +88,7 @@ ViewWriter::ViewWriter(fs::path dir, const dem::World& world, bool enabled, std:
   if (!enabled_) return;
   fs::create_directories(dir_);
   write_file_atomically(view_shapes_file(dir_), encode(view_shapes(world)));
+  shapes_written_ = world.templates.size();
   std::string index = view_index_header();
   if (resumed_outputs > 0) {
     // The frames the checkpoint had stay; later ones are written again.
@@ -106,6 +108,10 @@ ViewWriter::ViewWriter(fs::path dir, const dem::World& world, bool enabled, std:
 
 void ViewWriter::on_output(const dem::World& w, const dem::RunState& state) {
   if (!enabled_) return;
+  if (w.templates.size() != shapes_written_) {  // fragments of broken grains: their shapes before the frame
+    write_file_atomically(view_shapes_file(dir_), encode(view_shapes(w)));
+    shapes_written_ = w.templates.size();
+  }
   const ViewFrame frame = view_frame(w, state.step);
   const std::uint64_t number = state.outputs - 1;
   write_file_atomically(view_frame_file(dir_, number), encode(frame));
@@ -224,6 +230,8 @@ void RunInfoWriter::write(const std::string& status, const dem::World& w, const 
   info["steps_total"] = state.steps_total;
   info["simulated_time"] = w.time;
   info["frames"] = state.outputs;
+  info["bodies_now"] = w.bodies.size();
+  if (w.broken > 0) info["grains_broken"] = w.broken;  // breakage (docs/breakage.md)
   info["wall_time_s"] = clock_.wall_seconds();
   write_file_atomically(file_, info.dump(2) + "\n");
 }

@@ -4,11 +4,13 @@
 // as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
-//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--bench] [--chromium PATH]
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--breakage-scene SCENE] [--bench] [--chromium PATH]
 //
 // --live-scene also opens a run of SCENE that is still going (stopped, then
 // resumed beside the open page) and checks that the page follows it;
-// --periodic-scene SCENE, that a periodic world's cell is drawn.
+// --periodic-scene SCENE, that a periodic world's cell is drawn;
+// --breakage-scene SCENE, that fragments of grains that break are drawn as
+// the run adds them.
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
@@ -382,6 +384,39 @@ async function runPeriodic(errors) {
   }
 }
 
+// 8. Grains that break: a run stopped after its first split is opened, then
+// resumed beside the page; frames naming the later fragments' shapes make
+// the page read shapes.bin again, and the last frame draws every fragment.
+async function runBreakage(errors) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_breakage_'));
+  try {
+    const stopped = spawnSync(args.gjkdem, ['run', args['breakage-scene'], '--out', dir, '--quiet', '--stop-after', '120']);
+    check(stopped.status === 130, `the press stops after 120 steps (exit ${stopped.status})`);
+    const s = serve(dir);
+    liveServer = s.proc;
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`breakage page error: ${e.message}`));
+    await page.goto(await s.url);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    const templatesBefore = await page.evaluate(() => window.gjkdemViewer.templateCount);
+    const resumed = spawnSync(args.gjkdem, ['run', '--resume', dir, '--quiet']);
+    check(resumed.status === 0, `the press resumes to its end (exit ${resumed.status})`);
+    const frames = JSON.parse(fs.readFileSync(path.join(dir, 'run.json'), 'utf8')).frames;
+    await page.waitForFunction((n) => window.gjkdemViewer.frameCount === n, frames, { timeout: 15_000 }).catch(() => {});
+    await page.evaluate((n) => window.gjkdemViewer.setFrame(n - 1), frames);
+    const shown = await page.evaluate(() => ({ bodies: window.gjkdemViewer.bodyCount, templates: window.gjkdemViewer.templateCount }));
+    check(shown.bodies === 16 && shown.templates > templatesBefore,
+      `the last frame draws the 16 fragments (${shown.bodies} bodies; ${templatesBefore} then ${shown.templates} shapes)`);
+    await shoot(page, 'breakage_fragments');
+    check(errors.length === 0, `no page error following the fragments${errors.length ? ': ' + errors.join('; ') : ''}`);
+    await page.close();
+  } finally {
+    liveServer?.kill();
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 try {
   const url = await startServer();
   browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
@@ -405,6 +440,7 @@ try {
   if (!args.bench) await runAddress(url, errors);
   if (args['live-scene'] && !args.bench) await runLive(errors);
   if (args['periodic-scene'] && !args.bench) await runPeriodic(errors);
+  if (args['breakage-scene'] && !args.bench) await runBreakage(errors);
 } catch (error) {
   check(false, error.stack ?? String(error));
 }

@@ -501,3 +501,31 @@ def test_shapes_take_the_scenes_vocabulary(repo, tmp_path):
         gjkdem.Shape("mesh", file=str(tmp_path / "none.stl"))
     with pytest.raises(ValueError, match="gjkdem.Surface"):
         gjkdem.Shape("surface", file="rock.obj")
+
+
+def test_grains_break_in_a_press_and_views_taken_before_stay_valid():
+    """A cube pressed between two plates breaks into fragments (docs/breakage.md):
+    the world gains bodies, keeps its volume, and views of its bodies taken
+    before the run still alias them (the builder reserved room for every
+    fragment)."""
+    s = gjkdem.Settings()
+    s.gravity = [0, 0, 0]
+    s.model = "volume"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("rock", density=2500, youngs_modulus=1e7, strength=2e4, weibull_modulus=5,
+                   strength_size=0.0124, unbreakable_below=0.0055, strength_seed=3)
+    down = b.add_motion(velocity=[0, 0, -0.05])
+    b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+    b.add_plane([0, 0, 0.01001], [0, 0, -1], "rock", motion=down)
+    b.add_body(gjkdem.Shape("box", half_extents=[0.005] * 3), "rock", position=[0, 0, 0.005])
+    w = b.build()
+    before = w.positions
+    dt = w.critical_time_step()
+    w.run(0.003, dt=dt)
+    assert w.grains_broken >= 3
+    assert w.body_count == 1 + w.grains_broken
+    assert before.ctypes.data == w.positions.ctypes.data  # the same memory: no reallocation
+    assert len(set(w.ids.tolist())) == w.body_count
+    with pytest.raises(ValueError, match="unbreakable_below"):
+        gjkdem.WorldBuilder(s).add_material("weak", density=2500, youngs_modulus=1e7, strength=1e4,
+                                            strength_size=0.01)

@@ -69,6 +69,11 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& world, std::uin
 void save_checkpoint(const std::filesystem::path& file, const dem::World& world, const Checkpoint& checkpoint,
                      std::uint64_t fingerprint);
 
+/// The fragments' templates of a checkpoint (grains that broke,
+/// docs/breakage.md) appended to a world made from the run's scene, after
+/// its own: what the run's frames name. Throws CheckpointError.
+void load_fragment_templates(const std::filesystem::path& file, dem::World& world);
+
 Checkpoint load_checkpoint(const std::filesystem::path& file, dem::World& world, std::uint64_t fingerprint,
                            Restore how = Restore::SameRun);
 

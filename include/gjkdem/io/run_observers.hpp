@@ -45,9 +45,12 @@ class FrameWriter : public dem::RunObserver {
   bool enabled_;
 };
 
-/// view/ (docs/view-format.md): the templates' surfaces once, then a compact
-/// frame and an index row at every output. A resumed run cuts the index back
-/// to the checkpoint's outputs and writes the later frames again.
+/// view/ (docs/view-format.md): the templates' surfaces, then a compact
+/// frame and an index row at every output; the surfaces are written again
+/// before a frame whose world has more templates (the fragments of grains
+/// that broke), so shapes.bin holds every template a frame names. A resumed
+/// run cuts the index back to the checkpoint's outputs and writes the later
+/// frames again.
 class ViewWriter : public dem::RunObserver {
  public:
   /// `resumed_outputs`: outputs the checkpoint had (0 for a new run).
@@ -57,6 +60,7 @@ class ViewWriter : public dem::RunObserver {
  private:
   std::filesystem::path dir_;
   std::ofstream index_;
+  std::size_t shapes_written_ = 0;  ///< templates in shapes.bin
   bool enabled_;
 };
 
