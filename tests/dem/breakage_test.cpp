@@ -9,7 +9,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
+#include "gjkdem/dem/break_criterion.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/checkpoint.hpp"
 
@@ -151,6 +153,59 @@ TEST(Breakage, ARunRestoredAcrossSplitsGivesTheSameBits) {
   EXPECT_EQ(restored.time, whole.time);
   for (std::size_t i = 0; i < whole.bodies.size(); ++i)
     EXPECT_EQ(std::memcmp(&restored.bodies[i], &whole.bodies[i], sizeof(Body)), 0) << "body " << i;
+}
+
+// Single-grain crushing (issue 31): cubes of sizes from 2 to 64 mm pressed
+// between platens. A cube loaded by forces F1 and F2 on opposite faces
+// feels the stress (F1 + F2) / (2 s^2) along the load (s its side: the
+// Love-Weber stress (F1 + F2) s / 2 / s^3), so it breaks when the platens'
+// mean force F = (F1 + F2) / 2 reaches strength(d) s^2 (F1 = F2 once the
+// press is slow; the plate's first touch is not), and its crushing stress
+// F / s^2 follows the size effect d^(-3/m) of its strength's Weibull
+// distribution: each grain within 5% of its own drawn strength (the step's
+// overshoot), and the slope of ln(F / s^2) against ln d fitted over 200
+// grains within 10% of -3/m.
+TEST(Breakage, CrushingStressesFollowTheSizeEffectOfTheirWeibullModulus) {
+  const Real m = 5, mean = 2e4, d0 = 0.0124;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<Real> log_side(std::log(0.002), std::log(0.064)), turn(0, kPi / 2);
+  Real sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const int grains = 200;
+  for (int g = 0; g < grains; ++g) {
+    const Real side = std::exp(log_side(rng));
+    WorldSettings settings;
+    settings.gravity = {};
+    settings.model = ContactModel::Volume;
+    WorldBuilder b(settings);
+    Material rock{.name = "rock", .density = 2500, .youngs_modulus = 1e7};
+    rock.strength = {.mean = mean, .weibull_modulus = m, .reference_size = d0, .smallest = side / 2,
+                     .seed = static_cast<std::uint64_t>(g)};
+    const std::uint32_t mat = b.add_material(rock);
+    const std::uint32_t down = b.add_motion({.velocity = {0, 0, -0.02 * side / 0.01}}, "press");
+    b.add_plane({0, 0, 0}, {0, 0, 1}, mat, "floor");
+    b.add_plane({0, 0, side * 1.001}, {0, 0, -1}, mat, "plate", down);
+    b.add_body({.shape = {Shape{Box{{side / 2, side / 2, side / 2}}}, {}}, .material = mat,
+                .position = {0, 0, side / 2}, .rotation = quat_from_axis_angle({0, 0, 1}, turn(rng)), .label = "cube"});
+    World w = b.build();
+    const ShapeTemplate& cube = w.templates[0];
+    const Real own = grain_strength(w.materials[0].strength, grain_size(cube), strength_draw(g, 0, 0));
+    const Real dt = critical_time_step(w);
+    Real force = 0;  // the mean of the platens' forces when it broke
+    for (int k = 0; k < 5000 && w.broken == 0; ++k) {
+      ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
+      if (w.broken > 0)
+        for (const StepContact& c : w.work.contacts)
+          if (c.active && c.a_is_plane) force += 0.5 * std::fabs(c.force.z);
+    }
+    ASSERT_EQ(w.broken, 1u) << "grain " << g << " of side " << side << " did not break";
+    const Real stress = force / (side * side);
+    EXPECT_NEAR(stress, own, 0.05 * own) << "grain " << g << " of side " << side;
+    const Real x = std::log(grain_size(cube)), y = std::log(stress);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const Real n = grains, slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  EXPECT_NEAR(slope, -3 / m, 0.1 * 3 / m) << "fitted slope " << slope;
+  RecordProperty("fitted_slope", std::to_string(slope));
 }
 
 TEST(Breakage, TheBuilderRefusesMoreFragmentsThanItCanHold) {
