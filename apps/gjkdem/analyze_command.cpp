@@ -75,8 +75,8 @@ int analyze_run(const AnalyzeOptions& opt) {
     if (progress) std::fprintf(stderr, "\ranalyze: frame %zu of %zu", done, todo);
   });
   if (progress) std::fprintf(stderr, "\n");
-  std::printf("gjkdem analyze: %zu frames (up to %zu bodies) in %.3f s (%.1f ms a frame); wrote %s/analysis/measures.csv "
-              ", normal_forces.csv and sizes.csv\n",
+  std::printf("gjkdem analyze: %zu frames (up to %zu bodies) in %.3f s (%.1f ms a frame); wrote %s/analysis/measures.csv, "
+              "normal_forces.csv and sizes.csv\n",
               s.frames, s.largest_frame, s.seconds, s.frames ? 1e3 * s.seconds / static_cast<double>(s.frames) : 0.0,
               opt.run.c_str());
   return 0;
