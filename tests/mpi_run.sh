@@ -90,6 +90,23 @@ for run in surface2 surface21; do
 done
 awk -F, 'END { exit !($6 > 10) }' surface1/energy.csv || fail "the surface grains made no contacts"
 
+# Grains that break as they land (docs/breakage.md): 2 ranks, and 2 ranks
+# stopped mid-breakage and resumed on 1, give the serial bytes.
+sed -e 's/^friction = 0.5$/friction = 0.5\nstrength = 300.0\nstrength_size = 0.01\nunbreakable_below = 0.006/' \
+  "$scene" > brittle.toml
+grep -q "^strength = 300.0" brittle.toml || fail "the brittle scene was not made"
+"$gjkdem" run brittle.toml --out brittle1 --quiet || fail "the serial brittle run did not complete"
+grep -q '"grains_broken": [1-9][0-9][0-9]' brittle1/run.json || fail "the brittle grains should break by the hundred"
+"${launch[@]}" -np 2 "$gjkdem" run brittle.toml --out brittle2 --quiet || fail "the brittle run on 2 ranks did not complete"
+same_run brittle1 brittle2
+set +e
+"${launch[@]}" -np 2 "$gjkdem" run brittle.toml --out brittle21 --quiet --stop-after 3000
+rc=$?
+set -e
+[ "$rc" -eq 130 ] || fail "the brittle run stopped on 2 ranks exited $rc"
+"$gjkdem" run --resume brittle21 --quiet || fail "the brittle run resumed on 1 rank did not complete"
+same_run brittle1 brittle21
+
 # Stopped on 3 ranks between checkpoints, resumed on 2.
 set +e
 "${launch[@]}" -np 3 "$gjkdem" run "$scene" --out three_two --quiet --stop-after 2500
@@ -195,4 +212,4 @@ grep -q "another rank" signalled/run.json || fail "run.json does not say another
 "${launch[@]}" -np 2 "$gjkdem" run --resume signalled --quiet || fail "the resume of the signalled run did not complete"
 same_run serial signalled
 
-echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper, surface grains, periodic shear and a servoed cell on 2 ranks"
+echo "mpi_run: serial = 2 ranks = 3 -> 2 = 1 -> 4 ranks; shaken floor, hopper, surface grains, breaking grains, periodic shear and a servoed cell on 2 ranks"

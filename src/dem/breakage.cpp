@@ -5,9 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/break_criterion.hpp"
 #include "gjkdem/dem/split_body.hpp"
 #include "gjkdem/shape/surface.hpp"
+#include "parallel.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -18,12 +20,6 @@ struct GrainLoad {
   Vec3 point, force;
 };
 
-// What a grain that breaks becomes.
-struct Split {
-  std::uint32_t body = 0;
-  std::vector<Fragment> fragments;
-  std::vector<ShapeTemplate> templates;  // one per fragment
-};
 
 }  // namespace
 
@@ -58,12 +54,13 @@ std::size_t built_templates(const World& w) noexcept {
   return n;
 }
 
-int break_grains(World& w) {
-  // The forces on each breakable grain, in the order of the contact list.
+std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
+  // The forces on each breakable grain (of the domain's own), in the order
+  // of the contact list.
   std::vector<std::uint8_t> can(w.bodies.size());
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
-    can[i] = breakable(w.templates[b.shape], w.materials[b.material], b);
+    can[i] = (!domain || domain->owns(i)) && breakable(w.templates[b.shape], w.materials[b.material], b);
   }
   std::vector<GrainLoad> loads;
   for (const StepContact& c : w.work.contacts) {
@@ -72,10 +69,9 @@ int break_grains(World& w) {
     if (can[c.b]) loads.push_back({c.b, c.geometry.point - image_shift_of(w.cell, c), c.force});
     if (!c.a_is_plane && can[c.a]) loads.push_back({c.a, c.geometry.point, -c.force});
   }
-  if (loads.empty()) return 0;
   std::stable_sort(loads.begin(), loads.end(), [](const GrainLoad& x, const GrainLoad& y) { return x.body < y.body; });
 
-  std::vector<Split> splits;
+  std::vector<GrainSplit> splits;
   std::vector<Vec3> points, forces;
   for (std::size_t k = 0; k < loads.size();) {
     const std::uint32_t i = loads[k].body;
@@ -87,54 +83,88 @@ int break_grains(World& w) {
     const BreakPlane plane = break_plane(grain_stress(b.position, t.unit_mass.volume, points, forces));
     const Real strength = grain_strength(m.strength, grain_size(t), strength_draw(m.strength.seed, b.id, t.generation));
     if (!(plane.deviatoric >= strength)) continue;
-    Split split{i, split_body(t, b, m.density, b.position, plane.normal), {}};
-    if (split.fragments.size() != 2) continue;
+    std::vector<Fragment> pieces = split_body(t, b, m.density, b.position, plane.normal);
+    if (pieces.size() != 2) continue;
+    GrainSplit split{.parent = b.id, .generation = t.generation + 1, .surface = t.surface != nullptr};
     try {
-      for (const Fragment& f : split.fragments)
-        split.templates.push_back(fragment_template(std::get<Polytope>(f.shape.core).data->vertices,
-                                                    t.generation + 1, t.surface != nullptr));
+      for (std::size_t f = 0; f < 2; ++f) {
+        const Fragment& piece = pieces[f];
+        split.fragments[f] = {.vertices = {}, .position = piece.position, .orientation = piece.orientation,
+                              .velocity = piece.velocity, .angular_momentum = piece.angular_momentum};
+        const std::span<const Vec3> v = std::get<Polytope>(piece.shape.core).data->vertices;
+        split.fragments[f].vertices.assign(v.begin(), v.end());
+        split.templates[f] = fragment_template(v, split.generation, split.surface);
+      }
     } catch (const std::invalid_argument&) {
       continue;  // a piece too thin to be a surface grain's partner: the grain holds
     }
     splits.push_back(std::move(split));
   }
-  if (splits.empty()) return 0;
-  // The builder's room (most_fragments) holds every fragment.
-  if (w.bodies.size() + splits.size() > w.bodies.capacity()) throw std::logic_error("break_grains: no room reserved");
+  return splits;
+}
 
-  // Fragments in id order: the first takes its grain's place and id, the
-  // second the next free id (the bodies stay in id order).
-  std::uint64_t next_id = w.bodies.back().id + 1;
+void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id, DomainRole* domain) {
+  // The builder's room (most_fragments) holds every fragment of a whole
+  // world; a copy of a world (a vector's copy keeps no spare room) takes it
+  // again at its first split.
+  if (!domain && w.bodies.size() + splits.size() > w.bodies.capacity()) {
+    std::size_t room = w.bodies.size() + splits.size();
+    for (const Body& b : w.bodies)
+      if (!b.fixed) room += most_fragments(w.templates[b.shape], w.materials[b.material]);
+    w.bodies.reserve(room);
+  }
   std::vector<std::uint64_t> broken_ids;
-  for (Split& s : splits) {
-    const Body parent = w.bodies[s.body];
+  for (GrainSplit& s : splits) {
+    const std::uint32_t first = static_cast<std::uint32_t>(w.templates.size());
+    for (ShapeTemplate& t : s.templates) w.templates.push_back(std::move(t));
+    const std::uint64_t second_id = next_id++;
+    broken_ids.push_back(s.parent);
+    // The grain, where this world holds it (a domain holds only some).
+    const auto at = std::lower_bound(w.bodies.begin(), w.bodies.end(), s.parent,
+                                     [](const Body& b, std::uint64_t id) { return b.id < id; });
+    if (at == w.bodies.end() || at->id != s.parent) continue;
+    const std::size_t i = static_cast<std::size_t>(at - w.bodies.begin());
+    const Body parent = *at;
     for (std::size_t f = 0; f < 2; ++f) {
-      const Fragment& piece = s.fragments[f];
-      w.templates.push_back(std::move(s.templates[f]));
+      const GrainSplit::Piece& piece = s.fragments[f];
       Body b = parent;
-      b.shape = static_cast<std::uint32_t>(w.templates.size() - 1);
+      b.shape = first + static_cast<std::uint32_t>(f);
       b.position = piece.position, b.orientation = piece.orientation;
       b.velocity = piece.velocity, b.angular_momentum = piece.angular_momentum;
       b.force = {}, b.torque = {};
       if (f == 0) {
-        w.bodies[s.body] = b;
+        w.bodies[i] = b;
       } else {
-        b.id = next_id++;
+        b.id = second_id;
         w.bodies.push_back(b);
+        if (domain) domain->foreign.push_back(domain->foreign[i]);  // owned where its grain was, until the exchange
       }
     }
-    broken_ids.push_back(parent.id);
   }
   // The grains' pairs are forgotten: their fragments' contacts start afresh.
+  std::sort(broken_ids.begin(), broken_ids.end());
   std::erase_if(w.pairs, [&](const PairState& p) {
     return std::binary_search(broken_ids.begin(), broken_ids.end(), p.key.lo) ||
            std::binary_search(broken_ids.begin(), broken_ids.end(), p.key.hi);
   });
   w.broken += splits.size();
-  w.forces_current = false;
-  w.search.boxes = {};  // every box remade at the next step
+  // Every box made again now, at the bodies' places (as a restored
+  // checkpoint makes them from these anchors), and the broad phase's lists
+  // built anew at the next step.
+  w.search.boxes = {};
+  update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, detail::thread_count(w.settings.threads));
   w.search.renew_cell = true;
+  w.work.static_ready = false;
   w.work.candidates_current = false;
+  w.forces_current = false;
+}
+
+int break_grains(World& w) {
+  std::vector<GrainSplit> splits = find_splits(w, nullptr);
+  if (splits.empty()) return 0;
+  // Fragments in id order: the first takes its grain's place and id, the
+  // second the next free id (the bodies stay in id order).
+  apply_splits(w, splits, w.bodies.back().id + 1, nullptr);
   return static_cast<int>(splits.size());
 }
 

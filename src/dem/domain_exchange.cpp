@@ -7,6 +7,7 @@
 
 #include "domain_records.hpp"
 #include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/domains.hpp"
 #include "gjkdem/dem/inflow.hpp"
 #include "gjkdem/dem/periodic.hpp"
@@ -60,6 +61,67 @@ std::uint64_t insert_inflow_bodies(World& w, StepContext& ctx, const DomainLayou
     role.foreign.push_back(layout.owner_of(b.position) == t.rank() ? 0 : 1);
   }
   return fresh.empty() ? kNone : first;
+}
+
+namespace {
+
+// A fragment as it travels (its hull's vertices follow the records).
+struct FragmentRecord {
+  std::uint64_t parent = 0;
+  std::uint32_t generation = 0;
+  std::uint32_t surface = 0;
+  std::uint64_t vertices = 0;
+  Vec3 position;
+  Quat orientation;
+  Vec3 velocity;
+  Vec3 angular_momentum;
+};
+static_assert(std::is_trivially_copyable_v<FragmentRecord>);
+
+}  // namespace
+
+int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool found) {
+  std::vector<FragmentRecord> records;
+  std::vector<Vec3> vertices;
+  if (found)
+    for (const GrainSplit& s : find_splits(w, &role))
+      for (const GrainSplit::Piece& p : s.fragments) {
+        records.push_back({s.parent, s.generation, s.surface ? 1u : 0u, p.vertices.size(), p.position, p.orientation,
+                           p.velocity, p.angular_momentum});
+        vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+      }
+  std::vector<std::uint64_t> top{w.bodies.empty() ? 0 : w.bodies.back().id + 1};
+  Writer m;
+  m.put(records), m.put(vertices), m.put(top);
+  std::vector<GrainSplit> splits;
+  std::uint64_t next_id = 0;
+  for (const std::string& message : all_gather(t, m.take())) {
+    Reader r(message);
+    std::vector<FragmentRecord> in;
+    std::vector<Vec3> points;
+    std::vector<std::uint64_t> their_top;
+    r.get(in), r.get(points), r.get(their_top);
+    next_id = std::max(next_id, their_top.at(0));
+    std::size_t at = 0;
+    for (std::size_t k = 0; k + 1 < in.size(); k += 2) {
+      GrainSplit s{.parent = in[k].parent, .generation = in[k].generation, .surface = in[k].surface != 0};
+      for (std::size_t f = 0; f < 2; ++f) {
+        const FragmentRecord& c = in[k + f];
+        if (at + c.vertices > points.size()) throw std::runtime_error("a domain message is shorter than its contents");
+        s.fragments[f] = {.vertices = std::vector<Vec3>(points.begin() + static_cast<std::ptrdiff_t>(at),
+                                                        points.begin() + static_cast<std::ptrdiff_t>(at + c.vertices)),
+                          .position = c.position, .orientation = c.orientation, .velocity = c.velocity,
+                          .angular_momentum = c.angular_momentum};
+        at += c.vertices;
+        s.templates[f] = fragment_template(s.fragments[f].vertices, s.generation, s.surface);
+      }
+      splits.push_back(std::move(s));
+    }
+  }
+  if (splits.empty()) return 0;
+  std::sort(splits.begin(), splits.end(), [](const GrainSplit& x, const GrainSplit& y) { return x.parent < y.parent; });
+  apply_splits(w, splits, next_id, &role);
+  return static_cast<int>(splits.size());
 }
 
 ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& layout, DomainTransport& t) {

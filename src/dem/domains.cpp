@@ -194,6 +194,9 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   };
   whole.pairs = std::move(pairs);
   whole.inflow_states = d.inflow_states;  // the same on every rank
+  // Fragments of broken grains: every domain holds every template.
+  for (std::size_t k = whole.templates.size(); k < d.templates.size(); ++k) whole.templates.push_back(d.templates[k]);
+  whole.broken = d.broken;
   whole.planes = d.planes;  // where their motions have them
   whole.work.motion_frames = d.work.motion_frames;
   whole.time = d.time;

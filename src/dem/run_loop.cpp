@@ -94,9 +94,6 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
   const bool root = t.rank() == 0;
-  if (t.size() > 1 && world_breaks(whole))  // every rank refuses alike, before any collective
-    throw std::invalid_argument("grains that break (a material with a strength) run on one rank only for now: "
-                                "run without mpirun, or with -n 1");
   Rank rank(whole, t);
   World& stepped = rank.stepped();
   StepContext ctx{.dt = state.dt, .domain = rank.role()};
@@ -111,6 +108,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   const bool deforming = whole.settings.cell_control.deforms();
   const bool driven = !whole.motions.empty() || deforming;
   const bool servo = whole.settings.cell_control.servo();
+  const bool breaks = world_breaks(whole);
   auto settle_wall_power = [&](Real work_before, bool step) {
     if (!rank.split()) return;
     if (servo) stepped.cell_stress = whole_cell_stress(stepped, t);
@@ -278,6 +276,20 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     if (failed.empty()) failed = failure_of(stepped, [&] { return finish_step(stepped, ctx); });
     mine.step_seconds += seconds_since(t0);
     settle_wall_power(work_before, true);
+    // Domains break their grains together, on the step's contacts (a whole
+    // world did at the end of finish_step).
+    // After splits the domains exchange, so that each holds the fragments
+    // near it (a fragment's box can reach where its grain's did not), and
+    // find the fragments' forces at once, as a whole world does.
+    if (rank.split() && breaks) {
+      const int broken = break_domain_grains(stepped, *ctx.domain, t, failed.empty());
+      if (broken > 0) {
+        rank.exchange();
+        if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+        settle_wall_power(stepped.wall_work, false);
+      }
+      stepped.stats.broken = broken;
+    }
     ++rank.steps;
     failed = agree(t, failed);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));

@@ -174,9 +174,17 @@ StepReport finish_step(World& w, StepContext& ctx) {
   const std::size_t kicked = std::min(ctx.kicked_bodies, w.bodies.size());
   kick(std::span(w.bodies).first(kicked), {w.templates, w.materials}, dt / 2, thread_count(w.settings.threads));
   w.wall_work += 0.5 * dt * (ctx.power_before + w.stats.wall_power);  // trapezoid rule
-  // Grains break between steps, on their step's forces (a domain run
-  // refuses breakage: run_loop.cpp).
-  if (!ctx.domain && world_breaks(w)) w.stats.broken = break_grains(w);
+  // Grains break at the step's end, on its forces; the fragments' forces
+  // are found at once (a domain run breaks its domains' grains in
+  // run_loop.cpp, together).
+  if (!ctx.domain && world_breaks(w)) {
+    const int broken = break_grains(w);
+    if (broken > 0) {
+      const StepReport again = compute_forces_now(w);
+      if (again.status != StepStatus::Ok) return again;
+    }
+    w.stats.broken = broken;
+  }
   return r;
 }
 

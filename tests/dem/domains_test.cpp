@@ -249,6 +249,29 @@ TEST(Domains, AnInflowGivesTheSerialBits) {
   }
 }
 
+// Grains that break as they land and pile up (docs/breakage.md): each
+// domain breaks those it owns, every rank appends every fragment's template
+// in id order, and the run keeps the serial bits.
+TEST(Domains, GrainsThatBreakGiveTheSerialBits) {
+  World world = pour(ContactModel::Volume);
+  world.materials[0].strength = {.mean = 2e3, .weibull_modulus = 3, .reference_size = 0.01, .smallest = 0.005};
+  world = WorldBuilder(std::move(world)).build();  // room for the fragments
+  const RunState plan = plan_run(0.1, critical_time_step(world), 0.005);
+  Recorder serial;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed) << whole.outcome.error;
+  ASSERT_GT(whole.world.broken, 10u);
+  RecordProperty("broken", std::to_string(whole.world.broken));
+  for (const int ranks : {2, 3}) {
+    Recorder domains;
+    const Ended split = run_on(ranks, world, plan, domains);
+    ASSERT_EQ(split.outcome.status, RunStatus::Completed);
+    expect_same(serial.outputs, domains.outputs, ranks);
+    EXPECT_EQ(split.world.broken, whole.world.broken);
+    EXPECT_EQ(split.world.templates.size(), whole.world.templates.size());
+  }
+}
+
 // Grains thrown sideways in a cell periodic across x and y, onto a floor:
 // they wrap around while they fall through the cuts, touching across the
 // cell's faces through their images; the cell's stress at the outputs is

@@ -6,6 +6,7 @@
 // second takes the next free id; fragments get templates of their own, added
 // after the builder's, and their draws of strength come from their
 // generation, so that a fragment is stronger as it is smaller.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -48,12 +49,45 @@ ShapeTemplate fragment_template(std::span<const Vec3> vertices, std::uint32_t ge
 /// 0, which come first.
 std::size_t built_templates(const World& world) noexcept;
 
+/// A grain that breaks and what it becomes: its two fragments' hulls (in
+/// the grain's shape frame), states and templates (made by
+/// fragment_template from those hulls, so a domain that is sent the hulls
+/// makes the same templates).
+struct GrainSplit {
+  std::uint64_t parent = 0;      ///< the grain's id
+  std::uint32_t generation = 0;  ///< of the fragments
+  bool surface = false;          ///< the fragments' templates take closed surfaces
+  struct Piece {
+    std::vector<Vec3> vertices;
+    Vec3 position;
+    Quat orientation;
+    Vec3 velocity;
+    Vec3 angular_momentum;
+  };
+  std::array<Piece, 2> fragments{};
+  std::array<ShapeTemplate, 2> templates{};
+};
+
+/// The grains whose stress at the last force evaluation reaches their
+/// strength, in id order: those of the world, or those a domain owns
+/// (`domain` not null), whose contacts it lists in full.
+std::vector<GrainSplit> find_splits(const World& world, const DomainRole* domain);
+
+/// Carries out `splits` (in id order): their templates appended in order,
+/// the first fragment of each in its grain's place with its id, the second
+/// appended with the next of the ids from `next_id`, the grains' pairs
+/// dropped, every box made again where the bodies are. A domain holding a grain (owned or
+/// not) places its fragments; every domain appends every template, so that
+/// template indices agree across ranks.
+void apply_splits(World& world, std::span<GrainSplit> splits, std::uint64_t next_id, DomainRole* domain);
+
 /// Splits every breakable grain of the world whose stress at the last force
 /// evaluation (world.work.contacts, whose forces are current) reaches its
 /// strength, in id order; its pairs' springs are dropped, its fragments
-/// start with no force (the world's forces are no longer current) and the
-/// boxes are remade at the next step. Returns how many grains broke. Not for
-/// domains of a domain run (the run refuses breakage on several ranks).
+/// start with no force (the world's forces are no longer current) and every
+/// box is made again where the bodies are. Returns how many grains broke. A
+/// domain run breaks its domains' grains with break_domain_grains
+/// (domains.hpp).
 int break_grains(World& world);
 
 }  // namespace gjkdem::dem

@@ -96,6 +96,15 @@ void gather_world(const World& domain, const DomainRole& role, DomainTransport& 
 std::uint64_t insert_inflow_bodies(World& domain, StepContext& context, const DomainLayout& layout,
                                    DomainTransport& transport);
 
+/// Breaks the grains whose stress reached their strength (breakage.hpp), as
+/// a whole world would: each domain finds those it owns, every rank is
+/// sent every split, and each places the fragments of the grains it holds
+/// and appends every fragment's template in id order (the same indices on
+/// every rank), with ids from the whole world's next one. All ranks call it
+/// together after finish_step (`found` false: a rank whose step failed
+/// offers none). Returns how many grains broke.
+int break_domain_grains(World& domain, DomainRole& role, DomainTransport& transport, bool found = true);
+
 /// The power of the driven walls and bodies, and of a deforming cell
 /// through the images, on the moving bodies at the last force evaluation,
 /// summed over every domain's contacts in the order a whole world sums them
