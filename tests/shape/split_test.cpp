@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include "gjkdem/shape/mass_properties.hpp"
@@ -68,6 +69,16 @@ TEST(Split, RandomPolyhedraCutByRandomPlanesKeepTheirMoments) {
     SCOPED_TRACE("trial " + std::to_string(trial));
     expect_conserved(p, s, size, 1e-12);
     expect_on_sides(s, n, offset, size);
+    // A piece's hull made again from its vertices is the piece, bit for bit:
+    // how a checkpoint makes a fragment's template again (breakage.hpp).
+    for (const Polytope* piece : {&*s.below, &*s.above}) {
+      const Polytope again = make_polytope(piece->data->vertices);
+      ASSERT_EQ(again.data->vertices.size(), piece->data->vertices.size());
+      EXPECT_EQ(std::memcmp(again.data->vertices.data(), piece->data->vertices.data(),
+                            piece->data->vertices.size() * sizeof(Vec3)), 0);
+      EXPECT_EQ(again.data->volume, piece->data->volume);
+      EXPECT_EQ(again.data->triangles.size(), piece->data->triangles.size());
+    }
   }
   EXPECT_GT(cuts, 280);
 }
