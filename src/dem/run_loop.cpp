@@ -277,10 +277,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     mine.step_seconds += seconds_since(t0);
     settle_wall_power(work_before, true);
     // Domains break their grains together, on the step's contacts (a whole
-    // world did at the end of finish_step).
-    // After splits the domains exchange, so that each holds the fragments
-    // near it (a fragment's box can reach where its grain's did not), and
-    // find the fragments' forces at once, as a whole world does.
+    // world does at the end of finish_step); after splits they exchange, so
+    // that each holds the fragments near it (a fragment's box can reach
+    // where its grain's did not), and find the fragments' forces at once.
     if (rank.split() && breaks) {
       const int broken = break_domain_grains(stepped, *ctx.domain, t, failed.empty());
       if (broken > 0) {
