@@ -53,11 +53,16 @@ std::vector<Fragment> split_body(const ShapeTemplate& t, const Body& b, Real den
   const Quat shape_q = shape_orientation(t, b);
   std::vector<Fragment> out;
   for (const Polytope& piece : {*pieces.below, *pieces.above}) {
+    // The piece about its own centroid: its shape frame is the grain's moved
+    // there (same axes), so that its reach, and its box, fit it.
+    const Vec3 centre = piece.data->centroid;
+    std::vector<Vec3> moved(piece.data->vertices.begin(), piece.data->vertices.end());
+    for (Vec3& v : moved) v -= centre;
     Fragment f;
-    f.shape = Shape{piece};
+    f.shape = Shape{make_polytope(moved)};
     f.unit_mass = mass_properties(f.shape);
     f.principal = principal_axes(f.unit_mass.inertia);
-    f.position = apply(pose, f.unit_mass.centroid);
+    f.position = apply(pose, centre + f.unit_mass.centroid);
     f.orientation = normalized(shape_q * f.principal.rotation);
     f.velocity = b.velocity + cross(spin, f.position - b.position);
     f.angular_momentum = principal_times(f.orientation, f.principal.moments * density, spin);

@@ -87,7 +87,14 @@ TEST(Breakage, ASplitKeepsMassMomentaAndEnergyAndCutsAlongThePress) {
   EXPECT_EQ(w.bodies[1].id, parent.id + 1);
   EXPECT_EQ(w.templates.size(), 3u);
   EXPECT_EQ(built_templates(w), 1u);
-  for (const Body& b : w.bodies) EXPECT_EQ(w.templates[b.shape].generation, 1u);
+  for (const Body& b : w.bodies) {
+    const ShapeTemplate& t = w.templates[b.shape];
+    EXPECT_EQ(t.generation, 1u);
+    // About its own centroid, so that its reach (and its box) fits it: a
+    // half cube reaches less far than the cube.
+    EXPECT_LT(length(t.unit_mass.centroid), 1e-12 * kHalf);
+    EXPECT_LT(t.reach, w.templates[0].reach);
+  }
   EXPECT_TRUE(w.pairs.empty());  // the cube's springs are forgotten
   // Pressed along z, the cube splits on a plane holding z (but for the
   // friction of its slide and spin): the fragments' centres lie side by side.

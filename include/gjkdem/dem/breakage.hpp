@@ -49,8 +49,8 @@ ShapeTemplate fragment_template(std::span<const Vec3> vertices, std::uint32_t ge
 /// 0, which come first.
 std::size_t built_templates(const World& world) noexcept;
 
-/// A grain that breaks and what it becomes: its two fragments' hulls (in
-/// the grain's shape frame), states and templates (made by
+/// A grain that breaks and what it becomes: its two fragments' hulls (about
+/// their centroids, on the grain's shape axes), states and templates (made by
 /// fragment_template from those hulls, so a domain that is sent the hulls
 /// makes the same templates).
 struct GrainSplit {

@@ -13,8 +13,8 @@
 namespace gjkdem::dem {
 
 struct Fragment {
-  Shape shape;               ///< the piece, a polytope in the parent's shape frame
-  MassProperties unit_mass;  ///< per unit density, in that frame
+  Shape shape;               ///< the piece, a polytope about its centroid (the parent's shape axes)
+  MassProperties unit_mass;  ///< per unit density, in that frame (its centroid at the origin, to round-off)
   PrincipalAxes principal;   ///< of unit_mass.inertia
   Vec3 position;             ///< centre of mass, world (m)
   Quat orientation;          ///< principal frame -> world
