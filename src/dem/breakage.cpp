@@ -20,7 +20,6 @@ struct GrainLoad {
   Vec3 point, force;
 };
 
-
 }  // namespace
 
 bool breakable(const ShapeTemplate& t, const Material& m, const Body& b) noexcept {
@@ -34,17 +33,23 @@ std::uint64_t most_fragments(const ShapeTemplate& t, const Material& m) noexcept
   return leaves < 1e18 ? static_cast<std::uint64_t>(leaves) - 1 : std::uint64_t{1} << 60;
 }
 
+Real most_fragments(const World& w) noexcept {
+  Real room = 0;
+  for (const Body& b : w.bodies)
+    if (!b.fixed) room += static_cast<Real>(most_fragments(w.templates[b.shape], w.materials[b.material]));
+  return room;
+}
+
 bool world_breaks(const World& w) noexcept {
   return std::any_of(w.materials.begin(), w.materials.end(), [](const Material& m) { return m.strength.mean > 0; });
 }
 
 Real grain_size(const ShapeTemplate& t) noexcept { return std::cbrt(6 * t.unit_mass.volume / kPi); }
 
-ShapeTemplate fragment_template(std::span<const Vec3> vertices, std::uint32_t generation, bool with_surface) {
-  const Polytope piece = make_polytope(vertices);
-  ShapeTemplate t = make_template(Shape{piece});
+ShapeTemplate fragment_template(const Polytope& solid, std::uint32_t generation, bool with_surface) {
+  ShapeTemplate t = make_template(Shape{solid});
   t.generation = generation;
-  if (with_surface) t.surface = std::make_shared<const Surface>(polytope_surface(piece));
+  if (with_surface) t.surface = std::make_shared<const Surface>(polytope_surface(solid));
   return t;
 }
 
@@ -91,9 +96,9 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
         const Fragment& piece = pieces[f];
         split.fragments[f] = {.vertices = {}, .position = piece.position, .orientation = piece.orientation,
                               .velocity = piece.velocity, .angular_momentum = piece.angular_momentum};
-        const std::span<const Vec3> v = std::get<Polytope>(piece.shape.core).data->vertices;
-        split.fragments[f].vertices.assign(v.begin(), v.end());
-        split.templates[f] = fragment_template(v, split.generation, split.surface);
+        const Polytope& solid = std::get<Polytope>(piece.shape.core);
+        split.fragments[f].vertices.assign(solid.data->vertices.begin(), solid.data->vertices.end());
+        split.templates[f] = fragment_template(solid, split.generation, split.surface);
       }
     } catch (const std::invalid_argument&) {
       continue;  // a piece too thin to be a surface grain's partner: the grain holds
@@ -107,12 +112,8 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
   // The builder's room (most_fragments) holds every fragment of a whole
   // world; a copy of a world (a vector's copy keeps no spare room) takes it
   // again at its first split.
-  if (!domain && w.bodies.size() + splits.size() > w.bodies.capacity()) {
-    std::size_t room = w.bodies.size() + splits.size();
-    for (const Body& b : w.bodies)
-      if (!b.fixed) room += most_fragments(w.templates[b.shape], w.materials[b.material]);
-    w.bodies.reserve(room);
-  }
+  if (!domain && w.bodies.size() + splits.size() > w.bodies.capacity())
+    w.bodies.reserve(w.bodies.size() + splits.size() + static_cast<std::size_t>(most_fragments(w)));
   std::vector<std::uint64_t> broken_ids;
   for (GrainSplit& s : splits) {
     const std::uint32_t first = static_cast<std::uint32_t>(w.templates.size());

@@ -113,7 +113,7 @@ int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool fou
                           .position = c.position, .orientation = c.orientation, .velocity = c.velocity,
                           .angular_momentum = c.angular_momentum};
         at += c.vertices;
-        s.templates[f] = fragment_template(s.fragments[f].vertices, s.generation, s.surface);
+        s.templates[f] = fragment_template(make_polytope(s.fragments[f].vertices), s.generation, s.surface);
       }
       splits.push_back(std::move(s));
     }

@@ -859,17 +859,13 @@ World WorldBuilder::build() {
   world_.material_pairs = make_material_table(world_.materials, settings_.model);
   // Room for every body the inflows can insert and every fragment breakage
   // can make: the bodies never move in memory.
-  Real room = static_cast<Real>(world_.bodies.size());  // a real: no overflow
-  const auto fragments = [&](std::uint32_t shape, std::uint32_t material) {
-    return static_cast<Real>(most_fragments(world_.templates[shape], world_.materials[material]));
-  };
-  for (const Body& b : world_.bodies)
-    if (!b.fixed) room += fragments(b.shape, b.material);
+  Real room = static_cast<Real>(world_.bodies.size()) + most_fragments(world_);  // a real: no overflow
   for (std::size_t k = 0; k < world_.inflows.size(); ++k) {
     const Inflow& f = world_.inflows[k];
     const std::uint64_t most = inflow_capacity(f, {world_.templates, world_.materials});
     Real each = 1;
-    for (const std::uint32_t t : f.templates) each = std::fmax(each, 1 + fragments(t, f.material));
+    for (const std::uint32_t t : f.templates)
+      each = std::fmax(each, 1 + static_cast<Real>(most_fragments(world_.templates[t], world_.materials[f.material])));
     room += static_cast<Real>(most - std::min(most, world_.inflow_states[k].inserted)) * each;
   }
   if (room > static_cast<Real>(kMostBodies))

@@ -146,7 +146,7 @@ Fragments read_fragments(In& in) {
     for (Vec3& v : vertices) v = in.vec();
     if (generation == 0 || vertices.size() < 4) in.fail("a fragment's template is not valid");
     try {
-      t = dem::fragment_template(vertices, generation, surface);
+      t = dem::fragment_template(make_polytope(vertices), generation, surface);
     } catch (const std::invalid_argument&) {
       in.fail("a fragment's template is not valid");
     }
@@ -514,11 +514,9 @@ void load_fragment_templates(const std::filesystem::path& file, dem::World& w) {
   const std::optional<std::string> bytes = read_file(file);
   if (!bytes) throw CheckpointError("cannot read checkpoint " + file.string());
   In in(checked_payload(*bytes, file.string()).first, file.string());
-  for (const char* tag : {"INFO", "RUN ", "STAT", "CELL", "MAKE"}) {
-    char t[5] = {};
-    std::memcpy(t, tag, 4);
-    in.skip_to(in.section(t));
-  }
+  // The sections before FRAG, skipped.
+  in.skip_to(in.section("INFO")), in.skip_to(in.section("RUN ")), in.skip_to(in.section("STAT"));
+  in.skip_to(in.section("CELL")), in.skip_to(in.section("MAKE"));
   Fragments made = read_fragments(in);
   w.templates.resize(dem::built_templates(w));
   for (dem::ShapeTemplate& t : made.templates) w.templates.push_back(std::move(t));

@@ -30,6 +30,8 @@ bool breakable(const ShapeTemplate& t, const Material& m, const Body& b) noexcep
 /// reserves room for them: the bodies never move in memory (Python's views
 /// of them stay valid).
 std::uint64_t most_fragments(const ShapeTemplate& t, const Material& m) noexcept;
+/// The same, summed over the world's moving bodies (a real: no overflow).
+Real most_fragments(const World& world) noexcept;
 
 /// Whether any material of the world has a strength (then every step ends
 /// with break_grains).
@@ -39,11 +41,13 @@ bool world_breaks(const World& world) noexcept;
 /// volume (m).
 Real grain_size(const ShapeTemplate& t) noexcept;
 
-/// A fragment's template: the hull of `vertices` (in the fragment's shape
-/// frame), its generation, and its closed surface where the world has
-/// surface grains. The one way a fragment's template is made, at the split
-/// and from a checkpoint, so that both give the same bits.
-ShapeTemplate fragment_template(std::span<const Vec3> vertices, std::uint32_t generation, bool with_surface);
+/// A fragment's template: its solid (in the fragment's shape frame), its
+/// generation, and its closed surface where the world has surface grains.
+/// The one way a fragment's template is made: at the split from the piece
+/// itself, elsewhere (a checkpoint, another rank) from make_polytope of the
+/// piece's vertices, which gives the piece again bit for bit
+/// (tests/shape/split_test.cpp).
+ShapeTemplate fragment_template(const Polytope& solid, std::uint32_t generation, bool with_surface);
 
 /// How many of the world's templates its builder made: those of generation
 /// 0, which come first.
