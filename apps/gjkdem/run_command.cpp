@@ -183,7 +183,13 @@ int run_simulation(const RunOptions& opt) {
       std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
       return 0;
     }
-    if (!started("")) {
+    // Bonds join bodies that domains may hold apart (docs/breakage.md).
+    const std::string refusal = domains && !run->scene.world.bonds.empty()
+                                    ? "bonded assemblies run on one rank for now (a bond's two pieces may lie in "
+                                      "two domains): run it without mpirun"
+                                    : "";
+    if (!started(refusal)) {
+      if (!refusal.empty()) throw std::runtime_error(refusal);
       std::cerr << "gjkdem: error: another rank could not start the run\n";
       return 2;
     }
@@ -217,6 +223,9 @@ int run_simulation(const RunOptions& opt) {
         if (!opt.quiet)
           std::cerr << "gjkdem: completed " << run->state.step << " steps (" << world.bodies.size() << " bodies"
                     << (world.broken > 0 ? ", " + std::to_string(world.broken) + " grains broken" : std::string())
+                    << (world.bonds.empty() ? std::string()
+                                            : ", " + std::to_string(dem::broken_bonds(world.bonds)) + " of " +
+                                                  std::to_string(world.bonds.size()) + " bonds broken")
                     << ") in " << io::duration_text(run->wall_seconds()) << "; results in "
                     << run->folder.dir.string() << "\n";
         return 0;

@@ -291,7 +291,9 @@ void bind_world(py::module_& m) {
           [](dem::WorldBuilder& b, const std::string& name, double density, double youngs_modulus,
              double poisson_ratio, double restitution, double friction, double rolling_friction,
              double rolling_damping, double strength, double weibull_modulus, double strength_size,
-             double unbreakable_below, std::uint64_t strength_seed) {
+             double unbreakable_below, std::uint64_t strength_seed, double bond_tensile_strength,
+             double bond_shear_strength, double bond_normal_stiffness, double bond_shear_stiffness,
+             double bond_damping) {
             return b.add_material({.name = name,
                                    .density = density,
                                    .youngs_modulus = youngs_modulus,
@@ -304,7 +306,12 @@ void bind_world(py::module_& m) {
                                                 .weibull_modulus = weibull_modulus,
                                                 .reference_size = strength_size,
                                                 .smallest = unbreakable_below,
-                                                .seed = strength_seed}});
+                                                .seed = strength_seed},
+                                   .glue = {.tensile_strength = bond_tensile_strength,
+                                            .shear_strength = bond_shear_strength,
+                                            .normal_stiffness = bond_normal_stiffness,
+                                            .shear_stiffness = bond_shear_stiffness,
+                                            .damping = bond_damping}});
           },
           py::arg("name"), py::arg("density"), py::arg("youngs_modulus"),
           py::arg("poisson_ratio") = dem::Material{}.poisson_ratio, py::arg("restitution") = dem::Material{}.restitution,
@@ -312,8 +319,39 @@ void bind_world(py::module_& m) {
           py::arg("rolling_damping") = dem::Material{}.rolling_damping, py::arg("strength") = 0.0,
           py::arg("weibull_modulus") = dem::Strength{}.weibull_modulus, py::arg("strength_size") = 0.0,
           py::arg("unbreakable_below") = 0.0, py::arg("strength_seed") = dem::Strength{}.seed,
+          py::arg("bond_tensile_strength") = 0.0, py::arg("bond_shear_strength") = 0.0,
+          py::arg("bond_normal_stiffness") = 0.0, py::arg("bond_shear_stiffness") = 0.0,
+          py::arg("bond_damping") = dem::Glue{}.damping,
           "Returns the material's index (the defaults are a scene's: dem::Material). A strength > 0 (Pa, the "
-          "mean at strength_size, m) lets its polyhedral grains break (docs/breakage.md).")
+          "mean at strength_size, m) lets its polyhedral grains break; a bond_tensile_strength > 0 (Pa, with a "
+          "bond_shear_strength) glues the pieces of its bonded assemblies (docs/breakage.md).")
+      .def(
+          "add_bonded",
+          [](dem::WorldBuilder& b, const py::object& shape_object, const py::object& material, std::int64_t pieces,
+             std::int64_t seed, std::int64_t relaxations, const py::object& position, const py::object& rotation,
+             const py::object& velocity, const py::object& angular_velocity, const std::string& label) {
+            const std::string who = label.empty() ? "bonded assembly" : label;
+            if (pieces < 2 || pieces > dem::kMaxBondedPieces)
+              throw dem::BuildError(who, "pieces", "must be between 2 and " + std::to_string(dem::kMaxBondedPieces));
+            if (seed < 0) throw dem::BuildError(who, "seed", "must be >= 0");
+            if (relaxations < 0 || relaxations > 100) throw dem::BuildError(who, "relaxations", "must be between 0 and 100");
+            return b.add_bonded({.shape = body_shape(shape_object, "shape"),
+                                 .pieces = static_cast<std::uint32_t>(pieces),
+                                 .seed = static_cast<std::uint64_t>(seed),
+                                 .relaxations = static_cast<int>(relaxations),
+                                 .material = material_index(b, material),
+                                 .position = to_vec3(position, "position"),
+                                 .rotation = to_quat(rotation, "rotation"),
+                                 .velocity = to_vec3(velocity, "velocity"),
+                                 .angular_velocity = to_vec3(angular_velocity, "angular_velocity"),
+                                 .label = label});
+          },
+          py::arg("shape"), py::arg("material"), py::arg("pieces"), py::arg("seed") = 1, py::arg("relaxations") = 3,
+          py::arg("position") = std::array<double, 3>{0, 0, 0}, py::arg("rotation") = std::array<double, 4>{1, 0, 0, 0},
+          py::arg("velocity") = std::array<double, 3>{0, 0, 0},
+          py::arg("angular_velocity") = std::array<double, 3>{0, 0, 0}, py::arg("label") = "",
+          "A bonded assembly: the convex `shape` cut into `pieces` Voronoi pieces, each a body, glued at the faces\n"
+          "they share by the material's bonds (docs/breakage.md). Returns the pieces' indices.")
       .def(
           "add_body",
           [](py::object self, const py::object& shape_object, const py::object& material, const py::object& position,
@@ -724,6 +762,10 @@ void bind_world(py::module_& m) {
           "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, the work driven\n"
           "walls and bodies did on the others so far, and the energy inserted bodies brought in (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
+      .def_property_readonly("bonds", [](const World& w) { return w.bonds.size(); },
+                             "Bonds of the world's bonded assemblies (docs/breakage.md), intact or broken.")
+      .def_property_readonly("bonds_broken", [](const World& w) { return dem::broken_bonds(w.bonds); },
+                             "Bonds broken so far.")
       .def_property_readonly("grains_broken", [](const World& w) { return w.broken; },
                              "Grains that broke so far (docs/breakage.md); each added a body.")
       .def(

@@ -62,10 +62,17 @@ std::size_t built_templates(const World& w) noexcept {
 std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
   // The forces on each breakable grain (of the domain's own), in the order
   // of the contact list.
+  // A piece of a bonded assembly splits only once its bonds have broken
+  // (its bonds hold it by points of its own body).
+  std::vector<std::uint64_t> held;
+  for (const Bond& bond : w.bonds)
+    if (bond.intact) held.push_back(bond.a), held.push_back(bond.b);
+  std::sort(held.begin(), held.end());
   std::vector<std::uint8_t> can(w.bodies.size());
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
-    can[i] = (!domain || domain->owns(i)) && breakable(w.templates[b.shape], w.materials[b.material], b);
+    can[i] = (!domain || domain->owns(i)) && breakable(w.templates[b.shape], w.materials[b.material], b) &&
+             !std::binary_search(held.begin(), held.end(), b.id);
   }
   std::vector<GrainLoad> loads;
   for (const StepContact& c : w.work.contacts) {

@@ -93,6 +93,10 @@ class Rank {
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers, DomainTransport& t,
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
+  // Bonds join bodies that domains may hold apart: refused on every rank
+  // alike, before any exchange (docs/breakage.md).
+  if (t.size() > 1 && !whole.bonds.empty())
+    return {RunStatus::Failed, "bonded assemblies run on one rank for now (a bond's two pieces may lie in two domains)"};
   const bool root = t.rank() == 0;
   Rank rank(whole, t);
   World& stepped = rank.stepped();

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "gjkdem/dem/rigid_rotation.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/shape/split.hpp"
 
 namespace gjkdem::dem {
@@ -12,14 +13,7 @@ namespace {
 std::optional<Polytope> solid_polytope_of(const ShapeTemplate& t) {
   if (!can_split(t)) return std::nullopt;
   if (const Polytope* p = std::get_if<Polytope>(&t.shape.core)) return *p;
-  if (const Box* box = std::get_if<Box>(&t.shape.core)) {
-    std::vector<Vec3> corners;
-    for (int k = 0; k < 8; ++k)
-      corners.push_back({k & 1 ? box->half_extents.x : -box->half_extents.x,
-                         k & 2 ? box->half_extents.y : -box->half_extents.y,
-                         k & 4 ? box->half_extents.z : -box->half_extents.z});
-    return make_polytope(corners);
-  }
+  if (const Box* box = std::get_if<Box>(&t.shape.core)) return box_polytope(*box);
   return std::nullopt;
 }
 

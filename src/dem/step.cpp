@@ -61,9 +61,15 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
 
   std::vector<StepContact>& contacts = work.contacts;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
+  const bool held = std::any_of(w.bonds.begin(), w.bonds.end(), [](const Bond& b) { return b.intact; });
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
+    if (!c.a_is_plane && held && bonded(w.bonds, std::min(w.bodies[c.a].id, w.bodies[c.b].id),
+                                        std::max(w.bodies[c.a].id, w.bodies[c.b].id))) {
+      c.geometry = {};  // an intact bond carries the pair's load (bonds.hpp)
+      continue;
+    }
     if (c.surface) {  // found by expand_surface_contacts
       w.pairs[k].anchor = c.anchor;
       continue;
@@ -114,6 +120,11 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   w.stats = detail::sum_forces(contacts, w.bodies, w.pairs, w.planes, work.motion_frames, w.cell, w.cell_rate,
                                w.cell_stress);
   w.stats.box_updates = static_cast<int>(updated);
+  if (held) {
+    const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time);
+    w.stats.elastic_energy += bonds.elastic;
+    w.stats.bonds_broken = bonds.broke;
+  }
   w.forces_current = true;
   return {};
 }

@@ -103,7 +103,8 @@ Real critical_time_step(const World& w) {
     }
     best = std::fmin(best, dt);
   }
-  return best;
+  // The bonds' springs (bonds.hpp), by the same rule.
+  return std::fmin(best, bond_time_step(w.bonds, w.bodies, {w.templates, w.materials}));
 }
 
 }  // namespace gjkdem::dem

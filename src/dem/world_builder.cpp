@@ -76,6 +76,16 @@ void check_material(const Material& m) {
     need(s.smallest > 0, who, "unbreakable_below",
          "must be given, > 0 (m): grains smaller than this no longer break, which ends the cascade");
   }
+  const Glue& g = m.glue;
+  for (const auto& [key, v] : {std::pair{"bond_tensile_strength", g.tensile_strength},
+                               {"bond_shear_strength", g.shear_strength},
+                               {"bond_normal_stiffness", g.normal_stiffness},
+                               {"bond_shear_stiffness", g.shear_stiffness}})
+    need(std::isfinite(v) && v >= 0, who, key, "must be finite and >= 0");
+  need(std::isfinite(g.damping) && g.damping >= 0 && g.damping <= 1, who, "bond_damping", "must lie in [0, 1]");
+  if (g.tensile_strength > 0)
+    need(g.shear_strength > 0, who, "bond_shear_strength",
+         "must be given, > 0 (Pa), with a bond_tensile_strength");
 }
 
 void check_contact_settings(const WorldSettings& s) {
@@ -852,6 +862,8 @@ World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
   check_periodic_cell();
+  if (!world_.bonds.empty() && world_.cell.active())
+    throw BuildError("bonded assemblies cannot be in a periodic world yet (their bonds do not wrap)");
   prepare_shapes();
   prepare_surfaces();
   check_explicit_bodies();

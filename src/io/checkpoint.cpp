@@ -16,7 +16,7 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 8. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 9. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
     "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
     "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); MAKE count, per shape "
@@ -25,7 +25,7 @@ constexpr const char* kInfo =
     "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
-    "spring(3) twist roll(3) patch anchor(3); LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
+    "spring(3) twist roll(3) patch anchor(3); BOND count, per bond a(u64) b(u64) intact(u8) broken_time; LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
     "length, bytes) time.";
 
 class Out {
@@ -270,6 +270,10 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
     o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll), o.vec(p.anchor);
   }
   o.end(s);
+  s = o.begin("BOND");  // what a bond's state holds beyond what the builder made: whether it broke, and when
+  o.u64(w.bonds.size());
+  for (const dem::Bond& b : w.bonds) o.u64(b.a), o.u64(b.b), o.u8(b.intact), o.real(b.broken_time);
+  o.end(s);
   s = o.begin("LOGS");
   o.u64(c.logs.trace_bytes), o.u64(c.logs.energy_bytes), o.u64(c.logs.cell_bytes), o.real(c.logs.wall_seconds);
   o.u64(c.logs.frames.size());
@@ -468,6 +472,20 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   for (std::size_t k = 1; k < pairs.size(); ++k)
     if (!(pairs[k - 1].key < pairs[k].key)) in.fail("pairs out of order");
   in.close(end, "PAIR");
+  end = in.section("BOND");
+  std::vector<dem::Bond> bonds = w.bonds;
+  if (const std::uint64_t saved = in.count(2 * 8 + 1 + 8); saved != bonds.size())
+    refuse("the scene has " + std::to_string(bonds.size()) + " bonds, the checkpoint " + std::to_string(saved));
+  for (dem::Bond& b : bonds) {
+    const std::uint64_t a = in.u64(), other = in.u64();
+    if (a != b.a || other != b.b) refuse("the bond of bodies " + std::to_string(b.a) + " and " + std::to_string(b.b) +
+                                         " is another bond in the checkpoint");
+    const std::uint8_t intact = in.u8();
+    const Real when = in.real();
+    if (intact > 1 || !std::isfinite(when)) in.fail("a bond's state is not valid");
+    b.intact = intact, b.broken_time = when;
+  }
+  in.close(end, "BOND");
   end = in.section("LOGS");
   c.logs.trace_bytes = in.u64(), c.logs.energy_bytes = in.u64(), c.logs.cell_bytes = in.u64();
   c.logs.wall_seconds = in.real();
@@ -482,6 +500,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.broken = broken;
   w.inflow_states = std::move(flows);
   w.pairs = std::move(pairs);
+  w.bonds = std::move(bonds);
   w.time = time;
   w.forces_current = forces_current;
   w.stats = stats;

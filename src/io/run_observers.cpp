@@ -232,6 +232,7 @@ void RunInfoWriter::write(const std::string& status, const dem::World& w, const 
   info["frames"] = state.outputs;
   info["bodies_now"] = w.bodies.size();
   if (w.broken > 0) info["grains_broken"] = w.broken;  // breakage (docs/breakage.md)
+  if (!w.bonds.empty()) info["bonds"] = w.bonds.size(), info["bonds_broken"] = dem::broken_bonds(w.bonds);
   info["wall_time_s"] = clock_.wall_seconds();
   write_file_atomically(file_, info.dump(2) + "\n");
 }

@@ -299,6 +299,11 @@ class SceneBuilder {
       if (*seed < 0) r.fail("strength_seed", "must be >= 0");
       st.seed = static_cast<std::uint64_t>(*seed);
     }
+    dem::Glue& g = m.glue;  // bonded assemblies (docs/breakage.md)
+    for (auto [key, value] : {std::pair{"bond_tensile_strength", &g.tensile_strength},
+                              {"bond_shear_strength", &g.shear_strength}, {"bond_normal_stiffness", &g.normal_stiffness},
+                              {"bond_shear_stiffness", &g.shear_stiffness}, {"bond_damping", &g.damping}})
+      *value = r.number(key).value_or(*value);
     building(r, [&] { return builder_->add_material(m); });
     Json& resolved = resolved_["material"].emplace_back(
         Json{{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
@@ -308,6 +313,10 @@ class SceneBuilder {
       resolved.update({{"strength", st.mean}, {"weibull_modulus", st.weibull_modulus},
                        {"strength_size", st.reference_size}, {"unbreakable_below", st.smallest},
                        {"strength_seed", st.seed}});
+    if (g.tensile_strength > 0)
+      resolved.update({{"bond_tensile_strength", g.tensile_strength}, {"bond_shear_strength", g.shear_strength},
+                       {"bond_normal_stiffness", g.normal_stiffness}, {"bond_shear_stiffness", g.shear_stiffness},
+                       {"bond_damping", g.damping}});
   }
 
   std::uint32_t material_of(TableReader& r) {
@@ -515,6 +524,9 @@ class SceneBuilder {
     } else if (type == "compound") {
       s.parts = compound_parts(r, *t);
       r.finish();
+    } else if (type == "bonded") {
+      r.fail("type", "\"bonded\" is the shape of a [[body]] only (written in it, not named in [shapes]; generators, "
+                     "inflows and compounds take single shapes)");
     } else {
       std::ostringstream json;
       json << toml::json_formatter{*t};
@@ -532,6 +544,11 @@ class SceneBuilder {
   }
 
   void read_body(TableReader& r) {
+    if (const toml::node* n = r.find("shape"); n && n->is_table()) {
+      const toml::table& t = *n->as_table();
+      if (t.get("type") && t.get("type")->value<std::string>() == std::optional<std::string>("bonded"))
+        return read_bonded_body(r, t);
+    }
     dem::BodyDef d;
     d.label = r.where();
     const std::optional<std::string> name = r.string("name");
@@ -562,6 +579,42 @@ class SceneBuilder {
     if (name) j["name"] = *name;
     if (d.motion) j["motion"] = motion_json["motion"];
     resolved_["body"].push_back(j);
+  }
+
+  // A body whose shape is { type = "bonded", shape = SHAPE, pieces = N,
+  // seed, relaxations }: a bonded assembly of N pieces (docs/breakage.md).
+  void read_bonded_body(TableReader& r, const toml::table& table) {
+    TableReader b(table, r.where() + ".shape");
+    b.required_string("type");
+    dem::BondedDef d;
+    d.label = r.where();
+    d.shape = read_shape(b, "shape");
+    const std::int64_t pieces = b.integer("pieces").value_or(0);
+    if (pieces < 2 || pieces > dem::kMaxBondedPieces)
+      b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
+    d.pieces = static_cast<std::uint32_t>(pieces);
+    const std::int64_t seed = b.integer("seed").value_or(1);
+    if (seed < 0) b.fail("seed", "must be >= 0");
+    d.seed = static_cast<std::uint64_t>(seed);
+    const std::int64_t relaxations = b.integer("relaxations").value_or(3);
+    if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
+    d.relaxations = static_cast<int>(relaxations);
+    b.finish();
+    d.material = material_of(r);
+    for (const char* key : {"name", "fixed", "motion"})
+      if (r.has(key)) r.fail(key, "is not for a bonded assembly (its pieces move, each a body of its own)");
+    d.position = r.vec3("position").value_or(Vec3{});
+    d.rotation = r.rotation("rotation").value_or(Quat{});
+    d.velocity = r.vec3("velocity").value_or(Vec3{});
+    d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
+    const std::vector<std::uint32_t> indices = building(r.table_node(), [&] { return builder_->add_bonded(d); });
+    for (const std::uint32_t index : indices) body_lines_[index] = r.table_node().source().begin.line;
+    resolved_["body"].push_back(
+        Json{{"shape", {{"type", "bonded"}, {"shape", "(as given)"}, {"pieces", d.pieces}, {"seed", d.seed},
+                        {"relaxations", d.relaxations}}},
+             {"material", r.required_string("material")}, {"position", to_json(d.position)},
+             {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
+             {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", false}});
   }
 
   // A region { min, max } of a generator or an inflow; `strict`: max must

@@ -4,7 +4,9 @@
 #include <immintrin.h>
 #endif
 
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <new>
 #include <stdexcept>
@@ -189,5 +191,12 @@ int scan_support_index_wide(const PolytopeData& s, const Vec3& d) noexcept {
 }
 
 }  // namespace detail
+
+Real facet_distance(const PolytopeData& d, const Vec3& p) noexcept {
+  Real most = -std::numeric_limits<Real>::infinity();
+  for (std::size_t f = 0; f + 1 < d.facet_begin.size(); ++f)
+    most = std::fmax(most, dot(d.facet_normals[f], p - d.vertices[d.facet_vertices[d.facet_begin[f]]]));
+  return most;
+}
 
 }  // namespace gjkdem

@@ -45,6 +45,13 @@ Shape random_polyhedron(int vertices, Real diameter, std::mt19937_64& rng) {
   return scaled_polytope(points, diameter);
 }
 
+Polytope box_polytope(const Box& box) {
+  const Vec3 h = box.half_extents;
+  std::vector<Vec3> corners;
+  for (int k = 0; k < 8; ++k) corners.push_back({k & 1 ? h.x : -h.x, k & 2 ? h.y : -h.y, k & 4 ? h.z : -h.z});
+  return make_polytope(corners);
+}
+
 Shape scaled(const Shape& shape, Real k) {
   Shape out = shape;
   out.margin = shape.margin * k;

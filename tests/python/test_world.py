@@ -529,3 +529,38 @@ def test_grains_break_in_a_press_and_views_taken_before_stay_valid():
     with pytest.raises(ValueError, match="unbreakable_below"):
         gjkdem.WorldBuilder(s).add_material("weak", density=2500, youngs_modulus=1e7, strength=1e4,
                                             strength_size=0.01)
+
+
+def test_a_bonded_assembly_cracks_when_dropped_and_its_bad_values_are_refused():
+    """A box cut into 12 glued pieces (docs/breakage.md): it holds together
+    resting on a floor and cracks, some bonds and not all, dropped at 1 m/s;
+    bad pieces, seeds and glue are ValueErrors naming the key."""
+    def drop(speed):
+        s = gjkdem.Settings()
+        s.model = "volume"
+        b = gjkdem.WorldBuilder(s)
+        b.add_material("rock", density=2500, youngs_modulus=1e7, bond_tensile_strength=3e4,
+                       bond_shear_strength=3e4, bond_damping=0.2)
+        b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+        pieces = b.add_bonded(gjkdem.Shape("box", half_extents=[0.01, 0.006, 0.008]), "rock", pieces=12, seed=5,
+                              position=[0, 0, 0.0081], velocity=[0.01, 0, -speed])
+        assert list(pieces) == list(range(12))
+        return b.build()
+    w = drop(0.0)
+    w.run(0.005, dt=w.critical_time_step())
+    assert w.bonds >= 11 and w.bonds_broken == 0
+    w = drop(1.0)
+    w.run(0.02, dt=w.critical_time_step())
+    assert 0 < w.bonds_broken < w.bonds
+    b = gjkdem.WorldBuilder()
+    b.add_material("rock", density=2500, youngs_modulus=1e7, bond_tensile_strength=3e4, bond_shear_strength=3e4)
+    box = gjkdem.Shape("box", half_extents=[0.01] * 3)
+    for kwargs, key in [({"pieces": 1}, "pieces"), ({"pieces": -5}, "pieces"), ({"pieces": 4, "seed": -1}, "seed"),
+                        ({"pieces": 4, "relaxations": 1000}, "relaxations")]:
+        with pytest.raises(ValueError, match=key):
+            b.add_bonded(box, "rock", **kwargs)
+    with pytest.raises(ValueError, match="bond_shear_strength"):
+        b.add_material("half", density=2500, youngs_modulus=1e7, bond_tensile_strength=3e4)
+    b.add_material("plain", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="no glue"):
+        b.add_bonded(box, "plain", pieces=4)

@@ -27,6 +27,26 @@ struct Strength {
   std::uint64_t seed = 1;       ///< keys the draws (with each grain's id and generation)
 };
 
+/// The glue of bonded assemblies made of a material (bonds.hpp,
+/// docs/breakage.md): a bond between two pieces is a face of area A that
+/// resists their relative motion with springs per unit area, and breaks for
+/// good when the tensile or shear stress at the face's rim reaches its
+/// strength. A material without a tensile strength makes no bonds.
+struct Glue {
+  Real tensile_strength = 0;  ///< Pa, >= 0; 0: no bonds
+  Real shear_strength = 0;    ///< Pa, > 0 where tensile_strength > 0
+  /// Normal stiffness per unit area (Pa/m), >= 0; 0: E / l, with l the
+  /// distance between the two pieces' centres (a bar of the material
+  /// spanning them).
+  Real normal_stiffness = 0;
+  /// Shear stiffness per unit area (Pa/m), >= 0; 0: the normal one over
+  /// 2 (1 + nu) (the ratio of the shear to Young's modulus).
+  Real shear_stiffness = 0;
+  /// Damping ratio of the bond's springs against the pair's reduced mass
+  /// and moment of inertia, in [0, 1].
+  Real damping = 0.1;
+};
+
 struct Material {
   std::string name;
   Real density = 2500;          ///< kg/m^3, > 0
@@ -43,6 +63,8 @@ struct Material {
   Real rolling_damping = 0.3;
   /// Breakage (docs/breakage.md); by default the grains never break.
   Strength strength{};
+  /// Bonded assemblies (docs/breakage.md); by default no bonds.
+  Glue glue{};
 };
 
 /// The contact law between bodies (docs/dem.md).

@@ -28,6 +28,8 @@
 //     laws          contact_force.cpp forces from geometry, material pair, the sides (contact_sides.cpp)
 //                                     and the pair's springs
 //     sums          force_sums.cpp    forces on bodies, springs kept, stats, wall power, the cell's stress
+//     bonds         bonds.cpp         the bonds' forces (their bodies' contacts are skipped while they hold),
+//                                     and the bonds that break
 //   then, where a material has a strength:
 //     breakage      breakage.cpp      grains whose stress reached their strength split in two
 //
@@ -40,6 +42,7 @@
 #include <vector>
 
 #include "gjkdem/dem/body.hpp"
+#include "gjkdem/dem/bonds.hpp"
 #include "gjkdem/dem/inflow.hpp"
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/dem/motion.hpp"
@@ -53,12 +56,13 @@ namespace gjkdem::dem {
 
 /// What the last force evaluation found.
 struct StepStats {
-  Real elastic_energy = 0;  ///< stored in the contact springs (J)
+  Real elastic_energy = 0;  ///< stored in the contact springs and the bonds (J)
   int contacts = 0;         ///< touching contacts
   int wall_contacts = 0;    ///< of which with a plane wall or a fixed body
   int box_updates = 0;      ///< moving bodies whose box was recomputed
   int inserted = 0;         ///< bodies the inflows inserted in this step
   int broken = 0;           ///< grains that broke at the end of this step (breakage.hpp)
+  int bonds_broken = 0;     ///< bonds that broke in this evaluation (bonds.hpp)
   Real wall_power = 0;      ///< power of the driven walls and bodies on the others (W)
 };
 
@@ -126,6 +130,9 @@ struct World {
   /// Grains broken so far (breakage.hpp): each split added a body, and
   /// the fragments' templates follow the builder's in `templates`.
   std::uint64_t broken = 0;
+  /// The bonds of bonded assemblies (bonds.hpp), intact and broken, sorted
+  /// by their bodies' ids: made by the builder, each then only breaks.
+  std::vector<Bond> bonds;
   /// The periodic cell now: the settings' cell, deformed by its control
   /// (periodic.hpp); its velocity gradient in the last step (1/s) and the
   /// contacts' stress at the last force evaluation (Pa, compression

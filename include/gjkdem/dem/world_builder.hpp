@@ -111,6 +111,31 @@ struct BodyDef {
   std::string name{};
 };
 
+/// A bonded assembly (bonds.hpp, docs/breakage.md): a convex solid cut into
+/// `pieces` Voronoi cells (shape/voronoi.hpp), each a moving body of its
+/// own, every two that share a face glued there by a bond of the material's
+/// glue. The cells' sites are drawn uniformly inside the solid from `seed`,
+/// then moved `relaxations` times to their cells' centroids (Lloyd's
+/// iteration: pieces of more even size).
+struct BondedDef {
+  /// The solid: a polytope or box, or a curved or rounded shape taken as
+  /// its inscribed tessellation (WorldSettings::tessellation directions);
+  /// not a compound or a surface.
+  BodyShape shape{};
+  std::uint32_t pieces = 0;     ///< 2 to kMaxBondedPieces
+  std::uint64_t seed = 1;       ///< of the sites
+  int relaxations = 3;          ///< Lloyd iterations, 0 to 100
+  std::uint32_t material = 0;   ///< from add_material; must have a glue (Glue::tensile_strength > 0)
+  Vec3 position{};              ///< of the solid's frame, world (m)
+  Quat rotation{};              ///< of the solid's frame, world
+  Vec3 velocity{};              ///< of the whole's centre of mass (m/s)
+  Vec3 angular_velocity{};      ///< of the whole, world (rad/s)
+  std::string label{};          ///< names it in messages (its pieces as label.piece[k]), e.g. "body[2]"
+};
+
+/// The most pieces of one bonded assembly.
+inline constexpr std::uint32_t kMaxBondedPieces = 10000;
+
 /// A cylindrical container: a mesh wall of `segments` flat sides (and a
 /// floor and roof when capped) placed so that its inner faces lie at
 /// `radius` from the axis and on the base and top planes: the bodies inside
@@ -225,6 +250,10 @@ class WorldBuilder {
   /// A cylindrical container (CylinderWall): its mesh as add_mesh_walls takes it.
   void add_cylinder_walls(const CylinderWall& wall, std::uint32_t material, const std::string& label,
                           std::uint32_t motion = 0);
+
+  /// A bonded assembly (BondedDef): its pieces as bodies, with the next ids,
+  /// and their bonds. Returns the pieces' indices.
+  std::vector<std::uint32_t> add_bonded(const BondedDef& bonded);
 
   /// An inflow (InflowDef); returns its index. The world reserves room for
   /// every body its inflows can insert, so views of its bodies stay valid.

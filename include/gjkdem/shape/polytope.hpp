@@ -125,6 +125,10 @@ struct Polytope {
 /// points is empty or holds a non-finite coordinate.
 Polytope make_polytope(std::span<const Vec3> points);
 
+/// How far p lies outside the solid hull: the largest signed distance of p
+/// from its facets' planes (negative inside). -infinity for a flat hull.
+Real facet_distance(const PolytopeData& d, const Vec3& p) noexcept;
+
 inline Vec3 support(const Polytope& p, const Vec3& d, int& hint) noexcept {
   const PolytopeData& s = *p.data;
   const Vec3* v = s.vertices.data();

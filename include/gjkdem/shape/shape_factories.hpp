@@ -24,6 +24,9 @@ Shape platonic(const std::string& name, Real diameter);
 /// The shape scaled by `factor` > 0 about its frame's origin (margin too).
 Shape scaled(const Shape& shape, Real factor);
 
+/// A box as the polytope of its eight corners.
+Polytope box_polytope(const Box& box);
+
 /// A rotation drawn uniformly (a normalised 4D Gaussian).
 Quat random_rotation(std::mt19937_64& rng);
 
