@@ -1,9 +1,9 @@
-// The Brazilian test of a bonded assembly (issue 31, docs/breakage.md).
+// The Brazilian test of a bonded assembly (issue 31, docs/breakage.md): a
+// disc of 50 mm across and 20 mm thick, cut into 100 glued Voronoi pieces,
+// pressed between two platens along its diameter (z) until it splits.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "gjkdem/dem/bonds.hpp"
 #include "gjkdem/dem/world_builder.hpp"
@@ -20,7 +20,7 @@ struct Brazilian {
   Real all_x = 0;
 };
 
-Brazilian brazilian(Real tensile, Real shear, std::uint64_t seed, std::uint32_t pieces, Real speed, int relax = 3) {
+Brazilian brazilian(Real tensile, Real shear, std::uint64_t seed, std::uint32_t pieces, Real speed) {
   WorldSettings s;
   s.gravity = {};
   WorldBuilder b(s);
@@ -31,20 +31,23 @@ Brazilian brazilian(Real tensile, Real shear, std::uint64_t seed, std::uint32_t 
   b.add_plane({0, 0, -kRadius}, {0, 0, 1}, rock, "floor");
   b.add_plane({0, 0, kRadius}, {0, 0, -1}, rock, "plate", down);
   const Quat axis_y = quat_from_axis_angle({1, 0, 0}, kPi / 2);
-  b.add_bonded({.shape = {Shape{Cylinder{kRadius, kHalfThick}}, {}}, .pieces = pieces, .seed = seed, .relaxations = relax,
+  b.add_bonded({.shape = {Shape{Cylinder{kRadius, kHalfThick}}, {}}, .pieces = pieces, .seed = seed,
                 .material = rock, .rotation = axis_y, .label = "disc"});
   World w = b.build();
   const Real dt = critical_time_step(w);
   Brazilian out;
   out.bonds = static_cast<int>(w.bonds.size());
-  int after_peak = 0;
-  for (int k = 0; k < 20000 && after_peak < 300; ++k) {
-    EXPECT_EQ(step(w, dt).status, StepStatus::Ok);
+  // Until the force falls to half its peak once bonds have broken.
+  for (int k = 0; k < 40000; ++k) {
+    if (step(w, dt).status != StepStatus::Ok) {
+      ADD_FAILURE() << "the step failed at t = " << w.time;
+      break;
+    }
     Real f = 0;
     for (const StepContact& c : w.work.contacts)
       if (c.active && c.a_is_plane && c.a == 1) f -= c.force.z;  // the plate's push on the disc is -z
-    if (f > out.peak) out.peak = f, after_peak = 0;
-    else ++after_peak;
+    out.peak = std::fmax(out.peak, f);
+    if (f < 0.5 * out.peak && broken_bonds(w.bonds) > 0) break;
   }
   for (const Bond& bond : w.bonds) {
     const Body* a = nullptr;
@@ -58,18 +61,32 @@ Brazilian brazilian(Real tensile, Real shear, std::uint64_t seed, std::uint32_t 
   return out;
 }
 
-TEST(Brazilian, DISABLED_Explore) {
-  const int pieces = std::getenv("PIECES") ? std::atoi(std::getenv("PIECES")) : 100;
-  const int relax = std::getenv("RELAX") ? std::atoi(std::getenv("RELAX")) : 3;
-  const Real speed = std::getenv("SPEED") ? std::atof(std::getenv("SPEED")) : 0.02;
-  for (const Real tensile : {1e5})
-    for (const std::uint64_t seed : {1, 2, 3}) {
-      const Brazilian r = brazilian(tensile, 4 * tensile, seed, pieces, speed, relax);
-      const Real split = 2 * r.peak / (kPi * 2 * kRadius * 2 * kHalfThick);
-      std::printf("tensile %g seed %d: peak %g N, split %g Pa (ratio %.3f), broken %d of %d, |x| %.4f vs %.4f\n",
-                  tensile, (int)seed, r.peak, split, split / tensile, r.broken, r.bonds, r.broken_x, r.all_x);
-    }
+// The relation, as docs/breakage.md derives and states it: the splitting
+// tensile strength 2 F / (pi D t) at the peak force F is c times the bonds'
+// tensile strength, c = 0.466 for discs of 100 pieces (7 across); the
+// affine estimate from the bonds' stiffnesses is 0.527, above it by the
+// disorder of the pieces. Checked at three strengths over three discs each:
+// the mean within 10% of c sigma_t (the relation is a proportion), every
+// disc's crack along the loaded diameter (x = 0).
+constexpr Real kSplitRatio = 0.466;
+
+void expect_splitting_strength(Real tensile) {
+  Real mean = 0;
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    const Brazilian r = brazilian(tensile, 4 * tensile, seed, 100, 0.02);
+    const Real split = 2 * r.peak / (kPi * 2 * kRadius * 2 * kHalfThick);
+    mean += split / 3;
+    EXPECT_GT(r.broken, 0);
+    EXPECT_LT(r.broken_x, 0.65 * r.all_x) << "seed " << seed << ": the crack is not along the loaded diameter";
+    EXPECT_GT(split, 0.8 * kSplitRatio * tensile) << "seed " << seed;
+    EXPECT_LT(split, 1.2 * kSplitRatio * tensile) << "seed " << seed;
+  }
+  EXPECT_NEAR(mean, kSplitRatio * tensile, 0.1 * kSplitRatio * tensile);
 }
+
+TEST(Brazilian, SplittingStrengthIsTheStatedShareOfABondStrengthOf50kPa) { expect_splitting_strength(5e4); }
+TEST(Brazilian, SplittingStrengthIsTheStatedShareOfABondStrengthOf100kPa) { expect_splitting_strength(1e5); }
+TEST(Brazilian, SplittingStrengthIsTheStatedShareOfABondStrengthOf200kPa) { expect_splitting_strength(2e5); }
 
 }  // namespace
 }  // namespace gjkdem::dem
