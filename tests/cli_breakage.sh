@@ -34,7 +34,7 @@ done
 
 # The fragment sizes: one cube, then 16 pieces smaller than unbreakable_below.
 "$gjkdem" analyze full --quiet > /dev/null || fail "analyze failed"
-[ "$(head -1 full/analysis/sizes.csv)" = "frame,time,grains,smallest,d10,d50,d90,largest" ] || fail "sizes.csv header"
+[ "$(head -1 full/analysis/sizes.csv)" = "frame,time,grains,smallest,d10,d50,d90,largest,bonds,bonds_broken" ] || fail "sizes.csv header"
 awk -F, 'NR == 2 && !($3 == 1 && $8 > 0.0124 && $8 < 0.0125) { exit 1 }' full/analysis/sizes.csv ||
   fail "the first frame should hold the cube alone (0.01241 m)"
 awk -F, 'END { if (!($3 == 16 && $8 < 0.0055 && $4 > 0.75 * 0.0055)) exit 1 }' full/analysis/sizes.csv ||

@@ -11,7 +11,8 @@ function checkMagic(buffer, magic, what, header) {
   const text = String.fromCharCode(...bytes);
   if (text !== magic) throw new Error(`${what}: not a ${magic} file`);
   const version = new DataView(buffer).getUint32(8, true);
-  if (version !== 2) throw new Error(`${what}: version ${version} unknown (this viewer reads 2)`);
+  if (version !== 2 && version !== 3) throw new Error(`${what}: version ${version} unknown (this viewer reads 2 and 3)`);
+  return version;
 }
 
 // shapes.bin: each template's triangle mesh (body frame) and the plane walls' ids.
@@ -39,11 +40,14 @@ export function parseShapes(buffer) {
 
 // frame_NNNNNN.bin: bodies, touching contacts and plane walls at one output.
 export function parseFrame(buffer) {
-  checkMagic(buffer, 'GJKFRAME', 'frame', 40);
+  const version = checkMagic(buffer, 'GJKFRAME', 'frame', 40);
   const dv = new DataView(buffer);
   const n = dv.getUint32(12, true), m = dv.getUint32(16, true), p = dv.getUint32(20, true);
   const align4 = (x) => Math.ceil(x / 4) * 4; // arithmetic, not bit operations: sizes may pass 2^31
-  const expected = align4(40 + 61 * n) + 44 * m + 24 * p + 40;
+  // Version 3 ends with the bonds of bonded assemblies: a count, then 21 bytes each.
+  const before = align4(40 + 61 * n) + 44 * m + 24 * p + 40;
+  const k = version >= 3 && buffer.byteLength >= before + 4 ? dv.getUint32(before, true) : 0;
+  const expected = before + (version >= 3 ? 4 + 21 * k : 0);
   if (buffer.byteLength !== expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header says ${expected}`);
   let o = 40;
   const take = (Type, count) => {
@@ -74,6 +78,14 @@ export function parseFrame(buffer) {
   f.planeNormal = take(Float32Array, 3 * p);
   f.cellAxes = take(Uint32Array, 1)[0]; // bit 0 x, 1 y, 2 z; 0: not periodic
   f.cell = take(Float32Array, 9); // lo, hi, tilts xy, xz, yz
+  f.bonds = k;
+  if (version >= 3) o += 4;
+  f.bondFirst = take(Uint32Array, k); // body indices
+  f.bondSecond = take(Uint32Array, k);
+  f.bondPoint = take(Float32Array, 3 * k); // the glued face's centre
+  f.bondIntact = take(Uint8Array, k); // 1 holds, 0 broken
+  for (let b = 0; b < k; b++)
+    if (f.bondFirst[b] >= n || f.bondSecond[b] >= n) throw new Error(`frame: bond ${b} names a body it does not have`);
   for (let c = 0; c < m; c++) {
     const first = f.contactFirst[c];
     if (f.contactSecond[c] >= n || (first >= PLANE_BIT ? first - PLANE_BIT >= p : first >= n))

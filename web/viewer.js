@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { ForceChains } from './chains.js';
+import { BondLines } from './bonds.js';
 import { MODES, colorBodies } from './coloring.js';
 import { CHAINS, VIRIDIS, paintBar } from './colors.js';
 import { Grains } from './grains.js';
@@ -18,7 +19,7 @@ const PREFETCH = 8; // frames read ahead while playing
 const $ = (id) => document.getElementById(id);
 const source = new RunSource();
 
-const state = { frame: null, k: -1, mode: 'speed', draw: 'auto', chains: false, threshold: 0.1, playing: false, speed: 1, loop: true, acc: 0 };
+const state = { frame: null, k: -1, mode: 'speed', draw: 'auto', chains: false, bonds: true, threshold: 0.1, playing: false, speed: 1, loop: true, acc: 0 };
 // lastFrameLoadMs: fetch + decode + update + draw of the last frame asked for;
 // lastUpdateMs: the page's own work on a frame (colours, matrices, chains, labels).
 const stats = { fps: 0, lastFrameLoadMs: 0, lastUpdateMs: 0, lastRenderMs: 0, framesShown: 0 };
@@ -40,6 +41,7 @@ headlight.position.set(0.3, 0.6, 1); // over the viewer's shoulder, so every vie
 headlight.target.position.set(0, 0, -1);
 camera.add(headlight, headlight.target);
 const chains = new ForceChains(scene);
+const bonds = new BondLines(scene);
 const spheres = new Spheres(scene);
 // 'auto' draws the free grains as spheres while playing a frame of more than
 // AUTO_SPHERES_BODIES bodies, and always beyond AUTO_SPHERES_ALWAYS (a
@@ -189,10 +191,14 @@ function apply(frame, k) {
   showPeriodicCell(frame, fit.box);
   if (state.chains) chains.update(frame, state.threshold, grains.radius, fit.chainWidth);
   chains.setVisible(state.chains);
+  $('bonds-control').hidden = frame.bonds === 0;
+  if (state.bonds) bonds.update(frame);
+  bonds.setVisible(state.bonds && frame.bonds > 0);
   showLegend(coloring);
   $('slider').value = k;
   showTimeLabel();
-  $('frame-info').textContent = `${frame.n} bodies, ${frame.m} contacts` + (state.chains ? `, ${chains.shown} chains drawn` : '') + `, step ${frame.steps}`;
+  $('frame-info').textContent = `${frame.n} bodies, ${frame.m} contacts` + (state.chains ? `, ${chains.shown} chains drawn` : '') +
+    (frame.bonds > 0 ? `, ${frame.bonds - bondsBroken(frame)} of ${frame.bonds} bonds holding` : '') + `, step ${frame.steps}`;
   // Plot cursors at most every CURSOR_MS while playing: redrawing five
   // canvases each frame cost a software renderer a fifth of its frame rate.
   const now = performance.now();
@@ -501,6 +507,17 @@ function setChains(on, threshold = state.threshold) {
   return redraw();
 }
 
+function bondsBroken(frame) {
+  let broken = 0;
+  for (let b = 0; b < frame.bonds; b++) broken += frame.bondIntact[b] ? 0 : 1;
+  return broken;
+}
+
+function setBonds(on) {
+  state.bonds = $('bonds').checked = on;
+  return redraw();
+}
+
 function setOpacity(opacity) {
   $('opacity').value = opacity;
   grains?.setOpacity(opacity);
@@ -509,6 +526,7 @@ function setOpacity(opacity) {
 $('color-mode').addEventListener('change', (e) => setColorMode(e.target.value));
 $('draw').addEventListener('change', (e) => setDraw(e.target.value));
 $('chains').addEventListener('change', (e) => setChains(e.target.checked));
+$('bonds').addEventListener('change', (e) => setBonds(e.target.checked));
 $('threshold').addEventListener('input', (e) => setChains(state.chains, Number(e.target.value)));
 $('opacity').addEventListener('input', (e) => {
   setOpacity(Number(e.target.value));
@@ -563,6 +581,9 @@ window.gjkdemViewer = {
   get chainsShown() {
     return state.chains ? chains.shown : 0;
   },
+  get bondsShown() {
+    return state.bonds && bonds.lines.visible ? { holding: bonds.intact, broken: bonds.broken } : null;
+  },
   get periodicCell() {
     return cell?.visible ? { min: cell.geometry.boundingBox.min.toArray(), max: cell.geometry.boundingBox.max.toArray() } : null;
   },
@@ -572,6 +593,7 @@ window.gjkdemViewer = {
   setColorMode,
   setDraw,
   setChains,
+  setBonds,
   setPreset,
   play: setPlaying,
   setSpeed: (s) => (state.speed = $('speed').value = s),

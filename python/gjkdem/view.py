@@ -12,7 +12,8 @@ import pathlib
 
 import numpy as np
 
-VERSION = 2
+VERSION = 3
+OLDEST_VERSION = 2  # version 2 frames hold no bonds
 PLANE_SIDE = 0x80000000  # a contact's first side at or above this is plane wall (side - PLANE_SIDE)
 FIXED, DRIVEN = 1, 2     # body flags
 
@@ -31,9 +32,10 @@ class _Cursor:
         if bytes(self.data[:8]) != magic:
             raise ViewFormatError(f"{self.what} is not a gjkdem view file (wrong magic)")
         self.at = 8
-        version = int(self.take("<u4", 1)[0])
-        if version != VERSION:
-            raise ViewFormatError(f"{self.what} has view format version {version}; this gjkdem reads version {VERSION}")
+        self.version = int(self.take("<u4", 1)[0])
+        if not OLDEST_VERSION <= self.version <= VERSION:
+            raise ViewFormatError(f"{self.what} has view format version {self.version}; this gjkdem reads versions "
+                                  f"{OLDEST_VERSION} to {VERSION}")
 
     def take(self, dtype, count, cols=None):
         dtype = np.dtype(dtype)
@@ -79,7 +81,15 @@ class Frame:
         self.cell_axes = int(c.take("<u4", 1)[0])  # bit 0 x, 1 y, 2 z; 0: not periodic
         cell = c.take("<f4", 9, 3)
         self.cell_lo, self.cell_hi, self.cell_tilt = cell[0], cell[1], cell[2]  # tilt: xy, xz, yz
+        # Bonds of bonded assemblies (docs/breakage.md): two body indices, the glued face's centre, intact or broken.
+        k = int(c.take("<u4", 1)[0]) if c.version >= 3 else 0
+        self.bond_first = c.take("<u4", k)
+        self.bond_second = c.take("<u4", k)
+        self.bond_points = c.take("<f4", 3 * k, 3)
+        self.bond_intact = c.take("u1", k).astype(bool)
         c.end()
+        if np.any(self.bond_first >= n) or np.any(self.bond_second >= n):
+            raise ViewFormatError(f"{what} has a bond naming a body it does not have")
         first_body = self.contact_first < PLANE_SIDE
         if (np.any(self.contact_second >= n) or np.any(self.contact_first[first_body] >= n)
                 or np.any(self.contact_first[~first_body] - PLANE_SIDE >= p)):

@@ -44,7 +44,9 @@ bool world_breaks(const World& w) noexcept {
   return std::any_of(w.materials.begin(), w.materials.end(), [](const Material& m) { return m.strength.mean > 0; });
 }
 
-Real grain_size(const ShapeTemplate& t) noexcept { return std::cbrt(6 * t.unit_mass.volume / kPi); }
+Real sphere_diameter(Real volume) noexcept { return std::cbrt(6 * volume / kPi); }
+
+Real grain_size(const ShapeTemplate& t) noexcept { return sphere_diameter(t.unit_mass.volume); }
 
 ShapeTemplate fragment_template(const Polytope& solid, std::uint32_t generation, bool with_surface) {
   ShapeTemplate t = make_template(Shape{solid});

@@ -12,6 +12,7 @@
 #include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/run_output.hpp"
 #include "gjkdem/io/scene_run.hpp"
+#include "gjkdem/math/union_find.hpp"
 
 namespace gjkdem::io {
 
@@ -98,18 +99,27 @@ std::string measures_row(std::uint64_t frame, double time, const dem::Measures& 
 
 // The moving grains' sizes (docs/breakage.md: the diameter of the sphere of
 // a grain's volume), and the sizes below which 10, 50 and 90% of their
-// volume lies: the product size distribution of grains that break.
-std::string sizes_header() { return "frame,time,grains,smallest,d10,d50,d90,largest\n"; }
+// volume lies: the product size distribution of grains that break. The
+// pieces of a bonded assembly that its intact bonds still hold together
+// count as one grain of their volumes' sum; the frame's bonds and broken
+// bonds close the row.
+std::string sizes_header() { return "frame,time,grains,smallest,d10,d50,d90,largest,bonds,bonds_broken\n"; }
 
-std::string sizes_row(std::uint64_t frame, double time, const dem::World& w) {
+std::string sizes_row(std::uint64_t frame, double time, const dem::World& w, const ViewFrame& f) {
+  UnionFind held;
+  held.reset(w.bodies.size());
+  std::size_t broken = 0;
+  for (std::size_t b = 0; b < f.bond_count(); ++b) {
+    if (f.bond_intact[b]) held.join(f.bond_first[b], f.bond_second[b]);
+    else ++broken;
+  }
+  std::vector<Real> volume(w.bodies.size(), 0);
+  for (std::uint32_t i = 0; i < w.bodies.size(); ++i)
+    if (!w.bodies[i].fixed) volume[held.find(i)] += w.templates[w.bodies[i].shape].unit_mass.volume;
   std::vector<std::pair<Real, Real>> grains;  // size, volume
   Real total = 0;
-  for (const dem::Body& b : w.bodies) {
-    if (b.fixed) continue;
-    const dem::ShapeTemplate& t = w.templates[b.shape];
-    grains.emplace_back(dem::grain_size(t), t.unit_mass.volume);
-    total += t.unit_mass.volume;
-  }
+  for (const Real v : volume)
+    if (v > 0) grains.emplace_back(dem::sphere_diameter(v), v), total += v;
   std::sort(grains.begin(), grains.end());
   std::string row = std::to_string(frame);
   row += ',';
@@ -117,8 +127,8 @@ std::string sizes_row(std::uint64_t frame, double time, const dem::World& w) {
   row += ',' + std::to_string(grains.size());
   const auto passing = [&](Real fraction) {  // the smallest size with `fraction` of the volume at or below it
     Real below = 0;
-    for (const auto& [size, volume] : grains)
-      if ((below += volume) >= fraction * total) return size;
+    for (const auto& [size, v] : grains)
+      if ((below += v) >= fraction * total) return size;
     return grains.back().first;
   };
   for (const Real fraction : {0.0, 0.1, 0.5, 0.9, 1.0}) {
@@ -126,7 +136,7 @@ std::string sizes_row(std::uint64_t frame, double time, const dem::World& w) {
     if (grains.empty()) row += '0';
     else append_number(row, fraction == 0 ? grains.front().first : passing(fraction));
   }
-  return row + "\n";
+  return row + ',' + std::to_string(f.bond_count()) + ',' + std::to_string(broken) + "\n";
 }
 
 std::string normal_forces_header() { return "frame,time,low,high,count,density\n"; }
@@ -210,7 +220,7 @@ AnalysisSummary analyze_run(const fs::path& dir, const AnalysisOptions& options,
     summary.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     measures += measures_row(index[k].frame, frame.time, m);
     forces += normal_forces_rows(index[k].frame, frame.time, m);
-    sizes += sizes_row(index[k].frame, frame.time, world);
+    sizes += sizes_row(index[k].frame, frame.time, world, frame);
     summary.largest_frame = std::max(summary.largest_frame, frame.body_count());
     ++summary.frames;
     if (progress) progress(summary.frames, todo);

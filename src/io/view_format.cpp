@@ -1,5 +1,6 @@
 #include "gjkdem/io/view_format.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -60,11 +61,12 @@ class Reader {
     char m[8];
     take(m, 8);
     if (std::memcmp(m, magic, 8) != 0) fail("is not a gjkdem view file (wrong magic)");
-    const auto version = get<std::uint32_t>();
-    if (version != kViewVersion)
-      fail("has view format version " + std::to_string(version) + "; this gjkdem reads version " +
-           std::to_string(kViewVersion));
+    version_ = get<std::uint32_t>();
+    if (version_ < kOldestViewVersion || version_ > kViewVersion)
+      fail("has view format version " + std::to_string(version_) + "; this gjkdem reads versions " +
+           std::to_string(kOldestViewVersion) + " to " + std::to_string(kViewVersion));
   }
+  std::uint32_t version() const noexcept { return version_; }
   void expect_end() const {
     if (at_ != bytes_.size()) fail("has " + std::to_string(bytes_.size() - at_) + " bytes past its end");
   }
@@ -79,6 +81,7 @@ class Reader {
   const std::string& bytes_;
   const char* what_;
   std::size_t at_ = 0;
+  std::uint32_t version_ = 0;
 };
 
 ViewMesh view_mesh(const dem::ShapeTemplate& t) {
@@ -133,6 +136,20 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
   for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.axes[a] ? 1u << a : 0u;
   const Vec3 cell[3] = {w.cell.lo, w.cell.hi, w.cell.tilt};
   for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? static_cast<float>(cell[k / 3][k % 3]) : 0.0f;
+  const auto index_of = [&](std::uint64_t id) {
+    return static_cast<std::uint32_t>(
+        std::lower_bound(w.bodies.begin(), w.bodies.end(), id, [](const dem::Body& b, std::uint64_t v) { return b.id < v; }) -
+        w.bodies.begin());
+  };
+  for (const dem::Bond& bond : w.bonds) {
+    const std::uint32_t a = index_of(bond.a), b = index_of(bond.b);
+    if (a >= w.bodies.size() || b >= w.bodies.size()) continue;
+    const dem::Body &ba = w.bodies[a], &bb = w.bodies[b];
+    f.bond_first.push_back(a), f.bond_second.push_back(b);
+    put_vec(f.bond_points, (ba.position + rotate(ba.orientation, bond.point_a) + bb.position +
+                            rotate(bb.orientation, bond.point_b)) * 0.5);
+    f.bond_intact.push_back(bond.intact);
+  }
   return f;
 }
 
@@ -170,6 +187,9 @@ std::string encode(const ViewFrame& f) {
   put_array(out, f.plane_points), put_array(out, f.plane_normals);
   put(out, f.cell_axes);
   for (const float v : f.cell) put(out, v);
+  put(out, static_cast<std::uint32_t>(f.bond_count()));
+  put_array(out, f.bond_first), put_array(out, f.bond_second), put_array(out, f.bond_points);
+  put_array(out, f.bond_intact);
   return out;
 }
 
@@ -209,6 +229,14 @@ ViewFrame decode_view_frame(const std::string& bytes) {
   r.get_array(f.plane_points, 3 * planes), r.get_array(f.plane_normals, 3 * planes);
   f.cell_axes = r.get<std::uint32_t>();
   for (float& v : f.cell) v = r.get<float>();
+  if (r.version() >= 3) {
+    const std::uint64_t k = r.get<std::uint32_t>();
+    r.get_array(f.bond_first, k), r.get_array(f.bond_second, k), r.get_array(f.bond_points, 3 * k);
+    r.get_array(f.bond_intact, k);
+    for (std::uint64_t b = 0; b < k; ++b)
+      if (f.bond_first[b] >= n || f.bond_second[b] >= n || f.bond_intact[b] > 1)
+        r.fail("has bond " + std::to_string(b) + " naming a body it does not have, or a state it cannot have");
+  }
   r.expect_end();
   if (f.cell_axes > 7) r.fail("has periodic axes it cannot have");
   for (std::uint64_t k = 0; k < m; ++k) {

@@ -4,13 +4,14 @@
 // as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
-//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--breakage-scene SCENE] [--bench] [--chromium PATH]
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--breakage-scene SCENE] [--bonded-scene SCENE] [--bench] [--chromium PATH]
 //
 // --live-scene also opens a run of SCENE that is still going (stopped, then
 // resumed beside the open page) and checks that the page follows it;
 // --periodic-scene SCENE, that a periodic world's cell is drawn;
 // --breakage-scene SCENE, that fragments of grains that break are drawn as
-// the run adds them.
+// the run adds them; with --bonded-scene SCENE, that a bonded assembly's
+// bonds are drawn, broken ones apart.
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
@@ -417,6 +418,37 @@ async function runBreakage(errors) {
   }
 }
 
+// 9. Bonded assemblies: a glued box dropped on a floor; the last frame
+// draws its bonds, as many broken as run.json counts.
+async function runBonded(errors) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_bonded_'));
+  try {
+    const done = spawnSync(args.gjkdem, ['run', args['bonded-scene'], '--out', dir, '--quiet']);
+    check(done.status === 0, `the bonded drop runs (exit ${done.status})`);
+    const info = JSON.parse(fs.readFileSync(path.join(dir, 'run.json'), 'utf8'));
+    const s = serve(dir);
+    liveServer = s.proc;
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`bonded page error: ${e.message}`));
+    await page.goto(await s.url);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    await page.evaluate((n) => window.gjkdemViewer.setFrame(n - 1), info.frames);
+    const shown = await page.evaluate(() => window.gjkdemViewer.bondsShown);
+    check(shown !== null && shown.broken === info.bonds_broken && shown.holding + shown.broken === info.bonds &&
+            shown.broken > 0 && shown.holding > 0,
+      `the last frame draws the bonds, ${info.bonds_broken} of ${info.bonds} broken (${JSON.stringify(shown)})`);
+    await shoot(page, 'bonded_drop');
+    await page.evaluate(() => window.gjkdemViewer.setBonds(false));
+    check((await page.evaluate(() => window.gjkdemViewer.bondsShown)) === null, 'the bonds can be hidden');
+    check(errors.length === 0, `no page error drawing bonds${errors.length ? ': ' + errors.join('; ') : ''}`);
+    await page.close();
+  } finally {
+    liveServer?.kill();
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 try {
   const url = await startServer();
   browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
@@ -441,6 +473,7 @@ try {
   if (args['live-scene'] && !args.bench) await runLive(errors);
   if (args['periodic-scene'] && !args.bench) await runPeriodic(errors);
   if (args['breakage-scene'] && !args.bench) await runBreakage(errors);
+  if (args['bonded-scene'] && !args.bench) await runBonded(errors);
 } catch (error) {
   check(false, error.stack ?? String(error));
 }

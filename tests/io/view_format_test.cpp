@@ -71,7 +71,8 @@ TEST(ViewFormat, AFrameHoldsTheWorldAndReadsBackTheSame) {
   }
   const std::string bytes = encode(f);
   const std::size_t planes = w.planes.size();
-  EXPECT_EQ(bytes.size(), 40 + 61 * f.body_count() + (4 - f.body_count() % 4) % 4 + 44 * f.contact_count() + 24 * planes + 40)
+  EXPECT_EQ(bytes.size(), 40 + 61 * f.body_count() + (4 - f.body_count() % 4) % 4 + 44 * f.contact_count() + 24 * planes +
+                              40 + 4 + 21 * f.bond_count())
       << "the size docs/view-format.md gives";
   const ViewFrame back = decode_view_frame(bytes);
   EXPECT_EQ(back.time, f.time);
@@ -163,16 +164,29 @@ TEST(ViewFormat, DamagedFilesAreRefused) {
   refused(decode_view_shapes, frame, "wrong magic");
   refused(decode_view_shapes, shapes.substr(0, shapes.size() / 2), "");
   std::string newer = frame;
-  newer[8] = 3;
-  refused(decode_view_frame, newer, "version 3");
+  newer[8] = 4;
+  refused(decode_view_frame, newer, "version 4");
+  // A version 2 frame (no bonds: it ends with the cell) is still read.
+  std::string older = frame.substr(0, frame.size() - 4);
+  older[8] = 2;
+  EXPECT_EQ(decode_view_frame(older).body_count(), bed().bodies.size());
   std::string cell = frame;
-  cell[cell.size() - 40] = 8;  // the periodic axes' bits
+  cell[cell.size() - 44] = 8;  // the periodic axes' bits (then the cell, then no bonds)
   refused(decode_view_frame, cell, "periodic axes");
   // A contact naming a body the frame does not have.
   const ViewFrame f = decode_view_frame(frame);
   ViewFrame bad = f;
   bad.contact_b[0] = static_cast<std::uint32_t>(f.body_count());
   refused(decode_view_frame, encode(bad), "naming a body");
+  // A bond naming a body the frame does not have, or a state it cannot have.
+  ViewFrame bonded = f;
+  bonded.bond_first = {0}, bonded.bond_second = {static_cast<std::uint32_t>(f.body_count())};
+  bonded.bond_points = {0, 0, 0}, bonded.bond_intact = {1};
+  refused(decode_view_frame, encode(bonded), "bond 0");
+  bonded.bond_second = {1}, bonded.bond_intact = {2};
+  refused(decode_view_frame, encode(bonded), "bond 0");
+  bonded.bond_intact = {0};
+  EXPECT_EQ(decode_view_frame(encode(bonded)).bond_count(), 1u);
   bad = f;
   bad.contact_a[0] = kViewPlaneSide + 1;
   refused(decode_view_frame, encode(bad), "naming a body or plane");

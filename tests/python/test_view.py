@@ -76,7 +76,7 @@ def test_damaged_view_files_are_refused(run_dir, tmp_path):
     frame = out / "view" / "frame_000003.bin"
     data = frame.read_bytes()
     for damaged, why in [(data[:-3], "cut short"), (data + b"\0", "past its end"), (b"GJKSHAPE" + data[8:], "wrong magic"),
-                         (data[:8] + b"\x03" + data[9:], "version 3")]:
+                         (data[:8] + b"\x04" + data[9:], "version 4")]:
         with pytest.raises(gjkdem.ViewFormatError, match=why):
             gjkdem.view.Frame(damaged)
     (out / "view" / "shapes.bin").write_bytes((out / "view" / "shapes.bin").read_bytes()[:20])
@@ -153,3 +153,22 @@ def test_a_run_folder_loads_at_its_last_checkpoint(run_dir):
     np.testing.assert_array_equal(other.positions, w.positions)
     with pytest.raises(ValueError, match="run.json is missing"):
         gjkdem.load_run(str(out.parent))  # not a run folder
+
+
+def test_a_bonded_drop_s_frames_hold_its_bonds(repo, tmp_path):
+    """The frames of a bonded assembly's run hold its bonds (version 3): all
+    intact at the start, as many broken at the end as run.json counts, their
+    faces between their two pieces."""
+    shutil.copy(repo / "tests" / "data" / "scenes" / "bonded_drop.toml", tmp_path / "bonded_drop.toml")
+    out = tmp_path / "out"
+    assert gjkdem.SceneRun(str(tmp_path / "bonded_drop.toml"), out=str(out), threads=1).run() == "completed"
+    run = gjkdem.read_view(out)
+    first, last = run.frame(0), run.frame(-1)
+    assert len(first.bond_first) == 38 and first.bond_intact.all()
+    import json
+    info = json.loads((out / "run.json").read_text())
+    assert (~last.bond_intact).sum() == info["bonds_broken"] > 0
+    for f in (first, last):
+        a, b = f.positions[f.bond_first], f.positions[f.bond_second]
+        # The face centre lies nearer each piece's centre than the pieces' centres lie apart (0.02 m box).
+        assert np.all(np.linalg.norm(f.bond_points - a, axis=1) < np.linalg.norm(b - a, axis=1) + 0.02)

@@ -38,8 +38,9 @@ Real most_fragments(const World& world) noexcept;
 bool world_breaks(const World& world) noexcept;
 
 /// A grain's size for its strength: the diameter of the sphere of its
-/// volume (m).
+/// volume (m), sphere_diameter of its volume.
 Real grain_size(const ShapeTemplate& t) noexcept;
+Real sphere_diameter(Real volume) noexcept;
 
 /// A fragment's template: its solid (in the fragment's shape frame), its
 /// generation, and its closed surface where the world has surface grains.

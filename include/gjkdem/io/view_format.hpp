@@ -15,7 +15,9 @@
 
 namespace gjkdem::io {
 
-inline constexpr std::uint32_t kViewVersion = 2;
+inline constexpr std::uint32_t kViewVersion = 3;
+/// The oldest version readers take (version 2 frames hold no bonds).
+inline constexpr std::uint32_t kOldestViewVersion = 2;
 /// A contact's first side with this bit set is plane wall (side - kViewPlaneSide).
 inline constexpr std::uint32_t kViewPlaneSide = 0x80000000u;
 inline constexpr std::uint8_t kViewFixed = 1, kViewDriven = 2;
@@ -49,7 +51,14 @@ struct ViewFrame {
   /// lo, hi and tilts xy, xz, yz.
   std::uint32_t cell_axes = 0;
   std::array<float, 9> cell{};
+  /// The bonds of bonded assemblies (version 3; docs/breakage.md): their
+  /// two bodies (indices into this frame), the glued face's centre now, and
+  /// whether they hold (1) or broke (0).
+  std::vector<std::uint32_t> bond_first, bond_second;
+  std::vector<float> bond_points;  ///< 3 per bond
+  std::vector<std::uint8_t> bond_intact;
   std::size_t body_count() const { return templates.size(); }
+  std::size_t bond_count() const { return bond_first.size(); }
   std::size_t contact_count() const { return contact_b.size(); }
 };
 
