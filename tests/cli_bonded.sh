@@ -37,6 +37,17 @@ awk -F, 'NR == 2 && !($3 == 1 && $9 == 38 && $10 == 0) { exit 1 }' full/analysis
 awk -F, -v b="$broken" 'END { if (!($3 > 1 && $10 == b)) exit 1 }' full/analysis/sizes.csv ||
   fail "the last frame should hold several grains and $broken broken bonds"
 
+# A new run from its state keeps its bonds (as broken as they were); a
+# scene cannot hold bonds yet: export refuses, saying why.
+"$gjkdem" run "$scene" --from full --out from --quiet || fail "a run --from a bonded run"
+python3 -c 'import json, sys; b = json.load(open("from/run.json"))["bonds_broken"]; sys.exit(b < int(sys.argv[1]))' "$broken" ||
+  fail "a run --from the bonded run should start with its broken bonds"
+set +e
+"$gjkdem" export full > exported.toml 2> export.txt
+rc=$?
+set -e
+[ "$rc" -ne 0 ] && grep -q "bonded assemblies" export.txt || { cat export.txt; fail "export should refuse bonds (exit $rc)"; }
+
 if command -v mpirun > /dev/null; then
   set +e
   mpirun --oversubscribe --allow-run-as-root -np 2 "$gjkdem" run "$scene" --out mpi --quiet > mpi.txt 2>&1

@@ -104,6 +104,9 @@ void absolute_files(toml::node& n, const fs::path& base) {
 
 std::string export_scene(std::string_view scene_text, const fs::path& base_dir, const dem::World& w,
                          std::string_view header) {
+  if (!w.bonds.empty())
+    throw SceneError("a world of bonded assemblies cannot be written as a scene yet: its pieces would be written, "
+                     "their bonds lost (continue the run with --resume, or start a new one from it with --from)");
   toml::table scene;
   try {
     scene = toml::parse(scene_text);

@@ -19,7 +19,8 @@ namespace gjkdem::io {
 /// motions) is the scene's own, its files named by absolute paths; a
 /// periodic cell takes the world's bounds. `header` opens the text as a
 /// comment.
-/// Throws SceneError for what a scene cannot express yet (a sheared cell).
+/// Throws SceneError for what a scene cannot express yet (a sheared cell,
+/// the bonds of bonded assemblies).
 std::string export_scene(std::string_view scene_text, const std::filesystem::path& base_dir, const dem::World& world,
                          std::string_view header);
 
