@@ -183,13 +183,7 @@ int run_simulation(const RunOptions& opt) {
       std::cerr << "gjkdem: the run in " << opt.resume << " is already completed\n";
       return 0;
     }
-    // Bonds join bodies that domains may hold apart (docs/breakage.md).
-    const std::string refusal = domains && !run->scene.world.bonds.empty()
-                                    ? "bonded assemblies run on one rank for now (a bond's two pieces may lie in "
-                                      "two domains): run it without mpirun"
-                                    : "";
-    if (!started(refusal)) {
-      if (!refusal.empty()) throw std::runtime_error(refusal);
+    if (!started("")) {
       std::cerr << "gjkdem: error: another rank could not start the run\n";
       return 2;
     }

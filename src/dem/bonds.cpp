@@ -122,9 +122,12 @@ std::size_t broken_bonds(std::span<const Bond> bonds) noexcept {
   return static_cast<std::size_t>(std::count_if(bonds.begin(), bonds.end(), [](const Bond& b) { return !b.intact; }));
 }
 
-BondSums add_bond_forces(std::span<Bond> bonds, std::span<Body> bodies, const Makeup& makeup, Real time) {
+BondSums add_bond_forces(std::span<Bond> bonds, std::span<Body> bodies, const Makeup& makeup, Real time,
+                         std::span<Real> energies) {
   BondSums sums;
-  for (Bond& bond : bonds) {
+  for (std::size_t k = 0; k < bonds.size(); ++k) {
+    Bond& bond = bonds[k];
+    energies[k] = 0;
     if (!bond.intact) continue;
     Body* a = find(bodies, bond.a);
     Body* b = find(bodies, bond.b);
@@ -141,6 +144,7 @@ BondSums add_bond_forces(std::span<Bond> bonds, std::span<Body> bodies, const Ma
     a->force -= load.force;
     a->torque -= load.torque - cross(a->position, load.force);
     sums.elastic += load.elastic;
+    energies[k] = load.elastic;
   }
   return sums;
 }

@@ -124,6 +124,26 @@ int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool fou
   return static_cast<int>(splits.size());
 }
 
+void sync_bonds(World& w, DomainRole& role, DomainTransport& t) {
+  if (w.bonds.empty()) return;
+  std::vector<BondBroken> mine;
+  for (std::size_t k = 0; k < w.bonds.size(); ++k)
+    if (!w.bonds[k].intact && role.bonds_told[k]) mine.push_back({k, w.bonds[k].broken_time});
+  Writer m;
+  m.put(mine);
+  for (const std::string& message : all_gather(t, m.take())) {
+    Reader r(message);
+    std::vector<BondBroken> told;
+    r.get(told);
+    for (const BondBroken& b : told) {
+      if (b.bond >= w.bonds.size()) throw std::runtime_error("a broken bond came damaged");
+      w.bonds[b.bond].intact = 0;
+      w.bonds[b.bond].broken_time = b.time;
+      role.bonds_told[b.bond] = 0;
+    }
+  }
+}
+
 ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& layout, DomainTransport& t) {
   const int me = t.rank(), ranks = t.size();
   ExchangeCounts counts;
@@ -232,9 +252,22 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
         }
     }
   };
+  // A body held by an intact bond also goes where its partner is owned:
+  // its box grown by twice the largest reach holds the partner's centre
+  // (the two touch at their face), so every domain computes the bonds of
+  // the bodies it owns (bonds.hpp).
+  std::vector<std::uint64_t> held;
+  for (const Bond& bond : w.bonds)
+    if (bond.intact) held.push_back(bond.a), held.push_back(bond.b);
+  std::sort(held.begin(), held.end());
+  const Real grow_by = 2 * role.whole_reach;
+  auto ghost_box = [&](const Aabb& box, std::uint64_t id) {
+    if (!std::binary_search(held.begin(), held.end(), id)) return box;
+    return Aabb{box.lo - Vec3{grow_by, grow_by, grow_by}, box.hi + Vec3{grow_by, grow_by, grow_by}};
+  };
   for (std::size_t i = 0; i < n; ++i)
-    if (staying(i)) send_ghost(w.search.boxes.boxes[i], [&] { return record_of(w, i); });
-  for (const BodyRecord& r : arrived) send_ghost(r.box, [&] { return r; });
+    if (staying(i)) send_ghost(ghost_box(w.search.boxes.boxes[i], w.bodies[i].id), [&] { return record_of(w, i); });
+  for (const BodyRecord& r : arrived) send_ghost(ghost_box(r.box, r.body.id), [&] { return r; });
   out.assign(ranks, {});
   for (int r = 0; r < ranks; ++r) {
     Writer m;

@@ -22,6 +22,17 @@ struct BodyRecord {
   Quat anchor_orientation;
 };
 
+/// A bond's energy at the last force evaluation (J), by its index in
+/// World::bonds; and a bond broken at `time` (s).
+struct BondEnergy {
+  std::uint64_t bond = 0;
+  Real joules = 0;
+};
+struct BondBroken {
+  std::uint64_t bond = 0;
+  Real time = 0;
+};
+
 /// Every rank's message, by rank, on rank 0 (none elsewhere).
 inline std::vector<std::string> gather_to_root(DomainTransport& t, std::string mine) {
   std::vector<std::string> out(static_cast<std::size_t>(t.size()));

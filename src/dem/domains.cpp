@@ -109,6 +109,9 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
   d.search.cell = whole.search.cell;
   d.search.renew_cell = whole.search.renew_cell;
   role.whole_reach = largest_reach(whole);
+  d.bonds = whole.bonds;
+  role.bonds_told.resize(whole.bonds.size());
+  for (std::size_t k = 0; k < whole.bonds.size(); ++k) role.bonds_told[k] = whole.bonds[k].intact;
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
@@ -166,14 +169,23 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   std::vector<PairState> pairs;  // with an owned body (a domain lists no other)
   pairs.reserve(d.pairs.size());
   pairs.insert(pairs.end(), d.pairs.begin(), d.pairs.end());
+  // Each bond's energy from the domain that owns its first body (which
+  // holds the second: exchange_bodies), summed below in bond order.
+  std::vector<BondEnergy> bond_energies;
+  if (d.work.bond_energies.size() == d.bonds.size())
+    for (std::size_t k = 0; k < d.bonds.size(); ++k) {
+      const std::size_t a = index_of_id(d.bodies, d.bonds[k].a);
+      if (a < d.bodies.size() && d.bodies[a].id == d.bonds[k].a && role.owns(a))
+        bond_energies.push_back({k, d.work.bond_energies[k]});
+    }
   Writer m;
-  m.put(bodies), m.put(pairs), m.put(contacts);
+  m.put(bodies), m.put(pairs), m.put(contacts), m.put(bond_energies);
   const std::vector<std::string> in = gather_to_root(t, m.take());
   if (t.rank() != 0) return;
-  bodies.clear(), pairs.clear(), contacts.clear();
+  bodies.clear(), pairs.clear(), contacts.clear(), bond_energies.clear();
   for (const std::string& message : in) {
     Reader r(message);
-    r.get(bodies), r.get(pairs), r.get(contacts);
+    r.get(bodies), r.get(pairs), r.get(contacts), r.get(bond_energies);
   }
   std::sort(bodies.begin(), bodies.end(), [](const BodyRecord& x, const BodyRecord& y) { return x.body.id < y.body.id; });
   sort_unique(pairs, [](const PairState& p) { return p.key; });
@@ -225,6 +237,18 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
     if (c.a_is_plane || whole.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
     whole.work.contacts.push_back(c);
     whole.work.keys.push_back(r.key);
+  }
+  // The bonds' energy, as step.cpp adds it: summed in bond order, then
+  // added to the contacts' (a bond broken or not found counts 0).
+  whole.bonds = d.bonds;  // every rank's copy agrees (sync_bonds)
+  if (!whole.bonds.empty() && std::any_of(whole.bonds.begin(), whole.bonds.end(), [](const Bond& b) { return b.intact; })) {
+    std::vector<Real> energy(whole.bonds.size(), 0);
+    for (const BondEnergy& e : bond_energies)
+      if (e.bond < energy.size()) energy[e.bond] = e.joules;
+    Real sum = 0;
+    for (std::size_t k = 0; k < energy.size(); ++k)
+      if (whole.bonds[k].intact) sum += energy[k];
+    stats.elastic_energy += sum;
   }
   stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power)
   whole.stats = stats;

@@ -93,10 +93,6 @@ class Rank {
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers, DomainTransport& t,
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
                        const DomainOptions& options, DomainReport* report) {
-  // Bonds join bodies that domains may hold apart: refused on every rank
-  // alike, before any exchange (docs/breakage.md).
-  if (t.size() > 1 && !whole.bonds.empty())
-    return {RunStatus::Failed, "bonded assemblies run on one rank for now (a bond's two pieces may lie in two domains)"};
   const bool root = t.rank() == 0;
   Rank rank(whole, t);
   World& stepped = rank.stepped();
@@ -221,9 +217,17 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     return verdict;
   };
 
+  // After each force evaluation on domains, the bonds broken in it told to
+  // every rank (a whole world's copy is the one copy).
+  const bool bonded = !whole.bonds.empty();
+  auto tell_bonds = [&] {
+    if (rank.split() && bonded) sync_bonds(stepped, *ctx.domain, t);
+  };
   rank.exchange();  // the first ghosts
   if (state.step == 0 && state.outputs == 0) {
-    std::string failed = agree(t, failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); }));
+    std::string failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+    tell_bonds();
+    failed = agree(t, failed);
     settle_wall_power(Real(0), false);
     if (failed.empty()) failed = output(true);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
@@ -278,6 +282,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     t0 = Clock::now();
     const Real work_before = stepped.wall_work;
     if (failed.empty()) failed = failure_of(stepped, [&] { return finish_step(stepped, ctx); });
+    tell_bonds();
     mine.step_seconds += seconds_since(t0);
     settle_wall_power(work_before, true);
     // Domains break their grains together, on the step's contacts (a whole
@@ -289,6 +294,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       if (broken > 0) {
         rank.exchange();
         if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+        tell_bonds();
         settle_wall_power(stepped.wall_work, false);
       }
       stepped.stats.broken = broken;

@@ -121,7 +121,8 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
                                w.cell_stress);
   w.stats.box_updates = static_cast<int>(updated);
   if (held) {
-    const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time);
+    work.bond_energies.resize(w.bonds.size());
+    const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time, work.bond_energies);
     w.stats.elastic_energy += bonds.elastic;
     w.stats.bonds_broken = bonds.broke;
   }

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "dem/beds.hpp"
+#include "gjkdem/dem/bonds.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
@@ -269,6 +270,43 @@ TEST(Domains, GrainsThatBreakGiveTheSerialBits) {
     expect_same(serial.outputs, domains.outputs, ranks);
     EXPECT_EQ(split.world.broken, whole.world.broken);
     EXPECT_EQ(split.world.templates.size(), whole.world.templates.size());
+  }
+}
+
+// Bonded assemblies thrown on a floor side by side, cut apart by the
+// domains (docs/breakage.md): each domain holds the partners of its
+// bodies' bonds, the bonds broken on one rank are told to every rank, and
+// the bonds' energy is summed in bond order on rank 0.
+TEST(Domains, BondedAssembliesThatCrackGiveTheSerialBits) {
+  WorldSettings s;
+  s.model = ContactModel::Volume;
+  s.gravity = {0, 0, -9.81};
+  WorldBuilder b(s);
+  Material rock{.name = "rock", .density = 2500, .youngs_modulus = 1e7};
+  rock.glue = {.tensile_strength = 3e4, .shear_strength = 3e4, .damping = 0.2};
+  const std::uint32_t m = b.add_material(rock);
+  b.add_plane({0, 0, 0}, {0, 0, 1}, m, "floor");
+  for (int k = 0; k < 4; ++k)
+    b.add_bonded({.shape = {Shape{Box{{0.01, 0.006, 0.008}}}, {}}, .pieces = 10, .seed = static_cast<std::uint64_t>(k + 1),
+                  .material = m, .position = {0.025 * k - 0.0375, 0.002 * k, 0.0081}, .velocity = {0.1, 0, -1.0}});
+  World world = b.build();
+  const RunState plan = plan_run(0.012, critical_time_step(world), 0.001);
+  Recorder serial;
+  const Ended whole = run_whole(world, plan, serial);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed) << whole.outcome.error;
+  const std::size_t broken = broken_bonds(whole.world.bonds);
+  ASSERT_GT(broken, 5u);
+  ASSERT_LT(broken, whole.world.bonds.size());
+  for (const int ranks : {2, 3}) {
+    Recorder domains;
+    const Ended split = run_on(ranks, world, plan, domains);
+    ASSERT_EQ(split.outcome.status, RunStatus::Completed) << split.outcome.error;
+    expect_same(serial.outputs, domains.outputs, ranks);
+    ASSERT_EQ(split.world.bonds.size(), whole.world.bonds.size());
+    for (std::size_t k = 0; k < whole.world.bonds.size(); ++k) {
+      EXPECT_EQ(split.world.bonds[k].intact, whole.world.bonds[k].intact) << ranks << " ranks, bond " << k;
+      EXPECT_EQ(split.world.bonds[k].broken_time, whole.world.bonds[k].broken_time) << ranks << " ranks, bond " << k;
+    }
   }
 }
 

@@ -83,8 +83,12 @@ struct BondSums {
 
 /// Adds every intact bond's load to its bodies, in the order of `bonds`
 /// (sorted by ids: the same bits for any thread count); a bond whose
-/// stress reached its strength breaks at `time` and adds nothing.
-BondSums add_bond_forces(std::span<Bond> bonds, std::span<Body> bodies, const Makeup& makeup, Real time);
+/// stress reached its strength breaks at `time` and adds nothing. A bond
+/// whose bodies are not both in `bodies` (a domain's) is skipped. Each
+/// bond's energy goes to `energies` (one per bond; 0 for those broken or
+/// skipped), from which a domain run sums the whole world's in bond order.
+BondSums add_bond_forces(std::span<Bond> bonds, std::span<Body> bodies, const Makeup& makeup, Real time,
+                         std::span<Real> energies);
 
 /// The shortest time step the bonds allow (s): the period of the stiffest
 /// spring of each bond against its bodies' reduced mass or moment of

@@ -105,6 +105,13 @@ std::uint64_t insert_inflow_bodies(World& domain, StepContext& context, const Do
 /// offers none). Returns how many grains broke.
 int break_domain_grains(World& domain, DomainRole& role, DomainTransport& transport, bool found = true);
 
+/// Tells every rank the bonds this domain broke since it last told them
+/// (bonds.hpp): a bond breaks in the domains that hold both its bodies, and
+/// every rank's copy of the bonds must agree before the next step. All
+/// ranks call it together after each force evaluation of a world with
+/// bonds.
+void sync_bonds(World& domain, DomainRole& role, DomainTransport& transport);
+
 /// The power of the driven walls and bodies, and of a deforming cell
 /// through the images, on the moving bodies at the last force evaluation,
 /// summed over every domain's contacts in the order a whole world sums them

@@ -35,6 +35,9 @@ struct DomainRole {
   /// (wrap_bodies); rank 0 sums each in id order, as those functions do in
   /// a whole world (add_field_work).
   std::vector<FieldWork> field_work, wrap_work;
+  /// Per bond of World::bonds: 1 while every rank knows it holds; a bond
+  /// this domain breaks is told to the others (sync_bonds, domains.hpp).
+  std::vector<std::uint8_t> bonds_told;
 
   bool owns(std::size_t i) const noexcept { return foreign.empty() || !foreign[i]; }
 };

@@ -81,6 +81,7 @@ struct StepWorkspace {
   std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box
   std::vector<std::uint8_t> image_code;   ///< and its image
   std::vector<MotionFrame> motion_frames; ///< per motion, at world.time (place_driven)
+  std::vector<Real> bond_energies;        ///< per bond of World::bonds, at the last evaluation (bonds.hpp)
 };
 
 }  // namespace gjkdem::dem
