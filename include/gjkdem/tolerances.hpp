@@ -106,6 +106,12 @@ inline constexpr Real kCalibrationTimeStep = 2e-4;
 /// counts as on it (relative). Keeps slivers of round-off from becoming faces.
 inline constexpr Real kOverlapRelTol = 1e-12;
 
+/// Overlap clipping: a face that a plane cuts while lying within
+/// kOverlapGrazeRelTol * size of it becomes part of that plane's cut face
+/// (relative). Cutting it would place the crossings by dividing differences of
+/// round-off; raising it moves more volume (at most this times the face's area).
+inline constexpr Real kOverlapGrazeRelTol = 1e-8;
+
 /// Surface overlaps (surface_overlap.hpp): a piece of A ∩ B whose volume is
 /// below kPatchMinRelVolume of the smaller solid's is no patch (the symbolic
 /// perturbation leaves slivers of rounding size where faces only touch).
@@ -199,6 +205,14 @@ inline constexpr int kHillClimbMinVertices = 64;
 /// elsewhere, and inlined below this size, where a call costs more than the
 /// wider scan saves). Both give the same vertex.
 inline constexpr int kWideScanMinVertices = 16;
+
+/// Quickhull: a new face whose apex lies within kHullNeedleRel * (bounding
+/// diagonal) of its base edge's line is a needle, and the face beyond that
+/// edge joins the faces replaced when the needle would fold against it by
+/// more than kHullRelTol (a needle magnifies a fold of round-off). Raising it
+/// replaces faces around wider new faces too, where coplanar points can turn
+/// the new face over.
+inline constexpr Real kHullNeedleRel = 1e-6;
 
 /// Points within kHullRelTol * (bounding diagonal) of a hull plane are treated as
 /// on it (relative). Raising it merges more near-coplanar points away.

@@ -9,6 +9,7 @@
 #include "gjkdem/shape/convex_hull.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
@@ -46,6 +47,53 @@ std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, co
   q.reserve(p.size());
   for (const Vec3& v : p) q.push_back({dot(v - origin, e1), dot(v - origin, e2)});
   return convex_hull_2d(q, tol);
+}
+
+// Drops each point within tol of one kept before it. Two such points both
+// on the hull make a needle face whose plane is noise: the hull of a
+// tessellated sphere from single precision, whose pole ring has points 3e-14
+// apart, kept a face that every other point lay 4 (the diameter) beyond, and
+// an overlap read it as empty. Points are hashed on a grid of cells tol wide;
+// a neighbour lies in one of the 27 cells around.
+void weld(std::vector<Vec3>& p, Real tol) {
+  if (!(tol > 0)) return;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells;
+  auto cell_of = [&](const Vec3& q, int k) { return static_cast<std::int64_t>(std::floor(q[k] / tol)); };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto h = [](std::int64_t v) { return static_cast<std::uint64_t>(v) * 0x9E3779B97F4A7C15ull; };
+    return h(x) ^ (h(y) >> 21) ^ (h(z) << 21) ^ (h(z) >> 43);
+  };
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::int64_t cx = cell_of(p[i], 0), cy = cell_of(p[i], 1), cz = cell_of(p[i], 2);
+    bool near = false;
+    for (std::int64_t dx = -1; dx <= 1 && !near; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && !near; ++dy)
+        for (std::int64_t dz = -1; dz <= 1 && !near; ++dz) {
+          const auto it = cells.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == cells.end()) continue;
+          for (int j : it->second) near = near || length(p[j] - p[i]) <= tol;
+        }
+    if (near) continue;
+    p[kept] = p[i];
+    cells[key(cx, cy, cz)].push_back(static_cast<int>(kept));
+    ++kept;
+  }
+  p.resize(kept);
+}
+
+// Whether directed edges form one loop through distinct corners.
+bool simple_loop(const std::vector<std::pair<int, int>>& edges) {
+  std::unordered_map<int, int> next;
+  for (const auto& [a, b] : edges)
+    if (!next.emplace(a, b).second) return false;
+  int at = edges.front().first;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const auto it = next.find(at);
+    if (it == next.end()) return false;
+    at = it->second;
+  }
+  return at == edges.front().first;
 }
 
 }  // namespace
@@ -101,6 +149,7 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
     for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], q[k]); hi[k] = std::fmax(hi[k], q[k]); }
   const Real diag = length(hi - lo);
   const Real tol = kHullRelTol * diag;
+  weld(p, tol);
   if (p.size() == 1 || !(diag > 0)) {
     hull.dimension = HullDimension::Point;
     hull.vertices = {p[0]};
@@ -194,14 +243,47 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
         if (!is_visible[h] && height(h, apex) > tol) { is_visible[h] = 1; stack.push_back(h); }
       }
     }
-    horizon.clear();
+    // A face beyond the horizon that the apex sees by less than tol stays,
+    // and the new face on their edge may fold against it. A needle (the apex
+    // within kHullNeedleRel of the edge's line: corners 1e-7 apart) turns a
+    // fold of tol into one of 1e-9, later walks stop at it, and a hull once
+    // kept points 0.0095 outside: so the face beyond a needle that folds by
+    // more than tol is taken too, unless the apex lies clearly below it.
+    const std::size_t seen = visible.size();
+    for (bool grew = true, grow = true; grew;) {
+      grew = false;
+      horizon.clear();
+      for (std::size_t i = 0; i < visible.size(); ++i) {
+        const int g = visible[i];
+        for (int k = 0; k < 3; ++k) {
+          const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
+          const auto twin = edge_face.find(edge_key(b, a));
+          if (twin == edge_face.end() || is_visible[twin->second]) continue;
+          const Face& beyond = faces[twin->second];
+          const int far = beyond.v[0] + beyond.v[1] + beyond.v[2] - a - b;
+          const Face fresh = make_face(p, a, b, apex);
+          const Real width = length(cross(p[b] - p[a], p[apex] - p[a])) / length(p[b] - p[a]);
+          if (grow && width < kHullNeedleRel * diag && height(twin->second, apex) > -tol &&
+              dot(fresh.normal, p[far]) - fresh.offset > tol) {
+            is_visible[twin->second] = 1;
+            visible.push_back(twin->second);
+            grew = true;
+          } else {
+            horizon.emplace_back(a, b);
+          }
+        }
+      }
+      // Grown, the region must still be a disc: its rim one loop through
+      // distinct corners. Else it is taken as first seen.
+      if (!grew && visible.size() > seen && !simple_loop(horizon)) {
+        for (std::size_t i = seen; i < visible.size(); ++i) is_visible[visible[i]] = 0;
+        visible.resize(seen);
+        grew = true;
+        grow = false;
+      }
+    }
     orphans.clear();
     for (int g : visible) {
-      for (int k = 0; k < 3; ++k) {
-        const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
-        const auto twin = edge_face.find(edge_key(b, a));
-        if (twin != edge_face.end() && !is_visible[twin->second]) horizon.emplace_back(a, b);
-      }
       for (int q : faces[g].outside)
         if (q != apex) orphans.push_back(q);
       faces[g].alive = false;

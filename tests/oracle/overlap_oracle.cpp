@@ -29,9 +29,13 @@ void edge_face_points(const std::vector<Vec3>& va, const Tris& ta, const std::ve
         const double sp = dot(n, p - a), sq = dot(n, q - a);
         if ((sp > 0) == (sq > 0) || sp == sq) continue;
         const Vec3 x = p + (q - p) * (sp / (sp - sq));
-        // Inside the triangle: same side of all three edges.
+        // Inside the triangle: same side of all three edges, or beyond one by
+        // round-off. (An edge through a shared edge of two triangles could
+        // miss both and its corner be lost; a point taken 1e-12 outside the
+        // triangle lies outside the solid by less, which the hull forgives.)
         const double e0 = dot(cross(b - a, x - a), n), e1 = dot(cross(c - b, x - b), n), e2 = dot(cross(a - c, x - c), n);
-        if (e0 >= 0 && e1 >= 0 && e2 >= 0) out.push_back(x);
+        const double slack = -1e-12 * length(n) * (length(b - a) + length(c - b) + length(a - c)) * (max_abs(x) + length(b - a));
+        if (e0 >= slack && e1 >= slack && e2 >= slack) out.push_back(x);
       }
     }
 }

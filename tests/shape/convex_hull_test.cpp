@@ -4,6 +4,9 @@
 
 #include <random>
 
+#include "gjkdem/math/quat.hpp"
+#include "shape/float_sphere.hpp"
+
 namespace gjkdem {
 namespace {
 
@@ -27,6 +30,32 @@ TEST(ConvexHull, RandomCloudsAreEnclosedAndClosed) {
     // Every hull vertex is an input point.
     for (const Vec3& v : h.vertices) EXPECT_NE(std::find(pts.begin(), pts.end(), v), pts.end());
   }
+}
+
+// Points closer than the hull's tolerance are one point: kept both, they made
+// a needle face whose plane was noise (a single-precision sphere, turned, had
+// every other point up to its diameter beyond one face, and overlaps read it
+// as empty). Every face's plane must hold every point behind it.
+TEST(ConvexHull, NearDuplicatePointsMakeNoNeedleFaces) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int steps : {8, 12, 16, 32})
+    for (int c = 0; c < 6; ++c) {
+      const Quat q = normalized(Quat{u(rng), u(rng), u(rng), u(rng)});
+      std::vector<Vec3> pts;
+      for (const Vec3& p : test::float_sphere(2, steps)) pts.push_back(rotate(q, p) + Vec3{u(rng), u(rng), u(rng)});
+      const ConvexHull h = convex_hull(pts);
+      ASSERT_EQ(h.dimension, HullDimension::Solid);
+      EXPECT_TRUE(h.manifold);
+      double worst = 0;
+      for (const auto& t : h.triangles) {
+        const Vec3 nrm = normalized(cross(h.vertices[t[1]] - h.vertices[t[0]], h.vertices[t[2]] - h.vertices[t[0]]));
+        for (const Vec3& p : pts) worst = std::fmax(worst, dot(nrm, p - h.vertices[t[0]]));
+      }
+      EXPECT_LT(worst, 1e-9) << steps << " steps, case " << c;
+      for (std::size_t i = 0; i < h.vertices.size(); ++i)
+        for (std::size_t j = i + 1; j < h.vertices.size(); ++j) ASSERT_GT(length(h.vertices[i] - h.vertices[j]), 4e-12);
+    }
 }
 
 TEST(ConvexHull, DegenerateCloudsReportTheirDimension) {

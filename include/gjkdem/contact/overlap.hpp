@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gjkdem/collide/gjk_cache.hpp"
+#include "gjkdem/math/vec2.hpp"
 #include "gjkdem/shape/shape.hpp"
 
 namespace gjkdem {
@@ -57,7 +58,8 @@ struct OverlapWorkspace {
   std::vector<unsigned char> face_body[2];
   std::vector<Vec3> face_normal[2];
   std::vector<Vec3> cap;
-  std::vector<std::pair<Real, Vec3>> cap_keyed;  ///< cap points with their pseudo-angles, for sorting
+  std::vector<Vec2> cap_flat;  ///< cap points in the clipping plane's coordinates
+  std::vector<int> cap_order;  ///< their hull's order, and the hull's scratch
   std::vector<Real> side;  ///< each point's signed distance to the plane clipping it
   struct Plane {
     Vec3 n;  ///< unit, outward

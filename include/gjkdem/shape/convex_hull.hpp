@@ -31,8 +31,9 @@ struct ConvexHull {
 void merge_coplanar_facets(ConvexHull& hull);
 
 /// Hull of `points`. Points within kHullRelTol * (bounding diagonal) of a face
-/// plane count as on it. For a Polygon the vertices are the 2D hull in order; for
-/// a Segment its two ends.
+/// plane count as on it, and of one another as one point; no face folds
+/// against its neighbour by more than that. For a Polygon the vertices are the
+/// 2D hull in order; for a Segment its two ends.
 ConvexHull convex_hull(std::span<const Vec3> points);
 
 /// Planar convex hull (Andrew's monotone chain): indices of the hull vertices
