@@ -107,8 +107,9 @@ inline constexpr Real kCalibrationTimeStep = 2e-4;
 inline constexpr Real kOverlapRelTol = 1e-12;
 
 /// Overlap clipping: a face that a plane cuts while lying within
-/// kOverlapGrazeRelTol * size of it becomes part of that plane's cut face
-/// (relative). Cutting it would place the crossings by dividing differences of
+/// kOverlapGrazeRelTol * size of it (and within 10 times this times the
+/// smaller body's volume / size^2, for slivers) becomes part of that plane's
+/// cut face (relative). Cutting it would place the crossings by dividing differences of
 /// round-off; raising it moves more volume (at most this times the face's area).
 inline constexpr Real kOverlapGrazeRelTol = 1e-8;
 

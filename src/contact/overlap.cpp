@@ -192,8 +192,7 @@ void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Pl
 
 /// Clips A's faces (already in work.points[0]) by every plane; returns the
 /// index of the buffer holding the result, or -1 when nothing is left.
-int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes, Real tol) {
-  const Real graze = tol * (kOverlapGrazeRelTol / kOverlapRelTol);
+int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes, Real tol, Real graze) {
   int cur = 0;
   for (const auto& pl : planes) {
     const int nxt = 1 - cur;
@@ -403,8 +402,14 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     // (planes_near says why that leaves the region as it is).
     Real vol;
     Vec3 centroid_b, centroid_a;
+    Real vol_a;
     volume_of(b, b_in_a, vol, centroid_b);
-    volume_of(a, Transform::identity(), vol, centroid_a);
+    volume_of(a, Transform::identity(), vol_a, centroid_a);
+    // Grazing faces join a cut within kOverlapGrazeRelTol of the size, but
+    // never by more than 10 kOverlapGrazeRelTol times the smaller body's
+    // volume over size^2: on a sliver 1e-12 thick that band would be the
+    // whole overlap (a centroid 1e3 times its tolerance off).
+    const Real graze = std::fmin(kOverlapGrazeRelTol * size, 10 * kOverlapGrazeRelTol * std::fmin(vol, vol_a) / (size * size));
     FarSide a_ends;  // A lies where u . x <= limit: B's faces wholly beyond it are left out below
     Beyond b_begins;   // B lies where u . x >= from: A's faces wholly short of it are not clipped
     if (const Vec3 d = centroid_b - centroid_a; length(d) > tol) {
@@ -429,7 +434,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       if (std::fabs(excess) <= tol) w.touching.push_back(pl);
       return excess <= tol;
     });
-    const int res = clip(w, w.planes, tol);
+    const int res = clip(w, w.planes, tol, graze);
     if (res < 0) return r;
     // A face of A lying in a touching plane of B, facing the same way, is on
     // both boundaries: tagged 2, it counts in the volume but in neither area
