@@ -17,13 +17,23 @@ namespace gjkdem::detail {
 
 enum class Overlap { Separated, Intersecting, Undecided };
 
+/// A tetrahedron of points of A - B that holds the origin: every face's
+/// distance from the origin is a lower bound of the penetration depth.
+struct Enclosure {
+  Vec3 p[4];
+  bool found = false;
+};
+
 /// `d` is the first search direction; `last_d` receives the last one (a
 /// separating direction when the result is Separated), for warm starts.
 /// `touch`: shapes closer than this touch (the distance loop's tolerance), so
 /// a separating plane must clear it; one that does not leaves the pair
 /// Undecided, and the distance loop answers as penetration() would.
+/// `enclosure` (optional) receives the tetrahedron that holds the origin when
+/// the answer is Intersecting by one (not by touching).
 template <class MD>
-Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, Real touch, int& iterations, Vec3& last_d) noexcept {
+Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, Real touch, int& iterations, Vec3& last_d,
+                    Enclosure* enclosure = nullptr) noexcept {
   // p.d < 0 separates, unless within touch * |d| of 0: a touching contact.
   enum class Side { Separates, Touches, Passes };
   const auto side = [touch](const Vec3& p, const Vec3& dir) {
@@ -66,7 +76,10 @@ Overlap gjk_boolean(MD& md, Vec3 d, int max_iterations, Real touch, int& iterati
       const bool out_abc = dot(abc, ao) * dot(abc, dd - a) < 0 && dot(abc, ao) != 0;
       const bool out_acd = dot(acd, ao) * dot(acd, b - a) < 0 && dot(acd, ao) != 0;
       const bool out_adb = dot(adb, ao) * dot(adb, c - a) < 0 && dot(adb, ao) != 0;
-      if (!out_abc && !out_acd && !out_adb) return Overlap::Intersecting;
+      if (!out_abc && !out_acd && !out_adb) {
+        if (enclosure) *enclosure = {{s[0], s[1], s[2], s[3]}, true};
+        return Overlap::Intersecting;
+      }
       if (out_abc) { s[0] = c; s[1] = b; }
       else if (out_acd) { s[0] = dd; s[1] = c; }
       else { s[0] = b; s[1] = dd; }

@@ -152,4 +152,52 @@ PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Sha
   });
 }
 
+DepthClass classify_depth(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Real depth,
+                          const QuerySettings& st) noexcept {
+  // Cheap proofs first, EPA only where they fail (shapes that barely touch).
+  if (const Real margins = a.margin + b.margin; margins > 0) {
+    if (!intersect(a, pose_a, b, pose_b, nullptr, st)) return DepthClass::Apart;
+    // With margins the depth is the margins plus the cores' depth where the
+    // cores overlap, the margins less the cores' distance where they do not.
+    // So shapes whose margins, shrunk by more than `depth` and the test's
+    // touching band, still meet overlap by more than `depth`.
+    const Real shrink = depth + 2 * st.touch_tol * pair_size(a, b);
+    if (margins > shrink) {
+      const Real keep = (margins - shrink) / margins;
+      Shape inner_a = a, inner_b = b;
+      inner_a.margin *= keep;
+      inner_b.margin *= keep;
+      if (intersect(inner_a, pose_a, inner_b, pose_b, nullptr, st)) return DepthClass::Beyond;
+    }
+  } else {
+    // The overlap test (as intersect() runs it); its last simplex, when it
+    // encloses the origin, lies in A - B, and each face farther than
+    // `depth` from the origin proves the depth larger.
+    const Transform b_in_a = relative(pose_a, pose_b);
+    const detail::Overlap o = with_diff(a, b, b_in_a, nullptr, [&](auto& md) {
+      int iterations = 0;
+      Vec3 last_d;
+      detail::Enclosure e;
+      const detail::Overlap test = detail::gjk_boolean(md, -cold_start(b_in_a), st.max_gjk_iterations,
+                                                       st.touch_tol * pair_size(a, b), iterations, last_d, &e);
+      // Intersecting without a tetrahedron: the origin lies on the simplex (touching).
+      if (!e.found) return test == detail::Overlap::Separated ? test : detail::Overlap::Undecided;
+      static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};  // and the corner opposite
+      for (const auto& f : kFaces) {
+        const Vec3& p = e.p[f[0]];
+        Vec3 n = cross(e.p[f[1]] - p, e.p[f[2]] - p);
+        if (dot(n, e.p[f[3]] - p) > 0) n = -n;  // outward
+        // The origin lies inside, farther than `depth` from the face's plane: n . p > depth |n|.
+        const Real h = dot(n, p);
+        if (!(h > 0 && h * h > depth * depth * dot(n, n))) return detail::Overlap::Undecided;
+      }
+      return detail::Overlap::Intersecting;
+    });
+    if (o == detail::Overlap::Separated) return DepthClass::Apart;
+    if (o == detail::Overlap::Intersecting) return DepthClass::Beyond;
+  }
+  const PenetrationResult p = penetration(a, pose_a, b, pose_b, nullptr, st);
+  return !p.intersect ? DepthClass::Apart : p.depth > depth ? DepthClass::Beyond : DepthClass::Within;
+}
+
 }  // namespace gjkdem

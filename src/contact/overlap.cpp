@@ -164,6 +164,15 @@ bool grazes(const std::vector<Real>& side, int b0, int b1, Real graze) {
   return true;
 }
 
+// The band within which a grazing face joins a cut: kOverlapGrazeRelTol of
+// the pair's size, but never more than 10 kOverlapGrazeRelTol times the
+// smaller body's volume over size^2: on a sliver 1e-12 thick the first
+// alone would be the whole overlap (a centroid 1e3 times its tolerance off).
+Real graze_band(Real size, Real smaller_volume) {
+  const Real band = kOverlapGrazeRelTol * size, sliver = 10 * kOverlapGrazeRelTol * smaller_volume / (size * size);
+  return sliver < band ? sliver : band;  // not fmin: a call into libm
+}
+
 // A clipped face (pts[start..]) with three or more points on the plane. The
 // cap is the hull of every point on the plane, and a point within tol of it
 // counts as on it; so where a face meets the plane at a grazing angle, the
@@ -172,7 +181,8 @@ bool grazes(const std::vector<Real>& side, int b0, int b1, Real graze) {
 // The face keeps only the ends of each run of points on the plane; a face
 // wholly on it, facing its way, is left to the cap. What moves lies within
 // tol of the plane.
-void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Plane& pl, Real tol, bool facing) {
+void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Plane& pl, Real tol, bool facing,
+                   std::vector<unsigned char>& flags) {
   const int kept = static_cast<int>(pts.size()) - start;
   auto on = [&](int k) { return std::fabs(dot(pl.n, pts[start + k]) - pl.d) <= tol; };
   bool all = true;
@@ -182,7 +192,7 @@ void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Pl
     return;
   }
   if (kept < 3) return;
-  std::vector<unsigned char> flags(kept);
+  flags.resize(kept);
   for (int k = 0; k < kept; ++k) flags[k] = on(k);
   int out = start;
   for (int k = 0; k < kept; ++k)
@@ -193,19 +203,34 @@ void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Pl
 /// Clips A's faces (already in work.points[0]) by every plane; returns the
 /// index of the buffer holding the result, or -1 when nothing is left.
 int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes, Real tol, Real graze) {
+  enum : unsigned char { kInside, kOutside, kCut };
   int cur = 0;
   for (const auto& pl : planes) {
     const int nxt = 1 - cur;
-    auto& src = w.points[cur];
-    auto& sb = w.face_begin[cur];
-    auto& side = w.side;  // each point's, once: every point starts one edge and ends another
+    const auto& src = w.points[cur];
+    const auto& sb = w.face_begin[cur];
+    const int faces = static_cast<int>(sb.size()), points = static_cast<int>(src.size());
+    // Each point's distance to the plane, once (every point starts one edge
+    // and ends another), and each face's place: wholly inside (copied as it
+    // is), wholly beyond and not within the grazing band (dropped), or to
+    // be cut (or to join the cap, when it grazes the plane).
+    auto& side = w.side;
+    auto& place = w.face_place;
     side.resize(src.size());
+    place.resize(sb.size());
     bool any_out = false, any_in = false;
-    for (std::size_t i = 0; i < src.size(); ++i) {
-      const Real s = dot(pl.n, src[i]) - pl.d;
-      side[i] = s;
-      any_out |= s > tol;
-      any_in |= s < -tol;
+    for (int f = 0; f < faces; ++f) {
+      const int b0 = sb[f], b1 = f + 1 < faces ? sb[f + 1] : points;
+      Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+      for (int i = b0; i < b1; ++i) {
+        const Real s = dot(pl.n, src[i]) - pl.d;
+        side[i] = s;
+        lo = s < lo ? s : lo;  // not fmin: a call into libm
+        hi = s > hi ? s : hi;
+      }
+      place[f] = hi < -tol ? kInside : lo > tol && hi > graze ? kOutside : kCut;
+      any_out |= hi > tol;
+      any_in |= lo < -tol;
     }
     if (!any_out) continue;       // the plane misses the region
     if (!any_in) return -1;       // the region lies on or beyond the plane: no volume
@@ -213,12 +238,20 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
     auto& db = w.face_begin[nxt];
     auto& dbody = w.face_body[nxt];
     auto& dn = w.face_normal[nxt];
+    const auto& snormal = w.face_normal[cur];
     dst.clear(); db.clear(); dbody.clear(); dn.clear();
     w.cap.clear();
-    const int faces = static_cast<int>(sb.size());
     for (int f = 0; f < faces; ++f) {
-      const int b0 = sb[f], b1 = f + 1 < faces ? sb[f + 1] : static_cast<int>(src.size());
+      if (place[f] == kOutside) continue;
+      const int b0 = sb[f], b1 = f + 1 < faces ? sb[f + 1] : points;
       const int start = static_cast<int>(dst.size());
+      if (place[f] == kInside) {
+        dst.insert(dst.end(), src.begin() + b0, src.begin() + b1);
+        db.push_back(start);
+        dbody.push_back(w.face_body[cur][f]);
+        dn.push_back(snormal[f]);
+        continue;
+      }
       const std::size_t cap_start = w.cap.size();
       int on = 0;  // points kept on the plane (within tol, or crossings)
       bool cut = false;
@@ -234,23 +267,26 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
           cut = true;
         }
         if ((sp < -tol && sq > tol) || (sp > tol && sq < -tol)) {
-          const Vec3 x = p + (q - p) * (sp / (sp - sq));
+          // From the end inside, whichever way the face runs: the face on
+          // the edge's other side gets the same bits, and the cap one point.
+          const Vec3 x = sp < 0 ? p + (q - p) * (sp / (sp - sq)) : q + (p - q) * (sq / (sq - sp));
           dst.push_back(x);
           w.cap.push_back(x);
           ++on;
         }
       }
-      if (cut && dot(w.face_normal[cur][f], pl.n) > kSharedFaceCos && grazes(side, b0, b1, graze)) {
+      const Real facing = dot(snormal[f], pl.n);
+      if (cut && facing > kSharedFaceCos && grazes(side, b0, b1, graze)) {
         dst.resize(start);
         w.cap.resize(cap_start);
         w.cap.insert(w.cap.end(), src.begin() + b0, src.begin() + b1);
         continue;
       }
-      if (on >= 3) keep_run_ends(dst, start, pl, tol, dot(w.face_normal[cur][f], pl.n) > 0);
+      if (on >= 3) keep_run_ends(dst, start, pl, tol, facing > 0, w.on_plane);
       if (static_cast<int>(dst.size()) - start >= 3) {
         db.push_back(start);
         dbody.push_back(w.face_body[cur][f]);
-        dn.push_back(w.face_normal[cur][f]);
+        dn.push_back(snormal[f]);
       } else {
         dst.resize(start);
       }
@@ -381,12 +417,25 @@ void finish_normal(OverlapResult& r, Real total_area, Real summed_a, Real summed
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                       OverlapWorkspace& w, GjkCache* cache) {
   OverlapResult r;
-  const Real size = 2 * std::fmax(bounding_radius(a), bounding_radius(b));
+  const Real radius_a = bounding_radius(a), radius_b = bounding_radius(b);
+  const Real size = 2 * (radius_a > radius_b ? radius_a : radius_b);
   const Real tol = kOverlapRelTol * size;
   w.result = -1;
-  if (zero_volume(a) || zero_volume(b) || !intersect(a, pose_a, b, pose_b, cache)) return r;  // Empty
+  if (zero_volume(a) || zero_volume(b)) return r;  // Empty
+  // clippable(), less the volume test just made: this runs for every pair
+  // of boxes that meet, most of them apart.
+  const auto polytope_like = [](const Shape& s) {
+    return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
+  };
+  const bool clipped = polytope_like(a) && polytope_like(b);
+  // Shapes apart, or that only touch (a rounded box and a sphere at distance
+  // 0), share no volume, whatever their kind: the overlap is empty, not
+  // unknown. (Clipping finds a mere touch empty itself.)
+  if (clipped ? !intersect(a, pose_a, b, pose_b, cache)
+              : classify_depth(a, pose_a, b, pose_b, tol) != DepthClass::Beyond)
+    return r;
 
-  if (clippable(a) && clippable(b)) {
+  if (clipped) {
     for (int k = 0; k < 2; ++k) {
       w.points[k].clear(); w.face_begin[k].clear(); w.face_body[k].clear(); w.face_normal[k].clear();
     }
@@ -405,11 +454,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     Real vol_a;
     volume_of(b, b_in_a, vol, centroid_b);
     volume_of(a, Transform::identity(), vol_a, centroid_a);
-    // Grazing faces join a cut within kOverlapGrazeRelTol of the size, but
-    // never by more than 10 kOverlapGrazeRelTol times the smaller body's
-    // volume over size^2: on a sliver 1e-12 thick that band would be the
-    // whole overlap (a centroid 1e3 times its tolerance off).
-    const Real graze = std::fmin(kOverlapGrazeRelTol * size, 10 * kOverlapGrazeRelTol * std::fmin(vol, vol_a) / (size * size));
+    const Real graze = graze_band(size, vol < vol_a ? vol : vol_a);
     FarSide a_ends;  // A lies where u . x <= limit: B's faces wholly beyond it are left out below
     Beyond b_begins;   // B lies where u . x >= from: A's faces wholly short of it are not clipped
     if (const Vec3 d = centroid_b - centroid_a; length(d) > tol) {
@@ -423,8 +468,12 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     Vec3 centre;
     for (const Vec3& p : w.points[0]) centre += p;
     centre /= static_cast<Real>(w.points[0].size());
-    Real radius = 0;
-    for (const Vec3& p : w.points[0]) radius = std::fmax(radius, length(p - centre));
+    Real radius_sq = 0;
+    for (const Vec3& p : w.points[0]) {
+      const Real r_sq = length_sq(p - centre);
+      radius_sq = r_sq > radius_sq ? r_sq : radius_sq;
+    }
+    const Real radius = std::sqrt(radius_sq);
     if (!planes_near(b, b_in_a, centre, radius + tol, w.planes, a_ends)) return r;
     // Planes that merely touch A (a face of A lies in them) cut nothing but mark
     // the faces on both boundaries (aligned, stacked bodies).
@@ -542,9 +591,6 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
       return r;  // the surface is all on one boundary: no contact normal
     }
   }
-  // Shapes that only touch (a rounded box and a sphere at distance 0) share
-  // no volume, whatever their kind: the overlap is empty, not unknown.
-  if (!(penetration(a, pose_a, b, pose_b).depth > tol)) return r;
   r.status = OverlapStatus::Unsupported;
   return r;
 }

@@ -1,5 +1,6 @@
 #include "gjkdem/dem/body.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -106,6 +107,11 @@ Quat shape_orientation(const ShapeTemplate& t, const Body& b) noexcept {
 Transform shape_pose(const ShapeTemplate& t, const Body& b) noexcept {
   const Quat world_from_local = shape_orientation(t, b);
   return Transform::from(b.position - rotate(world_from_local, t.unit_mass.centroid), world_from_local);
+}
+
+std::size_t index_of_body(std::span<const Body> bodies, std::uint64_t id) noexcept {
+  const auto at = std::lower_bound(bodies.begin(), bodies.end(), id, [](const Body& b, std::uint64_t v) { return b.id < v; });
+  return at != bodies.end() && at->id == id ? static_cast<std::size_t>(at - bodies.begin()) : bodies.size();
 }
 
 }  // namespace gjkdem::dem

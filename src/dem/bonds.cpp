@@ -28,8 +28,8 @@ Real reduced(Real x, Real y) noexcept { return x * y / (x + y); }
 // The body of an id (bodies are in id order), or null.
 template <class B>
 B* find(std::span<B> bodies, std::uint64_t id) noexcept {
-  const auto at = std::lower_bound(bodies.begin(), bodies.end(), id, [](const Body& b, std::uint64_t v) { return b.id < v; });
-  return at != bodies.end() && at->id == id ? &*at : nullptr;
+  const std::size_t i = index_of_body(bodies, id);
+  return i < bodies.size() ? &bodies[i] : nullptr;
 }
 
 }  // namespace
@@ -116,6 +116,18 @@ bool bonded(std::span<const Bond> bonds, std::uint64_t lo, std::uint64_t hi) noe
     return x.a != key.first ? x.a < key.first : x.b < key.second;
   });
   return at != bonds.end() && at->a == lo && at->b == hi && at->intact;
+}
+
+std::vector<std::uint64_t> held_bodies(std::span<const Bond> bonds) {
+  std::vector<std::uint64_t> held;
+  for (const Bond& bond : bonds)
+    if (bond.intact) held.push_back(bond.a), held.push_back(bond.b);
+  std::sort(held.begin(), held.end());
+  return held;
+}
+
+bool any_intact(std::span<const Bond> bonds) noexcept {
+  return std::any_of(bonds.begin(), bonds.end(), [](const Bond& b) { return b.intact; });
 }
 
 std::size_t broken_bonds(std::span<const Bond> bonds) noexcept {

@@ -66,10 +66,7 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
   // of the contact list.
   // A piece of a bonded assembly splits only once its bonds have broken
   // (its bonds hold it by points of its own body).
-  std::vector<std::uint64_t> held;
-  for (const Bond& bond : w.bonds)
-    if (bond.intact) held.push_back(bond.a), held.push_back(bond.b);
-  std::sort(held.begin(), held.end());
+  const std::vector<std::uint64_t> held = held_bodies(w.bonds);
   std::vector<std::uint8_t> can(w.bodies.size());
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];

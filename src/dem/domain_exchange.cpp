@@ -256,10 +256,7 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
   // its box grown by twice the largest reach holds the partner's centre
   // (the two touch at their face), so every domain computes the bonds of
   // the bodies it owns (bonds.hpp).
-  std::vector<std::uint64_t> held;
-  for (const Bond& bond : w.bonds)
-    if (bond.intact) held.push_back(bond.a), held.push_back(bond.b);
-  std::sort(held.begin(), held.end());
+  const std::vector<std::uint64_t> held = held_bodies(w.bonds);
   const Real grow_by = 2 * role.whole_reach;
   auto ghost_box = [&](const Aabb& box, std::uint64_t id) {
     if (!std::binary_search(held.begin(), held.end(), id)) return box;

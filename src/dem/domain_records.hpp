@@ -87,11 +87,11 @@ inline BodyRecord record_of(const World& w, std::size_t i) {
   return {w.bodies[i], c.boxes[i], c.anchor_position[i], c.anchor_orientation[i]};
 }
 
-// The index of the body with this id (bodies in increasing id order).
-inline std::uint32_t index_of_id(std::span<const Body> bodies, std::uint64_t id) {
-  const auto it =
-      std::lower_bound(bodies.begin(), bodies.end(), id, [](const Body& b, std::uint64_t v) { return b.id < v; });
-  return static_cast<std::uint32_t>(it - bodies.begin());
+// How many of `bodies` (in increasing id order) have an id below `id`.
+inline std::size_t count_ids_below(std::span<const Body> bodies, std::uint64_t id) {
+  return static_cast<std::size_t>(
+      std::lower_bound(bodies.begin(), bodies.end(), id, [](const Body& b, std::uint64_t v) { return b.id < v; }) -
+      bodies.begin());
 }
 
 
@@ -115,7 +115,7 @@ inline void set_bodies(World& w, DomainRole& role, std::vector<BodyRecord>& reco
     c.boxes[i] = r.box, c.anchor_position[i] = r.anchor_position, c.anchor_orientation[i] = r.anchor_orientation;
     role.foreign[i] = foreign_of_record[order[i]];
   }
-  for (std::size_t k = 0; k < w.driven.size(); ++k) w.driven[k].body = index_of_id(w.bodies, driven_ids[k]);
+  for (std::size_t k = 0; k < w.driven.size(); ++k) w.driven[k].body = static_cast<std::uint32_t>(index_of_body(w.bodies, driven_ids[k]));
 }
 
 // Sorts records by key, keeping the first of equal keys (the copies of a

@@ -134,7 +134,7 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
   }
   d.search.boxes.moved.resize(d.search.boxes.boxes.size());
   for (DrivenBody driven : whole.driven) {
-    driven.body = index_of_id(d.bodies, whole.bodies[driven.body].id);
+    driven.body = static_cast<std::uint32_t>(index_of_body(d.bodies, whole.bodies[driven.body].id));
     d.driven.push_back(driven);
   }
   for (const PairState& p : whole.pairs)
@@ -145,11 +145,8 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
 
 std::vector<Real> body_costs(const World& w) {
   std::vector<Real> cost(w.bodies.size(), 1);
-  std::vector<std::uint64_t> ids(w.bodies.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = w.bodies[i].id;
   auto count = [&](std::uint64_t id) {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-    if (it != ids.end() && *it == id) cost[static_cast<std::size_t>(it - ids.begin())] += 1;
+    if (const std::size_t i = index_of_body(w.bodies, id); i < cost.size()) cost[i] += 1;
   };
   for (const PairState& p : w.pairs) count(p.key.lo), count(p.key.hi);
   return cost;
@@ -174,8 +171,8 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   std::vector<BondEnergy> bond_energies;
   if (d.work.bond_energies.size() == d.bonds.size())
     for (std::size_t k = 0; k < d.bonds.size(); ++k) {
-      const std::size_t a = index_of_id(d.bodies, d.bonds[k].a);
-      if (a < d.bodies.size() && d.bodies[a].id == d.bonds[k].a && role.owns(a))
+      const std::size_t a = index_of_body(d.bodies, d.bonds[k].a);
+      if (a < d.bodies.size() && role.owns(a))
         bond_energies.push_back({k, d.work.bond_energies[k]});
     }
   Writer m;
@@ -194,16 +191,12 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   whole.bodies.resize(n);
   BoxCache& boxes = whole.search.boxes;
   boxes.boxes.resize(n), boxes.anchor_position.resize(n), boxes.anchor_orientation.resize(n), boxes.moved.resize(n);
-  std::vector<std::uint64_t> ids(n);
   for (std::size_t i = 0; i < n; ++i) {
     const BodyRecord& r = bodies[i];
     whole.bodies[i] = r.body;
     boxes.boxes[i] = r.box, boxes.anchor_position[i] = r.anchor_position, boxes.anchor_orientation[i] = r.anchor_orientation;
-    ids[i] = r.body.id;
   }
-  auto index_of = [&](std::uint64_t id) {
-    return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
-  };
+  auto index_of = [&](std::uint64_t id) { return static_cast<std::uint32_t>(index_of_body(whole.bodies, id)); };
   whole.pairs = std::move(pairs);
   whole.inflow_states = d.inflow_states;  // the same on every rank
   // Fragments of broken grains: every domain holds every template.
@@ -241,7 +234,7 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   // The bonds' energy, as step.cpp adds it: summed in bond order, then
   // added to the contacts' (a bond broken or not found counts 0).
   whole.bonds = d.bonds;  // every rank's copy agrees (sync_bonds)
-  if (!whole.bonds.empty() && std::any_of(whole.bonds.begin(), whole.bonds.end(), [](const Bond& b) { return b.intact; })) {
+  if (any_intact(whole.bonds)) {
     std::vector<Real> energy(whole.bonds.size(), 0);
     for (const BondEnergy& e : bond_energies)
       if (e.bond < energy.size()) energy[e.bond] = e.joules;

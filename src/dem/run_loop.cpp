@@ -277,7 +277,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       // Every body took its first half kick where it was owned, but those
       // inserted now, which start with their velocity.
       ctx.kicked_bodies =
-          first_new != ~std::uint64_t{0} ? detail::index_of_id(stepped.bodies, first_new) : stepped.bodies.size();
+          first_new != ~std::uint64_t{0} ? detail::count_ids_below(stepped.bodies, first_new) : stepped.bodies.size();
     }
     t0 = Clock::now();
     const Real work_before = stepped.wall_work;

@@ -61,7 +61,7 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
 
   std::vector<StepContact>& contacts = work.contacts;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
-  const bool held = std::any_of(w.bonds.begin(), w.bonds.end(), [](const Bond& b) { return b.intact; });
+  const bool held = any_intact(w.bonds);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
@@ -120,8 +120,8 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   w.stats = detail::sum_forces(contacts, w.bodies, w.pairs, w.planes, work.motion_frames, w.cell, w.cell_rate,
                                w.cell_stress);
   w.stats.box_updates = static_cast<int>(updated);
+  work.bond_energies.assign(w.bonds.size(), 0);  // a broken bond holds none
   if (held) {
-    work.bond_energies.resize(w.bonds.size());
     const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time, work.bond_energies);
     w.stats.elastic_energy += bonds.elastic;
     w.stats.bonds_broken = bonds.broke;

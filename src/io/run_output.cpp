@@ -182,11 +182,8 @@ void write_frame_series(const std::filesystem::path& file, std::span<const std::
 std::vector<TracedBody> traced_bodies(const dem::World& w) {
   std::vector<TracedBody> out;
   for (const dem::BodyName& n : w.names) {
-    // Bodies are kept in increasing id order.
-    const auto at = std::lower_bound(w.bodies.begin(), w.bodies.end(), n.id,
-                                     [](const dem::Body& b, std::uint64_t id) { return b.id < id; });
-    if (at != w.bodies.end() && at->id == n.id)
-      out.push_back({n.name, static_cast<std::uint32_t>(at - w.bodies.begin())});
+    if (const std::size_t i = dem::index_of_body(w.bodies, n.id); i < w.bodies.size())
+      out.push_back({n.name, static_cast<std::uint32_t>(i)});
   }
   return out;
 }

@@ -136,16 +136,11 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
   for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.axes[a] ? 1u << a : 0u;
   const Vec3 cell[3] = {w.cell.lo, w.cell.hi, w.cell.tilt};
   for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? static_cast<float>(cell[k / 3][k % 3]) : 0.0f;
-  const auto index_of = [&](std::uint64_t id) {
-    return static_cast<std::uint32_t>(
-        std::lower_bound(w.bodies.begin(), w.bodies.end(), id, [](const dem::Body& b, std::uint64_t v) { return b.id < v; }) -
-        w.bodies.begin());
-  };
   for (const dem::Bond& bond : w.bonds) {
-    const std::uint32_t a = index_of(bond.a), b = index_of(bond.b);
+    const std::size_t a = dem::index_of_body(w.bodies, bond.a), b = dem::index_of_body(w.bodies, bond.b);
     if (a >= w.bodies.size() || b >= w.bodies.size()) continue;
     const dem::Body &ba = w.bodies[a], &bb = w.bodies[b];
-    f.bond_first.push_back(a), f.bond_second.push_back(b);
+    f.bond_first.push_back(static_cast<std::uint32_t>(a)), f.bond_second.push_back(static_cast<std::uint32_t>(b));
     put_vec(f.bond_points, (ba.position + rotate(ba.orientation, bond.point_a) + bb.position +
                             rotate(bb.orientation, bond.point_b)) * 0.5);
     f.bond_intact.push_back(bond.intact);

@@ -9,6 +9,7 @@
 #include "gjkdem/shape/convex_hull.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -82,18 +83,21 @@ void weld(std::vector<Vec3>& p, Real tol) {
   p.resize(kept);
 }
 
-// Whether directed edges form one loop through distinct corners.
-bool simple_loop(const std::vector<std::pair<int, int>>& edges) {
-  std::unordered_map<int, int> next;
-  for (const auto& [a, b] : edges)
-    if (!next.emplace(a, b).second) return false;
-  int at = edges.front().first;
+// Whether directed edges form one loop through distinct corners: sorted by
+// their first corner, no corner starts two, and the walk from one corner
+// returns to it after every edge.
+bool simple_loop(std::vector<std::pair<int, int>> edges) {
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 1; k < edges.size(); ++k)
+    if (edges[k].first == edges[k - 1].first) return false;
+  const int first = edges.front().first;
+  int at = first;
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    const auto it = next.find(at);
-    if (it == next.end()) return false;
+    const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair<int, int>(at, INT_MIN));
+    if (it == edges.end() || it->first != at) return false;
     at = it->second;
   }
-  return at == edges.front().first;
+  return at == first;
 }
 
 }  // namespace
@@ -105,16 +109,31 @@ std::size_t convex_hull_2d(std::span<const Vec2> points, Real tol, std::span<int
   int* order = scratch.data();
   int* h = scratch.data() + n;
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
-  std::sort(order, order + n, [&](int a, int b) {
+  const auto before = [&](int a, int b) {
     return points[a].x < points[b].x || (points[a].x == points[b].x && points[a].y < points[b].y);
-  });
+  };
+  // The cut faces of an overlap hold a few points each, a DEM step hundreds
+  // of thousands of them: sorted by insertion below 32 points (no calls).
+  if (n < 32) {
+    for (std::size_t i = 1; i < n; ++i) {
+      const int v = order[i];
+      std::size_t j = i;
+      for (; j > 0 && before(v, order[j - 1]); --j) order[j] = order[j - 1];
+      order[j] = v;
+    }
+  } else {
+    std::sort(order, order + n, before);
+  }
   const std::size_t m =
       static_cast<std::size_t>(std::unique(order, order + n, [&](int a, int b) { return points[a] == points[b]; }) - order);
   if (m < 3) return m;  // order is the start of scratch
-  // c makes a strict left turn after a -> b when it lies more than tol (a length) left of a -> c.
+  // c makes a strict left turn after a -> b when it lies more than tol (a length) left of a -> c:
+  // cross(ab, ac) > tol |ac|, compared squared (no square root per turn).
+  const Real tol_sq = tol * tol;
   auto left_turn = [&](int a, int b, int c) {
     const Vec2 ab = points[b] - points[a], ac = points[c] - points[a];
-    return cross(ab, ac) > tol * length(ac);
+    const Real turn = cross(ab, ac);
+    return turn > 0 && (tol_sq == 0 || turn * turn > tol_sq * dot(ac, ac));
   };
   std::size_t k = 0;
   for (std::size_t i = 0; i < m; ++i) {
@@ -249,6 +268,17 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
     // fold of tol into one of 1e-9, later walks stop at it, and a hull once
     // kept points 0.0095 outside: so the face beyond a needle that folds by
     // more than tol is taken too, unless the apex lies clearly below it.
+    // The apex lies within kHullNeedleRel * diag of the line a b (compared squared).
+    auto needle = [&](int a, int b, int q) {
+      const Real limit = kHullNeedleRel * diag;
+      return length_sq(cross(p[b] - p[a], p[q] - p[a])) < limit * limit * length_sq(p[b] - p[a]);
+    };
+    // The new face a b q folds against `beyond` (across a b) by more than tol.
+    auto folds = [&](int a, int b, int q, const Face& beyond) {
+      const int far = beyond.v[0] + beyond.v[1] + beyond.v[2] - a - b;
+      const Face fresh = make_face(p, a, b, q);
+      return dot(fresh.normal, p[far]) - fresh.offset > tol;
+    };
     const std::size_t seen = visible.size();
     for (bool grew = true, grow = true; grew;) {
       grew = false;
@@ -259,12 +289,7 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
           const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
           const auto twin = edge_face.find(edge_key(b, a));
           if (twin == edge_face.end() || is_visible[twin->second]) continue;
-          const Face& beyond = faces[twin->second];
-          const int far = beyond.v[0] + beyond.v[1] + beyond.v[2] - a - b;
-          const Face fresh = make_face(p, a, b, apex);
-          const Real width = length(cross(p[b] - p[a], p[apex] - p[a])) / length(p[b] - p[a]);
-          if (grow && width < kHullNeedleRel * diag && height(twin->second, apex) > -tol &&
-              dot(fresh.normal, p[far]) - fresh.offset > tol) {
+          if (grow && needle(a, b, apex) && height(twin->second, apex) > -tol && folds(a, b, apex, faces[twin->second])) {
             is_visible[twin->second] = 1;
             visible.push_back(twin->second);
             grew = true;

@@ -52,4 +52,13 @@ DistanceResult distance(const Shape& a, const Transform& pose_a, const Shape& b,
 PenetrationResult penetration(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                               GjkCache* cache = nullptr, const QuerySettings& settings = {}) noexcept;
 
+/// How A and B overlap, against a depth (a length >= 0): apart (no common
+/// point), within it (touching, or a penetration depth of at most `depth`),
+/// or beyond it. As penetration() would say, but a deep overlap is proved by
+/// the overlap test's last simplex (or, with margins, by the test on shrunk
+/// margins), without EPA.
+enum class DepthClass { Apart, Within, Beyond };
+DepthClass classify_depth(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, Real depth,
+                          const QuerySettings& settings = {}) noexcept;
+
 }  // namespace gjkdem

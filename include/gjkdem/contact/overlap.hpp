@@ -61,6 +61,8 @@ struct OverlapWorkspace {
   std::vector<Vec2> cap_flat;  ///< cap points in the clipping plane's coordinates
   std::vector<int> cap_order;  ///< their hull's order, and the hull's scratch
   std::vector<Real> side;  ///< each point's signed distance to the plane clipping it
+  std::vector<unsigned char> face_place;  ///< each face's: inside the plane, beyond it, or cut
+  std::vector<unsigned char> on_plane;    ///< a cut face's points: on the plane or not
   struct Plane {
     Vec3 n;  ///< unit, outward
     Real d;  ///< n . x on the plane
@@ -88,8 +90,9 @@ std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
 /// along A's face. They form closed loops; `tol` matches end points (length).
 std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& work, Real tol);
 
-/// `cache` (optional) warm-starts the GJK test that decides whether the
-/// shapes meet at all, as for intersect(): the DEM engine passes the pair's.
+/// `cache` (optional) warm-starts the GJK test that decides whether two
+/// clippable shapes meet at all, as for intersect(): the DEM engine passes
+/// the pair's. Other pairs are tested cold (classify_depth).
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                       OverlapWorkspace& work, GjkCache* cache = nullptr);
 

@@ -120,6 +120,10 @@ struct Makeup {
   Vec3 moments(const Body& b) const noexcept { return templates[b.shape].principal.moments * materials[b.material].density; }
 };
 
+/// The index of the body with this id in `bodies` (kept in increasing id
+/// order, as a world keeps them), or bodies.size() when none has it.
+std::size_t index_of_body(std::span<const Body> bodies, std::uint64_t id) noexcept;
+
 /// Fixed and without a motion: its box and place never change.
 inline bool is_static(const Body& b) noexcept { return b.fixed && b.motion == 0; }
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <span>
 #include <type_traits>
+#include <vector>
 
 #include "gjkdem/dem/body.hpp"
 
@@ -71,6 +72,12 @@ bool bond_breaks(const Bond& bond, const BondLoad& load) noexcept;
 /// Whether bodies of ids lo < hi are held by an intact bond (`bonds` sorted
 /// by ids).
 bool bonded(std::span<const Bond> bonds, std::uint64_t lo, std::uint64_t hi) noexcept;
+
+/// The ids of the bodies that an intact bond holds, sorted (with repeats).
+std::vector<std::uint64_t> held_bodies(std::span<const Bond> bonds);
+
+/// Whether any of `bonds` still holds.
+bool any_intact(std::span<const Bond> bonds) noexcept;
 
 /// How many of `bonds` have broken.
 std::size_t broken_bonds(std::span<const Bond> bonds) noexcept;
