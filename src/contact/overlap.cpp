@@ -30,9 +30,10 @@ bool zero_volume(const Shape& s) {
   return false;
 }
 
-/// Solid polytope-like shape (clipped exactly): a solid polytope or box, no margin.
+/// Polytope-like shape without margin (clipped exactly when both are, and
+/// neither has zero volume: overlap() tests that first).
 bool clippable(const Shape& s) {
-  return s.margin == 0 && !zero_volume(s) && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
+  return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
 }
 
 /// The part of space u . x >= from (working frame); all of it by default.
@@ -184,16 +185,17 @@ Real graze_band(Real size, Real smaller_volume) {
 void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Plane& pl, Real tol, bool facing,
                    std::vector<unsigned char>& flags) {
   const int kept = static_cast<int>(pts.size()) - start;
-  auto on = [&](int k) { return std::fabs(dot(pl.n, pts[start + k]) - pl.d) <= tol; };
+  flags.resize(kept);
   bool all = true;
-  for (int k = 0; k < kept && all; ++k) all = on(k);
+  for (int k = 0; k < kept; ++k) {
+    flags[k] = std::fabs(dot(pl.n, pts[start + k]) - pl.d) <= tol;
+    all = all && flags[k];
+  }
   if (all) {
     if (facing) pts.resize(start);
     return;
   }
   if (kept < 3) return;
-  flags.resize(kept);
-  for (int k = 0; k < kept; ++k) flags[k] = on(k);
   int out = start;
   for (int k = 0; k < kept; ++k)
     if (!(flags[k] && flags[(k + kept - 1) % kept] && flags[(k + 1) % kept])) pts[out++] = pts[start + k];
@@ -422,12 +424,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
   const Real tol = kOverlapRelTol * size;
   w.result = -1;
   if (zero_volume(a) || zero_volume(b)) return r;  // Empty
-  // clippable(), less the volume test just made: this runs for every pair
-  // of boxes that meet, most of them apart.
-  const auto polytope_like = [](const Shape& s) {
-    return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core));
-  };
-  const bool clipped = polytope_like(a) && polytope_like(b);
+  const bool clipped = clippable(a) && clippable(b);
   // Shapes apart, or that only touch (a rounded box and a sphere at distance
   // 0), share no volume, whatever their kind: the overlap is empty, not
   // unknown. (Clipping finds a mere touch empty itself.)
