@@ -8,6 +8,7 @@
 #   bench/compare_queries.sh OLD/gjkdem NEW/gjkdem [PAIRS_DIR] > table.md
 #
 # PAIRS_DIR holds FAMILY.in.jsonl files (default ../shared/data/pairs).
+# FAMILIES and QUERIES (space-separated) narrow the table.
 set -euo pipefail
 old="$1"
 new="$2"
@@ -21,10 +22,10 @@ count() {  # binary family query passes -> instructions
 
 echo "| family | query | old, per pass | new, per pass | new/old |"
 echo "|---|---|---|---|---|"
-for family in poly-random poly-near poly-degenerate mixed-analytic curved poly-many; do
+for family in ${FAMILIES:-poly-random poly-near poly-degenerate mixed-analytic curved poly-many}; do
   extra=20
   [ "$family" = poly-many ] && extra=2
-  for query in intersect distance penetration contact; do
+  for query in ${QUERIES:-intersect distance penetration contact}; do
     row=()
     for bin in "$old" "$new"; do
       one=$(count "$bin" "$family" "$query" 1)

@@ -156,18 +156,32 @@ DepthClass classify_depth(const Shape& a, const Transform& pose_a, const Shape& 
                           const QuerySettings& st) noexcept {
   // Cheap proofs first, EPA only where they fail (shapes that barely touch).
   if (const Real margins = a.margin + b.margin; margins > 0) {
-    if (!intersect(a, pose_a, b, pose_b, nullptr, st)) return DepthClass::Apart;
     // With margins the depth is the margins plus the cores' depth where the
     // cores overlap, the margins less the cores' distance where they do not.
-    // So shapes whose margins, shrunk by more than `depth` and the test's
-    // touching band, still meet overlap by more than `depth`.
-    const Real shrink = depth + 2 * st.touch_tol * pair_size(a, b);
+    // The test of the whole shapes, as intersect() runs it, stops at a point
+    // v of the cores' difference within the margins: the cores lie at most
+    // |v| apart, so margins - |v| beyond `depth` and the test's touching
+    // band proves the depth, and an overlap costs that one test.
+    const Real size = pair_size(a, b);
+    const Real shrink = depth + 2 * st.touch_tol * size;
+    const Transform b_in_a = relative(pose_a, pose_b);
+    GjkCache cores;
+    Real reach = 0;  // |v|
+    const bool meet = with_diff(a, b, b_in_a, nullptr, [&](auto& md) {
+      const auto g = detail::gjk(md, cold_start(b_in_a), nullptr, 0, size, margins, GjkMode::Boolean, st);
+      save_cache(&cores, md, g.simplex);
+      reach = length(g.v);  // also where it stopped as intersecting: within the margins, or enclosing 0
+      return g.status == GjkStatus::Intersecting || dot(g.v, g.v) <= margins * margins;
+    });
+    if (!meet) return DepthClass::Apart;
+    if (margins - reach > shrink) return DepthClass::Beyond;
+    // Else the margins shrunk by that much, from the test's last simplex.
     if (margins > shrink) {
       const Real keep = (margins - shrink) / margins;
       Shape inner_a = a, inner_b = b;
       inner_a.margin *= keep;
       inner_b.margin *= keep;
-      if (intersect(inner_a, pose_a, inner_b, pose_b, nullptr, st)) return DepthClass::Beyond;
+      if (intersect(inner_a, pose_a, inner_b, pose_b, &cores, st)) return DepthClass::Beyond;
     }
   } else {
     // The overlap test (as intersect() runs it); its last simplex, when it

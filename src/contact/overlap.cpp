@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "gjkdem/collide/query.hpp"
@@ -202,6 +203,57 @@ void keep_run_ends(std::vector<Vec3>& pts, int start, const OverlapWorkspace::Pl
   pts.resize(out);
 }
 
+// The cut of a plane through faces that each cross it once (their
+// boundary leaves the kept side once, at its exit, and comes back once, at
+// its entry, each a crossing or a corner on the plane; no edge lies on the
+// plane), closed by following the faces: the face across an edge has that
+// edge's crossing, bit for bit (clip computes it from the end inside), or
+// the corner, as its entry where this face has its exit (a face that only
+// touches the plane at a corner is left out: the faces either side of it
+// meet at that corner), and the cut runs from each face's entry to its
+// exit. One loop through every face (A closed), or one path (A's faces
+// beyond B left out, append_faces: the cut then closes from the last exit
+// to the first entry, as the hull of its points would) is appended to
+// `out`, counter-clockwise about the plane's normal; false for anything
+// else, which the hull closes. Quadratic in the faces: long cuts (big
+// hulls) go to the hull. (The hull alone cost a DEM step 3% more.)
+bool chain_cut(const Vec3* entry, const Vec3* exit, int n, int* next, std::vector<Vec3>& out) {
+  if (n < 2 || n > 64) return false;
+  std::uint64_t has_prev = 0;
+  int ends = 0, last = 0;
+  for (int k = 0; k < n; ++k) {
+    next[k] = -1;
+    for (int j = 0; j < n; ++j)
+      if (entry[j] == exit[k]) {
+        next[k] = j;
+        break;
+      }
+    if (next[k] < 0) {
+      ++ends, last = k;
+    } else {
+      if ((has_prev >> next[k]) & 1) return false;
+      has_prev |= std::uint64_t{1} << next[k];
+    }
+  }
+  if (ends > 1) return false;
+  int first = 0;
+  while (ends == 1 && ((has_prev >> first) & 1)) ++first;  // the path's first face
+  // Every face once: a loop that comes back early leaves others in loops of their own.
+  const std::size_t start = out.size();
+  int at = first, count = 0;
+  do {
+    out.push_back(entry[at]);
+    at = next[at];
+    ++count;
+  } while (at >= 0 && at != first && count < n);
+  if (count == n && at == (ends == 1 ? -1 : first)) {
+    if (ends == 1) out.push_back(exit[last]);
+    return true;
+  }
+  out.resize(start);
+  return false;
+}
+
 /// Clips A's faces (already in work.points[0]) by every plane; returns the
 /// index of the buffer holding the result, or -1 when nothing is left.
 int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes, Real tol, Real graze) {
@@ -243,6 +295,11 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
     const auto& snormal = w.face_normal[cur];
     dst.clear(); db.clear(); dbody.clear(); dn.clear();
     w.cap.clear();
+    if (w.cut_entry.size() < sb.size()) {
+      w.cut_entry.resize(sb.size()), w.cut_exit.resize(sb.size()), w.cut_next.resize(sb.size());
+    }
+    int cuts = 0;       // faces the plane cuts
+    bool clean = true;  // every cut face crosses the plane once (chain_cut)
     for (int f = 0; f < faces; ++f) {
       if (place[f] == kOutside) continue;
       const int b0 = sb[f], b1 = f + 1 < faces ? sb[f + 1] : points;
@@ -256,6 +313,8 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
       }
       const std::size_t cap_start = w.cap.size();
       int on = 0;  // points kept on the plane (within tol, or crossings)
+      int entries = 0, exits = 0;  // where the boundary comes back to the kept side, and leaves it
+      Vec3 entry, exit;
       bool cut = false;
       for (int i = b0; i < b1; ++i) {
         const int j = i + 1 < b1 ? i + 1 : b0;
@@ -264,9 +323,14 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
         const Real sp = side[i], sq = side[j];
         if (sp <= tol) {
           dst.push_back(p);
-          if (sp >= -tol) w.cap.push_back(p), ++on;
+          if (sp >= -tol) {
+            w.cap.push_back(p), ++on;
+            if (sq > tol) ++exits, exit = p;
+            clean = clean && !(sq >= -tol && sq <= tol);  // an edge on the plane
+          }
         } else {
           cut = true;
+          if (sq >= -tol && sq <= tol) ++entries, entry = q;
         }
         if ((sp < -tol && sq > tol) || (sp > tol && sq < -tol)) {
           // From the end inside, whichever way the face runs: the face on
@@ -275,13 +339,22 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
           dst.push_back(x);
           w.cap.push_back(x);
           ++on;
+          if (sp < 0) ++exits, exit = x;
+          else ++entries, entry = x;
         }
+      }
+      // A face that only touches the plane at a corner (entry and exit
+      // that corner, or neither) adds no edge to the cut.
+      if ((entries != 0 || exits != 0) && !(entries == 1 && exits == 1 && entry == exit)) {
+        clean = clean && entries == 1 && exits == 1;
+        w.cut_entry[cuts] = entry, w.cut_exit[cuts] = exit, ++cuts;
       }
       const Real facing = dot(snormal[f], pl.n);
       if (cut && facing > kSharedFaceCos && grazes(side, b0, b1, graze)) {
         dst.resize(start);
         w.cap.resize(cap_start);
         w.cap.insert(w.cap.end(), src.begin() + b0, src.begin() + b1);
+        clean = false;
         continue;
       }
       if (on >= 3) keep_run_ends(dst, start, pl, tol, facing > 0, w.on_plane);
@@ -293,13 +366,19 @@ int clip(OverlapWorkspace& w, const std::vector<OverlapWorkspace::Plane>& planes
         dst.resize(start);
       }
     }
-    // Close the cut: the convex hull of the points on the plane, counter-
-    // clockwise about n. (A sort by angle about their mean put two points
-    // 1e-9 apart in either order, and the faces beside the cap met it along
-    // edges that were not its own.) Points within tol of one another or of
-    // a hull edge are dropped.
+    // Close the cut. Where every cut face crosses the plane once, by
+    // following the faces' cut edges (chain_cut). Else by the convex hull of
+    // the points on the plane, counter-clockwise about n. (A sort by angle
+    // about their mean put two points 1e-9 apart in either order, and the
+    // faces beside the cap met it along edges that were not its own.)
+    // Points within tol of one another or of a hull edge are dropped.
     auto& cap = w.cap;
-    if (cap.size() >= 3) {
+    const int cut_begin = static_cast<int>(dst.size());
+    if (clean && chain_cut(w.cut_entry.data(), w.cut_exit.data(), cuts, w.cut_next.data(), dst)) {
+      db.push_back(cut_begin);
+      dbody.push_back(1);
+      dn.push_back(pl.n);
+    } else if (cap.size() >= 3) {
       Vec3 t1, t2;
       orthonormal_basis(pl.n, t1, t2);
       auto& flat = w.cap_flat;

@@ -50,16 +50,20 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
     if (compound) part_spheres(t, body, parts_a);
     for (; k < pairs.size() && pairs[k].first == i; ++k) {
       if (domain && !domain->owns(i) && !domain->owns(pairs[k].second)) continue;  // another domain's pair
-      StepContact c;
-      c.a = i;
-      c.b = pairs[k].second;
-      if (!work.candidate_images.empty()) c.image = work.candidate_images[k];
-      const Body& other = bodies[c.b];
+      const Body& other = bodies[pairs[k].second];
+      const std::uint8_t image = work.candidate_images.empty() ? kNoImage : work.candidate_images[k];
       if (!any_compound || (!compound && templates[other.shape].parts.empty())) {
-        contacts.push_back(c);
+        StepContact& c = contacts.emplace_back();  // made in place: a contact is large
+        c.a = i;
+        c.b = pairs[k].second;
+        c.image = image;
         work.keys.push_back(pair_key(body.id, other.id));
         continue;
       }
+      StepContact c;
+      c.a = i;
+      c.b = pairs[k].second;
+      c.image = image;
       if (!compound) part_spheres(t, body, parts_a);
       part_spheres(templates[other.shape], other, parts_b, image_shift_of(cell, c));
       for (std::uint16_t pa = 0; pa < parts_a.size(); ++pa)
@@ -77,15 +81,18 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
       Real lowest = -dot(wall.normal, wall.point);  // of the box's corners above the plane
       for (int axis = 0; axis < 3; ++axis) lowest += wall.normal[axis] * (wall.normal[axis] > 0 ? box.lo[axis] : box.hi[axis]);
       if (lowest > 0) continue;
+      if (!compound) {
+        StepContact& c = contacts.emplace_back();
+        c.a = p;
+        c.b = i;
+        c.a_is_plane = true;
+        work.keys.push_back(pair_key(body.id, wall.id));
+        continue;
+      }
       StepContact c;
       c.a = p;
       c.b = i;
       c.a_is_plane = true;
-      if (!compound) {
-        contacts.push_back(c);
-        work.keys.push_back(pair_key(body.id, wall.id));
-        continue;
-      }
       for (std::uint16_t pb = 0; pb < parts_a.size(); ++pb) {
         if (dot(parts_a[pb].centre - wall.point, wall.normal) > parts_a[pb].radius) continue;
         c.part_b = pb;

@@ -24,10 +24,21 @@ using detail::thread_id;
 using detail::side_of;
 using detail::plane_side;
 
+// The kinds of the templates added since the last look (step_workspace.hpp);
+// a world with fewer templates than seen is looked at anew.
+void note_template_kinds(std::span<const ShapeTemplate> templates, TemplateKinds& kinds) {
+  if (kinds.seen > templates.size()) kinds = {};
+  for (; kinds.seen < templates.size(); ++kinds.seen) {
+    kinds.surface_grains |= templates[kinds.seen].surface_grain;
+    kinds.wall_faces |= templates[kinds.seen].wall_face.has_value();
+  }
+}
+
 // dt: time since the last evaluation, for the springs (0 at the start).
 StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   const int threads = thread_count(w.settings.threads);
   StepWorkspace& work = w.work;
+  note_template_kinds(w.templates, work.kinds);
   if (static_cast<int>(work.overlap.size()) < threads) work.overlap.resize(threads);
   const std::int64_t n = static_cast<std::int64_t>(w.bodies.size());
 #pragma omp parallel for num_threads(threads) schedule(static) if (n >= kMinParallelBodies)
@@ -56,7 +67,8 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
   }
   detail::list_contacts(w.bodies, w.templates, w.planes, boxes, w.cell, domain, work);
   const ContactModel model = w.settings.model;
-  detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell, model, w.pairs, threads, work);
+  if (work.kinds.surface_grains)
+    detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell, model, w.pairs, threads, work);
   align_pair_states(work.keys, w.pairs);
 
   std::vector<StepContact>& contacts = work.contacts;
@@ -95,10 +107,10 @@ StepReport compute_forces(World& w, Real dt, const DomainRole* domain) {
     if (c.geometry.status == GeometryStatus::Engulfed)
       return {StepStatus::Engulfed, w.bodies[c.a].id, w.bodies[c.b].id};
   }
-  if (const StepReport crossed =
-          detail::find_wall_crossing(w.bodies, w.templates, work.motion_frames, w.cell, contacts, dt);
-      crossed.status != StepStatus::Ok)
-    return crossed;
+  if (work.kinds.wall_faces) {
+    const StepReport crossed = detail::find_wall_crossing(w.bodies, w.templates, work.motion_frames, w.cell, contacts, dt);
+    if (crossed.status != StepStatus::Ok) return crossed;
+  }
   if (model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, contacts);
   const detail::SideSources sources{{w.templates, w.materials}, work.motion_frames, w.cell_rate};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)

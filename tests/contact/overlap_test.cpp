@@ -192,6 +192,60 @@ TEST(Overlap, ThinNearParallelSlabsMatchBruteForce) {
   EXPECT_GT(checked, 30);
 }
 
+// A corner where more than three faces meet, pushed into a body: an
+// octahedron's apex (four faces) into a cube, a pyramid's apex (5 to 12
+// faces) into random hulls. After three of the corner's planes have cut the
+// region, the corner is a vertex of it, and each further plane through the
+// corner meets it on the plane: faces touch the cut there rather than cross
+// it, and the cut must still close through the corner. Against the closed
+// form of the square pyramid (2 h^3 / 3, centroid 3h/4 from the apex) and
+// the brute-force oracle, either body clipped.
+TEST(Overlap, CornersOfManyFacesMatchClosedFormsAndBruteForce) {
+  OverlapWorkspace work;
+  const Shape cube{Box{{1, 1, 1}}};
+  Shape octahedron;
+  octahedron.core = make_polytope(std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  for (const double h : {0.01, 0.3, 0.9}) {
+    const Transform apex_in = Transform::from({0, 0, 2 - h}, {});  // apex (0, 0, -1) at z = 1 - h
+    for (const bool swap : {false, true}) {
+      const OverlapResult r = swap ? overlap(octahedron, apex_in, cube, Transform::identity(), work)
+                                   : overlap(cube, Transform::identity(), octahedron, apex_in, work);
+      EXPECT_NEAR(r.volume, 2 * h * h * h / 3, 1e-14) << h << " " << swap;
+      EXPECT_NEAR(length(r.centroid - Vec3{0, 0, 1 - h + 0.75 * h}), 0, 1e-13) << h << " " << swap;
+    }
+  }
+  std::mt19937_64 rng(97);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int overlapping = 0;
+  for (int c = 0; c < 120; ++c) {
+    const int sides = 5 + c % 8;
+    std::vector<Vec3> pyramid{{0, 0, -1}};  // the apex, then the base
+    for (int k = 0; k < sides; ++k)
+      pyramid.push_back({0.6 * std::cos(2 * kPi * k / sides), 0.6 * std::sin(2 * kPi * k / sides), 0.2});
+    const Body a = random_body(rng, {0, 0, 0}, 8 + c % 20);
+    // The apex a little inside A's surface, along a random direction.
+    const Vec3 dir = normalized(Vec3{u(rng), u(rng), u(rng)});
+    const Vec3 surface = apply(a.pose, support(a.shape, apply_inverse_rotation(a.pose, dir)));
+    // The pyramid's axis along dir (its apex pointing into A), spun about it.
+    const Vec3 z{0, 0, 1};
+    const Quat tip = quat_from_axis_angle(normalized(cross(z, dir)), std::acos(dot(z, dir)));
+    const Quat turn = tip * quat_from_axis_angle(z, kPi * u(rng));
+    const Vec3 apex_at = surface - dir * (0.05 + 0.2 * (u(rng) + 1));
+    const Transform pose = Transform::from(apex_at - rotate(turn, Vec3{0, 0, -1}), turn);
+    const Body b = placed_body(pyramid, pose);
+    const auto truth = oracle::brute_force_overlap(a.world, a.tris, b.world, b.tris);
+    const OverlapResult r = c % 2 ? overlap(a.shape, a.pose, b.shape, b.pose, work) : overlap(b.shape, b.pose, a.shape, a.pose, work);
+    ASSERT_NE(r.status, OverlapStatus::Unsupported);
+    EXPECT_NEAR(r.volume, truth.volume, 1e-10) << "case " << c;
+    if (truth.volume > 1e-6) {
+      ++overlapping;
+      EXPECT_NEAR(length(r.centroid - truth.centroid), 0.0, 1e-9) << "case " << c;
+      EXPECT_NEAR(length(r.area_a + r.area_b), 0.0, 1e-10 * (length(r.area_a) + 1)) << "case " << c;
+    }
+  }
+  EXPECT_GT(overlapping, 60);
+}
+
 // The contact normal is minus the gradient of the overlap volume with respect
 // to B's position (the volume shrinks fastest when B moves along it).
 TEST(Overlap, NormalIsMinusVolumeGradient) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -33,6 +34,31 @@ TEST(BroadPhase, AabbIsTight) {
       }
       for (double r : reach) EXPECT_NEAR(r, -0.01, 0.05);  // sampled supports come close to every face
     }
+}
+
+// A small hull's box comes from its corners placed, not six scans: the same
+// bits as the supports along the rotated axes give (a resumed or re-run bed
+// must find the same candidates), for hulls of 4 to 64 corners far from the
+// origin, with and without a pad.
+TEST(BroadPhase, SmallHullBoxHasTheSupportsBits) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int c = 0; c < 300; ++c) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 4 + c % 61; ++i) pts.push_back(Vec3{u(rng), u(rng), 0.2 * u(rng)} * (1 + c % 7));
+    const Shape s{make_polytope(pts)};
+    const Transform pose = Transform::from(Vec3{u(rng), u(rng), u(rng)} * std::pow(10.0, c % 6),
+                                           normalized(Quat{u(rng), u(rng), u(rng), u(rng)}));
+    const Real pad = c % 2 ? 0.01 : 0;
+    const Aabb box = aabb(s, pose, pad);
+    for (int k = 0; k < 3; ++k) {
+      Vec3 axis;
+      axis[k] = 1;
+      const Vec3 local = apply_inverse_rotation(pose, axis);
+      EXPECT_EQ(box.hi[k], apply(pose, support(s, local))[k] + pad) << c;
+      EXPECT_EQ(box.lo[k], apply(pose, support(s, -local))[k] - pad) << c;
+    }
+  }
 }
 
 TEST(BroadPhase, SweepAndPruneMatchesBruteForce) {

@@ -63,6 +63,8 @@ struct OverlapWorkspace {
   std::vector<Real> side;  ///< each point's signed distance to the plane clipping it
   std::vector<unsigned char> face_place;  ///< each face's: inside the plane, beyond it, or cut
   std::vector<unsigned char> on_plane;    ///< a cut face's points: on the plane or not
+  std::vector<Vec3> cut_entry, cut_exit;  ///< where each cut face comes back to the kept side and leaves it
+  std::vector<int> cut_next;              ///< the cut face whose entry is each one's exit (-1: none)
   struct Plane {
     Vec3 n;  ///< unit, outward
     Real d;  ///< n . x on the plane

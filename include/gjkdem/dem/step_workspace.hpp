@@ -60,7 +60,18 @@ inline void push_a(Body& a, const StepContact& c) noexcept {
   a.torque -= c.torque - cross(a.position, c.force);
 }
 
+/// Which kinds of template a world holds, so that a stage serving one kind
+/// skips the contact list of a world without it. During a run templates are
+/// only appended (breakage's fragments), never changed: the templates from
+/// `seen` on are all that can add a kind (step.cpp).
+struct TemplateKinds {
+  std::size_t seen = 0;         ///< templates looked at
+  bool surface_grains = false;  ///< one is a surface grain (ShapeTemplate::surface_grain)
+  bool wall_faces = false;      ///< one is a mesh wall piece (ShapeTemplate::wall_face)
+};
+
 struct StepWorkspace {
+  TemplateKinds kinds;
   StaticTree fixed_tree;             ///< of the fixed bodies' boxes
   bool static_ready = false;         ///< fixed_tree and moving are built
   SweepWorkspace sweep;

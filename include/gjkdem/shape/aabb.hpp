@@ -1,6 +1,7 @@
 #pragma once
-// Axis-aligned boxes: the bound of a placed shape (six support calls), and
-// the overlap test the broad phase, the domains and the scene checks share.
+// Axis-aligned boxes: the bound of a placed shape (six support calls, or a
+// small hull's corners placed), and the overlap test the broad phase, the
+// domains and the scene checks share.
 #include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/shape.hpp"
 
@@ -19,8 +20,9 @@ inline bool overlaps(const Aabb& a, const Aabb& b) noexcept {
 /// The smallest box holding both.
 inline Aabb enclose(const Aabb& a, const Aabb& b) noexcept { return {min(a.lo, b.lo), max(a.hi, b.hi)}; }
 
-/// The smallest axis-aligned box holding the placed shape (six support calls),
-/// grown by `pad` (m) on every side (the contact margin, or a skin for reuse).
+/// The smallest axis-aligned box holding the placed shape (six support calls,
+/// or a small hull's corners placed: the same bits), grown by `pad` (m) on
+/// every side (the contact margin, or a skin for reuse).
 Aabb aabb(const Shape& shape, const Transform& pose, Real pad = 0) noexcept;
 
 }  // namespace gjkdem

@@ -129,7 +129,9 @@ Polytope make_polytope(std::span<const Vec3> points);
 /// from its facets' planes (negative inside). -infinity for a flat hull.
 Real facet_distance(const PolytopeData& d, const Vec3& p) noexcept;
 
-inline Vec3 support(const Polytope& p, const Vec3& d, int& hint) noexcept {
+// Always inlined: the call cost a DEM bed of 12-vertex grains 1.4% of its
+// step (5 million calls).
+[[gnu::always_inline]] inline Vec3 support(const Polytope& p, const Vec3& d, int& hint) noexcept {
   const PolytopeData& s = *p.data;
   const Vec3* v = s.vertices.data();
   const int n = static_cast<int>(s.vertices.size());
