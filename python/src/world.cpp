@@ -763,7 +763,7 @@ void bind_world(py::module_& m) {
           "walls and bodies did on the others so far, and the energy inserted bodies brought in (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
       .def_property_readonly("bonds", [](const World& w) { return w.bonds.size(); },
-                             "Bonds of the world's bonded assemblies (docs/breakage.md), intact or broken.")
+                             "How many bonds the world's bonded assemblies hold (docs/breakage.md), intact or broken.")
       .def_property_readonly("bonds_broken", [](const World& w) { return dem::broken_bonds(w.bonds); },
                              "Bonds broken so far.")
       .def_property_readonly("grains_broken", [](const World& w) { return w.broken; },

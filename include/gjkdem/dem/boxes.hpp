@@ -1,7 +1,7 @@
 #pragma once
 // The boxes of the broad phase, enlarged by a skin and kept while a body
 // stays inside its own (the Verlet-list idea of molecular dynamics, and
-// Yade's "verletDist"): a box is recomputed from six support calls only when
+// Yade's "verletDist"): a box is recomputed (shape/aabb.hpp) only when
 // the body may have left it, and when no box changed the broad phase keeps
 // its candidate pairs.
 //
