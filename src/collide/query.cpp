@@ -58,6 +58,20 @@ auto with_diff(const Shape& a, const Shape& b, const Transform& b_in_a, const Gj
       a.core, b.core);
 }
 
+// The distance loop's test of cores `margins` (their sum) apart at most,
+// warm from `cache` and saved to it: whether they meet. `reach` receives
+// the length of the point of the cores' difference it stopped at (also
+// where it stopped as intersecting: within the margins, or enclosing 0), a
+// bound on their distance.
+template <class MD>
+bool meet_within(MD& md, const Vec3& v0, GjkCache* cache, Real size, Real margins, const QuerySettings& st,
+                 Real* reach = nullptr) noexcept {
+  const auto g = detail::gjk(md, v0, warm_dirs(cache), warm_size(cache), size, margins, GjkMode::Boolean, st);
+  save_cache(cache, md, g.simplex);
+  if (reach) *reach = length(g.v);
+  return g.status == GjkStatus::Intersecting || dot(g.v, g.v) <= margins * margins;
+}
+
 }  // namespace
 
 bool intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b, GjkCache* cache,
@@ -76,12 +90,7 @@ bool intersect(const Shape& a, const Transform& pose_a, const Shape& b, const Tr
         return o == detail::Overlap::Intersecting;
       }
     }
-    const auto g = detail::gjk(md, v0, warm_dirs(cache), warm_size(cache), pair_size(a, b), a.margin + b.margin,
-                               GjkMode::Boolean, st);
-    save_cache(cache, md, g.simplex);
-    if (g.status == GjkStatus::Intersecting) return true;
-    const Real margin = a.margin + b.margin;
-    return dot(g.v, g.v) <= margin * margin;
+    return meet_within(md, v0, cache, pair_size(a, b), a.margin + b.margin, st);
   });
 }
 
@@ -168,10 +177,7 @@ DepthClass classify_depth(const Shape& a, const Transform& pose_a, const Shape& 
     GjkCache cores;
     Real reach = 0;  // |v|
     const bool meet = with_diff(a, b, b_in_a, nullptr, [&](auto& md) {
-      const auto g = detail::gjk(md, cold_start(b_in_a), nullptr, 0, size, margins, GjkMode::Boolean, st);
-      save_cache(&cores, md, g.simplex);
-      reach = length(g.v);  // also where it stopped as intersecting: within the margins, or enclosing 0
-      return g.status == GjkStatus::Intersecting || dot(g.v, g.v) <= margins * margins;
+      return meet_within(md, cold_start(b_in_a), &cores, size, margins, st, &reach);
     });
     if (!meet) return DepthClass::Apart;
     if (margins - reach > shrink) return DepthClass::Beyond;

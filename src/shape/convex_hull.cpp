@@ -112,8 +112,8 @@ std::size_t convex_hull_2d(std::span<const Vec2> points, Real tol, std::span<int
   const auto before = [&](int a, int b) {
     return points[a].x < points[b].x || (points[a].x == points[b].x && points[a].y < points[b].y);
   };
-  // The cut faces of an overlap hold a few points each, a DEM step hundreds
-  // of thousands of them: sorted by insertion below 32 points (no calls).
+  // The cuts an overlap closes by its hull hold a few points each: sorted
+  // by insertion below 32 points (no calls).
   if (n < 32) {
     for (std::size_t i = 1; i < n; ++i) {
       const int v = order[i];
