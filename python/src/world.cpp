@@ -293,7 +293,7 @@ void bind_world(py::module_& m) {
              double rolling_damping, double strength, double weibull_modulus, double strength_size,
              double unbreakable_below, std::uint64_t strength_seed, double bond_tensile_strength,
              double bond_shear_strength, double bond_normal_stiffness, double bond_shear_stiffness,
-             double bond_damping) {
+             double bond_damping, double bond_moment_strength) {
             return b.add_material({.name = name,
                                    .density = density,
                                    .youngs_modulus = youngs_modulus,
@@ -309,6 +309,7 @@ void bind_world(py::module_& m) {
                                                 .seed = strength_seed},
                                    .glue = {.tensile_strength = bond_tensile_strength,
                                             .shear_strength = bond_shear_strength,
+                                            .moment_strength = bond_moment_strength,
                                             .normal_stiffness = bond_normal_stiffness,
                                             .shear_stiffness = bond_shear_stiffness,
                                             .damping = bond_damping}});
@@ -321,7 +322,7 @@ void bind_world(py::module_& m) {
           py::arg("unbreakable_below") = 0.0, py::arg("strength_seed") = dem::Strength{}.seed,
           py::arg("bond_tensile_strength") = 0.0, py::arg("bond_shear_strength") = 0.0,
           py::arg("bond_normal_stiffness") = 0.0, py::arg("bond_shear_stiffness") = 0.0,
-          py::arg("bond_damping") = dem::Glue{}.damping,
+          py::arg("bond_damping") = dem::Glue{}.damping, py::arg("bond_moment_strength") = 0.0,
           "Returns the material's index (the defaults are a scene's: dem::Material). A strength > 0 (Pa, the "
           "mean at strength_size, m) lets its polyhedral grains break; a bond_tensile_strength > 0 (Pa, with a "
           "bond_shear_strength) glues the pieces of its bonded assemblies (docs/breakage.md).")

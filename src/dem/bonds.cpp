@@ -53,6 +53,7 @@ Bond glue_bodies(const Body& a, const Body& b, const Material& material, const V
       g.shear_stiffness > 0 ? g.shear_stiffness : bond.normal_stiffness / (2 * (1 + material.poisson_ratio));
   bond.tensile_strength = g.tensile_strength;
   bond.shear_strength = g.shear_strength;
+  bond.moment_strength = g.moment_strength;
   bond.damping = g.damping;
   return bond;
 }
@@ -102,13 +103,16 @@ BondLoad bond_load(const Bond& bond, const Body& a, const Body& b, const Makeup&
   // (opening + R |bend|) (the force over A plus M R / I), tau = k_s
   // (|sliding| + R |twist|).
   const Real R = bond_radius(bond);
-  load.tension = bond.normal_stiffness * (opening + R * length(bend));
-  load.shear = bond.shear_stiffness * (length(sliding) + R * std::fabs(twist));
+  const Real bending = bond.normal_stiffness * R * length(bend), twisting = bond.shear_stiffness * R * std::fabs(twist);
+  load.tension = bond.normal_stiffness * opening + bending;
+  load.shear = bond.shear_stiffness * length(sliding) + twisting;
+  load.moment = std::fmax(bending, twisting);
   return load;
 }
 
 bool bond_breaks(const Bond& bond, const BondLoad& load) noexcept {
-  return load.tension >= bond.tensile_strength || load.shear >= bond.shear_strength;
+  return load.tension >= bond.tensile_strength || load.shear >= bond.shear_strength ||
+         (bond.moment_strength > 0 && load.moment >= bond.moment_strength);
 }
 
 bool bonded(std::span<const Bond> bonds, std::uint64_t lo, std::uint64_t hi) noexcept {

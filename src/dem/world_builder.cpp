@@ -79,6 +79,7 @@ void check_material(const Material& m) {
   const Glue& g = m.glue;
   for (const auto& [key, v] : {std::pair{"bond_tensile_strength", g.tensile_strength},
                                {"bond_shear_strength", g.shear_strength},
+                               {"bond_moment_strength", g.moment_strength},
                                {"bond_normal_stiffness", g.normal_stiffness},
                                {"bond_shear_stiffness", g.shear_stiffness}})
     need(std::isfinite(v) && v >= 0, who, key, "must be finite and >= 0");

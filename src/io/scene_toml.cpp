@@ -301,7 +301,8 @@ class SceneBuilder {
     }
     dem::Glue& g = m.glue;  // bonded assemblies (docs/breakage.md)
     for (auto [key, value] : {std::pair{"bond_tensile_strength", &g.tensile_strength},
-                              {"bond_shear_strength", &g.shear_strength}, {"bond_normal_stiffness", &g.normal_stiffness},
+                              {"bond_shear_strength", &g.shear_strength}, {"bond_moment_strength", &g.moment_strength},
+                              {"bond_normal_stiffness", &g.normal_stiffness},
                               {"bond_shear_stiffness", &g.shear_stiffness}, {"bond_damping", &g.damping}})
       *value = r.number(key).value_or(*value);
     building(r, [&] { return builder_->add_material(m); });
@@ -315,6 +316,7 @@ class SceneBuilder {
                        {"strength_seed", st.seed}});
     if (g.tensile_strength > 0)
       resolved.update({{"bond_tensile_strength", g.tensile_strength}, {"bond_shear_strength", g.shear_strength},
+                       {"bond_moment_strength", g.moment_strength},
                        {"bond_normal_stiffness", g.normal_stiffness}, {"bond_shear_stiffness", g.shear_stiffness},
                        {"bond_damping", g.damping}});
   }

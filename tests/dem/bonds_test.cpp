@@ -97,6 +97,39 @@ TEST(Bonds, GluedCubesPartWhenTheTensionReachesTheStrengthAndGiveUpTheBondsEnerg
   }
 }
 
+// b of the glued cubes turned by `angle` about `axis` through the face's
+// centre (the origin), as a bent or twisted face without opening or sliding.
+void turn_second(World& w, const Vec3& axis, Real angle) {
+  const Quat q = quat_from_axis_angle(axis, angle);
+  Body& b = w.bodies[1];
+  b.orientation = q * b.orientation;
+  b.position = rotate(q, b.position);
+}
+
+TEST(Bonds, AMomentStrengthBreaksABentOrTwistedFaceThatTheRimStressesHold) {
+  const Real A = 4 * kHalf * kHalf, R = std::sqrt(A / 3);  // R = sqrt(2 J / A), J = A^2 / 6
+  const Real angle = 1e-3;
+  const Real bending = 1e9 * R * angle, twisting = 4e8 * R * angle;  // k_n R theta, k_s R theta (Pa)
+  for (const bool twist : {false, true}) {
+    const Real stress = twist ? twisting : bending;
+    for (const Real moment_strength : {0.0, 0.9 * stress, 1.1 * stress}) {
+      Material m = glued(10 * bending, 10 * bending);
+      m.glue.moment_strength = moment_strength;
+      World w = pair(m, 0);
+      turn_second(w, twist ? Vec3{1, 0, 0} : Vec3{0, 1, 0}, angle);
+      const BondLoad load = bond_load(w.bonds[0], w.bodies[0], w.bodies[1], Makeup{w.templates, w.materials});
+      EXPECT_NEAR(load.moment, stress, 1e-9 * stress);
+      // The moment also counts in the rim's tension (bending) or shear (twisting).
+      EXPECT_NEAR(twist ? load.shear : load.tension, stress, 1e-6 * stress);
+      EXPECT_NEAR(twist ? load.tension : load.shear, 0, 1e-6 * stress);
+      const bool breaks = moment_strength > 0 && moment_strength < stress;
+      EXPECT_EQ(bond_breaks(w.bonds[0], load), breaks) << "twist " << twist << ", strength " << moment_strength;
+      ASSERT_EQ(step(w, 1e-7).status, StepStatus::Ok);
+      EXPECT_EQ(w.bonds[0].intact, breaks ? 0 : 1);
+    }
+  }
+}
+
 struct Momenta {
   Vec3 linear, angular;
 };

@@ -561,6 +561,9 @@ def test_a_bonded_assembly_cracks_when_dropped_and_its_bad_values_are_refused():
             b.add_bonded(box, "rock", **kwargs)
     with pytest.raises(ValueError, match="bond_shear_strength"):
         b.add_material("half", density=2500, youngs_modulus=1e7, bond_tensile_strength=3e4)
+    with pytest.raises(ValueError, match="bond_moment_strength"):
+        b.add_material("bent", density=2500, youngs_modulus=1e7, bond_tensile_strength=3e4, bond_shear_strength=3e4,
+                       bond_moment_strength=-1)
     b.add_material("plain", density=2500, youngs_modulus=1e7)
     with pytest.raises(ValueError, match="no glue"):
         b.add_bonded(box, "plain", pieces=4)

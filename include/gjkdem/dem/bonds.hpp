@@ -33,6 +33,7 @@ struct Bond {
   Real shear_stiffness = 0;    ///< per unit area (Pa/m)
   Real tensile_strength = 0;   ///< Pa
   Real shear_strength = 0;     ///< Pa
+  Real moment_strength = 0;    ///< Pa, of the moments alone (Glue::moment_strength); 0: none
   Real damping = 0;            ///< ratio of the critical damping of each spring
   std::uint8_t intact = 1;     ///< 0: broken, for good
   Real broken_time = 0;        ///< when it broke (s)
@@ -55,6 +56,7 @@ struct BondLoad {
   Real elastic = 0;  ///< J
   Real tension = 0;  ///< normal stress at the rim (Pa), tension positive
   Real shear = 0;    ///< shear stress at the rim (Pa)
+  Real moment = 0;   ///< the larger of the moments' own stresses at the rim, bending and twisting (Pa)
 };
 
 /// The face's equivalent radius: the disc's of the same area and polar
@@ -66,7 +68,7 @@ Real bond_radius(const Bond& bond) noexcept;
 BondLoad bond_load(const Bond& bond, const Body& a, const Body& b, const Makeup& makeup) noexcept;
 
 /// Whether the bond breaks under `load`: its tension or shear at the rim
-/// reaches its strength.
+/// reaches its strength, or its moments' stress the moment strength.
 bool bond_breaks(const Bond& bond, const BondLoad& load) noexcept;
 
 /// Whether bodies of ids lo < hi are held by an intact bond (`bonds` sorted

@@ -35,6 +35,11 @@ struct Strength {
 struct Glue {
   Real tensile_strength = 0;  ///< Pa, >= 0; 0: no bonds
   Real shear_strength = 0;    ///< Pa, > 0 where tensile_strength > 0
+  /// Pa, >= 0: the strength against the moments alone, a glue weaker in
+  /// bending or twisting than the beam stresses say (the bending stress
+  /// |M_b| R / I or the twisting stress |M_t| R / J at the rim reaches it).
+  /// 0: none; the moments still count in the tension and shear at the rim.
+  Real moment_strength = 0;
   /// Normal stiffness per unit area (Pa/m), >= 0; 0: E / l, with l the
   /// distance between the two pieces' centres (a bar of the material
   /// spanning them).
