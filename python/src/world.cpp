@@ -488,8 +488,17 @@ void bind_world(py::module_& m) {
           [](dem::WorldBuilder& b, const py::object& shapes, std::size_t count, const py::object& lo,
              const py::object& hi, const py::object& material, const py::object& velocity, std::uint64_t seed,
              const py::object& weights, const std::string& label, bool fixed, const py::object& cylinder,
-             const py::object& sphere) {
+             const py::object& sphere, std::int64_t pieces, std::int64_t pieces_seed, std::int64_t relaxations) {
             dem::RegionFill f;
+            const std::string who = label.empty() ? "region" : label;
+            if (pieces < 0 || pieces > dem::kMaxBondedPieces)
+              throw dem::BuildError(who, "pieces", "must be between 2 and " + std::to_string(dem::kMaxBondedPieces) +
+                                                       " (0: no bonded assemblies)");
+            if (pieces_seed < 0) throw dem::BuildError(who, "pieces_seed", "must be >= 0");
+            if (relaxations < 0 || relaxations > 100) throw dem::BuildError(who, "relaxations", "must be between 0 and 100");
+            f.pieces = static_cast<std::uint32_t>(pieces);
+            f.pieces_seed = static_cast<std::uint64_t>(pieces_seed);
+            f.relaxations = static_cast<int>(relaxations);
             f.variants = body_shapes(shapes);
             if (!weights.is_none()) f.weights = weights.cast<std::vector<double>>();
             f.count = count;
@@ -504,10 +513,13 @@ void bind_world(py::module_& m) {
           py::arg("shapes"), py::arg("count"), py::arg("lo") = py::none(), py::arg("hi") = py::none(),
           py::arg("material") = py::none(), py::arg("velocity") = std::array<double, 3>{0, 0, 0}, py::arg("seed") = 1,
           py::arg("weights") = py::none(), py::arg("label") = "", py::arg("fixed") = false,
-          py::arg("cylinder") = py::none(), py::arg("sphere") = py::none(),
+          py::arg("cylinder") = py::none(), py::arg("sphere") = py::none(), py::arg("pieces") = 0,
+          py::arg("pieces_seed") = 1, py::arg("relaxations") = 3,
           "Places `count` bodies, each one of `shapes` at random (number probabilities `weights`, default\n"
           "equal), without overlap in the box [lo, hi], or in cylinder={base, axis, radius, height} or\n"
-          "sphere={centre, radius} (each body's bounding sphere inside); returns their indices.")
+          "sphere={centre, radius} (each body's bounding sphere inside); returns their indices. pieces > 0:\n"
+          "each body is a bonded assembly of its shape cut into that many glued pieces, the k-th's sites drawn\n"
+          "from pieces_seed and k (add_bonded; its indices are the pieces').")
       .def(
           "add_inflow",
           [](dem::WorldBuilder& b, const py::object& shapes, const py::object& lo, const py::object& hi,

@@ -541,11 +541,25 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     throw BuildError(label + ": the region's max must exceed its min on every axis");
   if (f.fixed && length(f.velocity) > 0)
     throw BuildError(label, "velocity", "must be zero for fixed bodies (fixed = true)");
+  if (f.pieces > 0 && f.fixed) throw BuildError(label, "fixed", "bonded assemblies move: they cannot be fixed");
+  if (f.pieces > kMaxBondedPieces || (f.pieces > 0 && f.pieces * static_cast<std::uint64_t>(f.count) > kMaxFillCount))
+    throw BuildError(label, "pieces",
+                     "must be at most " + std::to_string(kMaxBondedPieces) + ", and times the count at most " +
+                         std::to_string(kMaxFillCount));
+  if (f.pieces == 1) throw BuildError(label, "pieces", "must be at least 2 (0: no bonded assemblies)");
   const std::uint32_t first_template = static_cast<std::uint32_t>(world_.templates.size());
   Real diameter = 0;  // of a sphere about each shape frame's origin holding every variant
   for (const BodyShape& s : f.variants) {
-    add_template(s, f.fixed, label);
-    diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + bounding_radius(given_shapes_.back())));
+    Real radius = 0;
+    if (f.pieces > 0) {  // cut per assembly below: no template of the whole
+      if (!s.parts.empty() || s.surface)
+        throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound or a surface");
+      radius = bounding_radius(s.shape);
+    } else {
+      add_template(s, f.fixed, label);
+      radius = bounding_radius(given_shapes_.back());
+    }
+    diameter = std::fmax(diameter, 2 * (length(s.pose.translation) + radius));
   }
   // Cells of at least one diameter, the slack spread evenly.
   std::vector<std::pair<Vec3, Quat>> spots;
@@ -637,6 +651,20 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   const std::vector<Real> cumulative = cumulative_weights(f.weights, f.variants.size(), label);
   std::uniform_real_distribution<Real> uniform(0, 1);
   std::vector<std::uint32_t> placed;
+  if (f.pieces > 0) {
+    for (std::size_t k = 0; k < spots.size(); ++k) {
+      const auto& [centre, q] = spots[k];
+      const std::size_t v = f.weights.empty() ? pick(rng) : pick_weighted(cumulative, uniform(rng));
+      const BodyShape& s = f.variants[v];
+      const std::vector<std::uint32_t> pieces =
+          add_bonded({.shape = s, .pieces = f.pieces, .seed = bonded_seed(f.pieces_seed, k),
+                      .relaxations = f.relaxations, .material = f.material,
+                      .position = centre - rotate(q, s.pose.translation), .rotation = q, .velocity = f.velocity,
+                      .label = label + " assembly " + std::to_string(k)});
+      placed.insert(placed.end(), pieces.begin(), pieces.end());
+    }
+    return placed;
+  }
   for (const auto& [centre, q] : spots) {
     Body b;
     b.id = next_id();

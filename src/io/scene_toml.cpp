@@ -527,8 +527,8 @@ class SceneBuilder {
       s.parts = compound_parts(r, *t);
       r.finish();
     } else if (type == "bonded") {
-      r.fail("type", "\"bonded\" is the shape of a [[body]] only (written in it, not named in [shapes]; generators, "
-                     "inflows and compounds take single shapes)");
+      r.fail("type", "\"bonded\" is the shape of a [[body]] or of a [[generator]]'s single `shape` only (written "
+                     "there, not named in [shapes]; inflows and compounds take single shapes)");
     } else {
       std::ostringstream json;
       json << toml::json_formatter{*t};
@@ -837,7 +837,8 @@ class SceneBuilder {
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
     fill.fixed = r.boolean("fixed", false);
     std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
-    Mix mix = read_mix(r, count, rng);
+    const toml::table* bonded = bonded_table(r);
+    Mix mix = bonded ? read_bonded_mix(r, *bonded, fill) : read_mix(r, count, rng);
     fill.variants = std::move(mix.variants);
     fill.weights = std::move(mix.weights);
     const std::vector<std::uint32_t> placed = building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
@@ -847,6 +848,44 @@ class SceneBuilder {
     if (fill.fixed) j["fixed"] = true;
     j.update(mix.resolved);
     resolved_["generator"].push_back(j);
+  }
+
+  // The generator's `shape` when it is { type = "bonded", ... }, else null.
+  static const toml::table* bonded_table(TableReader& r) {
+    const toml::node* n = r.find("shape");
+    if (!n || !n->is_table()) return nullptr;
+    const toml::table& t = *n->as_table();
+    return t.get("type") && t.get("type")->value<std::string>() == std::optional<std::string>("bonded") ? &t : nullptr;
+  }
+
+  // A generator of bonded assemblies: shape = { type = "bonded", shape =
+  // SHAPE, pieces = N, seed, relaxations }, each assembly cut anew (its
+  // sites from seed and its number: dem::bonded_seed).
+  Mix read_bonded_mix(TableReader& r, const toml::table& table, dem::RegionFill& fill) {
+    for (const char* key : {"shapes", "sizes", "variants", "fractions"})
+      if (r.has(key))
+        r.fail(key, "is not for a generator of bonded assemblies (one shape, each assembly cut anew from its seed)");
+    if (fill.fixed) r.fail("fixed", "bonded assemblies move: they cannot be fixed");
+    TableReader b(table, r.where() + ".shape");
+    b.required_string("type");
+    Mix mix;
+    mix.variants.push_back(read_shape(b, "shape"));
+    const std::int64_t pieces = b.integer("pieces").value_or(0);
+    if (pieces < 2 || pieces > dem::kMaxBondedPieces)
+      b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
+    const std::int64_t seed = b.integer("seed").value_or(1);
+    if (seed < 0) b.fail("seed", "must be >= 0");
+    const std::int64_t relaxations = b.integer("relaxations").value_or(3);
+    if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
+    std::ostringstream json;
+    json << toml::json_formatter{*shape_table_at(b, "shape")};
+    b.finish();
+    fill.pieces = static_cast<std::uint32_t>(pieces);
+    fill.pieces_seed = static_cast<std::uint64_t>(seed);
+    fill.relaxations = static_cast<int>(relaxations);
+    mix.resolved = {{"shape", {{"type", "bonded"}, {"shape", Json::parse(json.str())}, {"pieces", pieces},
+                               {"seed", seed}, {"relaxations", relaxations}}}};
+    return mix;
   }
 
   void read_inflow(TableReader& r) {

@@ -556,6 +556,16 @@ struct Bad {
 
 class BadScene : public ::testing::TestWithParam<Bad> {};
 
+// A generator (or with `table` "inflow" and `amount` "rate = 100.0", an
+// inflow) of bonded assemblies of `pieces`.
+std::string bonded_generator(int pieces = 6, const std::string& table = "generator",
+                             const std::string& amount = "count = 4") {
+  return "[[" + table + "]]\n" + amount + "\nshape = { type = \"bonded\", shape = { type = \"box\", half_extents = "
+         "[0.01, 0.01, 0.01] }, pieces = " + std::to_string(pieces) + " }\nmaterial = \"rock\"\n"
+         "region = { min = [-0.1, -0.1, 0.0], max = [0.1, 0.1, 0.1] }\n";
+}
+const std::string kBondedGenerator = bonded_generator();
+
 TEST_P(BadScene, IsRefusedNamingTheProblem) {
   const Bad& b = GetParam();
   const std::string message = refusal(b.toml);
@@ -777,7 +787,20 @@ material = "rock"
             "body[0]: its name holds a comma"},
         Bad{"name_with_newline", kHead + "[[body]]\nname = \"a\\nb\"\nshape = { type = \"sphere\", radius = 0.01 }\n"
                                            "material = \"rock\"\n",
-            "a quote or a control character"}),
+            "a quote or a control character"},
+        Bad{"bonded_generator_with_variants", kHead + "bond_tensile_strength = 3e4\nbond_shear_strength = 3e4\n" +
+                                                  kBondedGenerator + "variants = 4\n",
+            "generator[0].variants: is not for a generator of bonded assemblies"},
+        Bad{"bonded_generator_fixed", kHead + "bond_tensile_strength = 3e4\nbond_shear_strength = 3e4\n" +
+                                          kBondedGenerator + "fixed = true\n",
+            "generator[0].fixed: bonded assemblies move"},
+        Bad{"bonded_generator_one_piece", kHead + "bond_tensile_strength = 3e4\nbond_shear_strength = 3e4\n" +
+                                              bonded_generator(1),
+            "generator[0].shape.pieces: must be given, between 2 and"},
+        Bad{"bonded_generator_without_glue", kHead + kBondedGenerator, "has no glue"},
+        Bad{"bonded_inflow", kHead + "bond_tensile_strength = 3e4\nbond_shear_strength = 3e4\n" +
+                                 bonded_generator(6, "inflow", "rate = 100.0"),
+            "\"bonded\" is the shape of a [[body]] or of a [[generator]]'s single `shape` only"}),
     [](const ::testing::TestParamInfo<Bad>& param_info) { return param_info.param.name; });
 
 }  // namespace

@@ -567,3 +567,24 @@ def test_a_bonded_assembly_cracks_when_dropped_and_its_bad_values_are_refused():
     b.add_material("plain", density=2500, youngs_modulus=1e7)
     with pytest.raises(ValueError, match="no glue"):
         b.add_bonded(box, "plain", pieces=4)
+
+
+def test_a_region_fill_of_bonded_assemblies_cuts_each_of_its_own():
+    """fill_region(pieces=N) makes bonded assemblies: each of N pieces
+    tiling its box, each cut from its own sites and glued into one; bad
+    pieces are ValueErrors naming the key."""
+    b = gjkdem.WorldBuilder(gjkdem.Settings())
+    b.add_material("rock", density=2000, youngs_modulus=1e7, bond_tensile_strength=3e4, bond_shear_strength=3e4)
+    box = gjkdem.Shape("box", half_extents=[0.01, 0.008, 0.006])
+    placed = b.fill_region([box], 5, lo=[-0.05, -0.05, 0], hi=[0.05, 0.05, 0.05], material="rock", pieces=7)
+    assert len(placed) == 35
+    with pytest.raises(ValueError, match="pieces"):
+        b.fill_region([box], 2, lo=[-0.05, -0.05, 0.1], hi=[0.05, 0.05, 0.2], material="rock", pieces=1)
+    with pytest.raises(ValueError, match="fixed"):
+        b.fill_region([box], 2, lo=[-0.05, -0.05, 0.1], hi=[0.05, 0.05, 0.2], material="rock", pieces=4, fixed=True)
+    w = b.build()
+    masses = w.masses()
+    for k in range(5):  # the pieces of each assembly add up to its box's mass
+        assert abs(masses[7 * k:7 * k + 7].sum() / (2000 * 0.02 * 0.016 * 0.012) - 1) < 1e-12
+    assert len({round(float(m), 12) for m in masses[:7]} ^ {round(float(m), 12) for m in masses[7:14]}) > 0
+    assert w.bonds >= 5 * 6  # each assembly's pieces are glued into one

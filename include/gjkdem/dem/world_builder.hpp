@@ -174,7 +174,16 @@ struct RegionFill {
   Vec3 velocity;
   bool fixed = false;               ///< fixed bodies (a rough floor, an obstacle field): no velocity
   std::string label;                ///< e.g. "generator[0]"
+  /// > 0: each body placed is a bonded assembly (BondedDef) of its shape
+  /// cut into this many pieces, the sites of the k-th drawn from
+  /// bonded_seed(pieces_seed, k); moving bodies only.
+  std::uint32_t pieces = 0;
+  std::uint64_t pieces_seed = 1;
+  int relaxations = 3;              ///< of each assembly's sites (BondedDef::relaxations)
 };
+
+/// The seed of the sites of the k-th bonded assembly a region fill places.
+inline std::uint64_t bonded_seed(std::uint64_t seed, std::uint64_t k) noexcept { return seed * 1000003 + k; }
 
 /// A region inserting bodies during a run (inflow.hpp): a rate in bodies or
 /// kilograms per second (one of them > 0), from `start` until `stop` or
