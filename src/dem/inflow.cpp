@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gjkdem/collide/query.hpp"
+#include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
@@ -49,7 +50,8 @@ bool due(const Inflow& f, const InflowState& s, const Makeup& makeup, Real time)
 }
 
 bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::vector<std::uint32_t>& near,
-             const std::vector<Vec3>& shifts, const ShapeTemplate& t, const Body& body) {
+             const std::vector<Vec3>& shifts, const ShapeTemplate& t, const Body& body, SurfaceScratch& scratch,
+             std::vector<SurfacePatchContact>& patches) {
   for (const PlaneWall& p : site.planes)
     if (dot(body.position - p.point, p.normal) < t.reach) return false;
   const Transform pose = shape_pose(t, body);
@@ -60,7 +62,11 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       if (!(length(other.position + s - body.position) < o.reach + t.reach)) continue;
       Transform other_pose = shape_pose(o, other);
       other_pose.translation += s;
-      if (intersect(t.shape, pose, o.shape, other_pose)) return false;
+      if (!intersect(t.shape, pose, o.shape, other_pose)) continue;
+      // A surface grain's hull is not its solid (a bowl's hollow is free).
+      if (!(t.surface_grain || o.surface_grain) || !t.surface || !o.surface ||
+          surfaces_meet(t.surface, pose, o.surface, other_pose, scratch, patches))
+        return false;
     }
   }
   return true;
@@ -114,6 +120,8 @@ std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> 
                         std::vector<Body>& bodies, std::uint64_t next_id) {
   const Makeup& makeup = site.makeup;
   std::size_t added = 0;
+  SurfaceScratch scratch;
+  std::vector<SurfacePatchContact> patches;
   for (std::size_t k = 0; k < inflows.size(); ++k) {
     const Inflow& f = inflows[k];
     InflowState& s = states[k];
@@ -140,7 +148,7 @@ std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> 
         body.position = f.round ? round_point(*f.round, u(kX), u(kY), u(kZ))
                                 : f.lo + hadamard(f.hi - f.lo, {u(kX), u(kY), u(kZ)});
         body.orientation = uniform_rotation(u(kTurn1), u(kTurn2), u(kTurn3));
-        placed = is_free(bodies, site, near, shifts, t, body);
+        placed = is_free(bodies, site, near, shifts, t, body, scratch, patches);
       }
       if (!placed) {
         ++s.behind;

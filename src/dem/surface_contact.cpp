@@ -55,6 +55,12 @@ bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
   return true;
 }
 
+bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                   const std::shared_ptr<const Surface>& b, const Transform& pose_b, SurfaceScratch& scratch,
+                   std::vector<SurfacePatchContact>& patches) {
+  return !surface_patches(a, pose_a, b, pose_b, ContactModel::Volume, scratch, patches) || !patches.empty();
+}
+
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
                            SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();

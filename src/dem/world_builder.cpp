@@ -614,9 +614,18 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
         for (Real j = first.y; j <= last.y; ++j)
           for (Real i = first.x; i <= last.x; ++i) grid[key(i, j, k)].push_back(n);
     }
+    // A surface grain's hull is not its solid (a bowl's hollow is free):
+    // the spot's cube against its surface.
+    const std::shared_ptr<const Surface> cube =
+        std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+    SurfaceScratch scratch;
+    std::vector<SurfacePatchContact> patches;
     const auto meets = [&](const Near& n, const Vec3& centre, const Transform& ball_pose) {
-      return length(centre - n.pose.translation) <= n.radius + diameter / 2 &&
-             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose);
+      if (!(length(centre - n.pose.translation) <= n.radius + diameter / 2 &&
+            intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
+        return false;
+      const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
+      return !t.surface_grain || surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
@@ -873,8 +882,10 @@ void WorldBuilder::check_inflow_regions() const {
     }
     for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
       const Body& b = world_.bodies[i];
-      // (A compound's given shape is its hull: a hopper of parts holds room inside.)
-      if (!b.fixed || b.motion != 0 || !world_.templates[b.shape].parts.empty()) continue;
+      // (A compound's or a surface grain's given shape is its hull: a hopper
+      // of parts or a bowl holds room inside.)
+      const ShapeTemplate& t = world_.templates[b.shape];
+      if (!b.fixed || b.motion != 0 || !t.parts.empty() || t.surface_grain) continue;
       const Shape& shape = given_shapes_[b.shape];
       const Transform pose = shape_pose(world_.templates[b.shape], b);
       bool inside = true;

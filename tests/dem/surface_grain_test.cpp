@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 #include <sstream>
 
 #include "gjkdem/dem/run.hpp"
@@ -171,6 +172,43 @@ TEST(SurfaceGrain, BallSettlesAtTheBottomOfABowl) {
   EXPECT_LT(std::hypot(ball.position.x, ball.position.y), 0.05 * std::cos(78.75 / 180 * kPi));
   EXPECT_LT(ball.position.z, -0.038);
   EXPECT_LT(length(ball.velocity), 1e-3);
+}
+
+// A generator and an inflow find room in a bowl's hollow, which its convex
+// hull fills: every ball placed clear of the bowl's solid, and they stay in.
+TEST(SurfaceGrain, AGeneratorAndAnInflowFillTheHollowOfABowl) {
+  WorldSettings settings = volume_settings();
+  WorldBuilder builder(settings);
+  const std::uint32_t glass = builder.add_material({"glass", 2500, 1e7, 0.25, 0.3, 0.5});
+  BodyShape bowl;
+  bowl.surface = shared(test::bowl(0.05, 0.06, 24, 8));
+  builder.add_body({.shape = bowl, .material = glass, .position = {0, 0, 0}, .fixed = true});
+  std::mt19937_64 rng(7);
+  const std::vector<std::uint32_t> placed =
+      builder.fill_region({.variants = {{make_sphere(0.004), {}}}, .count = 30, .lo = {-0.035, -0.035, -0.04},
+                           .hi = {0.035, 0.035, -0.004}, .material = glass, .label = "fill"},
+                          rng);
+  ASSERT_EQ(placed.size(), 30u);
+  builder.add_inflow({.variants = {{make_sphere(0.004), {}}}, .lo = {-0.01, -0.01, -0.002}, .hi = {0.01, 0.01, -0.002},
+                      .material = glass, .rate = 500, .count = 5, .seed = 3});
+  World w = builder.build();
+  const ShapeTemplate& bowl_template = w.templates[w.bodies[0].shape];
+  const Transform bowl_pose = shape_pose(bowl_template, w.bodies[0]);
+  SurfaceScratch scratch;
+  std::vector<SurfacePatchContact> patches;
+  const auto clear_of_bowl = [&](const Body& b) {
+    const ShapeTemplate& t = w.templates[b.shape];
+    return !surfaces_meet(t.surface, shape_pose(t, b), bowl_template.surface, bowl_pose, scratch, patches);
+  };
+  for (const std::uint32_t i : placed) {
+    EXPECT_TRUE(clear_of_bowl(w.bodies[i])) << "ball " << i << " placed in the bowl's solid";
+    EXPECT_LT(length(w.bodies[i].position), 0.05);  // in the hollow, not above the rim
+  }
+  for (int i = 0; i < 400; ++i) ASSERT_EQ(step(w, 5e-5).status, StepStatus::Ok) << i;
+  EXPECT_EQ(w.inflow_states[0].inserted, 5u);
+  ASSERT_EQ(w.bodies.size(), 36u);
+  for (std::size_t i = 31; i < w.bodies.size(); ++i) EXPECT_LT(w.bodies[i].position.z, 0);  // inserted in the hollow
+  for (std::size_t i = 1; i < w.bodies.size(); ++i) EXPECT_LT(length(w.bodies[i].position), 0.05) << i;
 }
 
 TEST(SurfaceGrain, UStandsUnderTheHertzLawToo) {

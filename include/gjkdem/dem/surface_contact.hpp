@@ -47,6 +47,14 @@ bool surface_patches(const std::shared_ptr<const Surface>& a, const Transform& p
                      const std::shared_ptr<const Surface>& b, const Transform& pose_b,
                      ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 
+/// Whether the solids of two placed surfaces meet: their overlap has a
+/// patch, or one lies wholly inside the other. Where a generator or an
+/// inflow finds room beside surface grains: the hollow of a bowl or a ring
+/// is free, which their convex hulls fill.
+bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                   const std::shared_ptr<const Surface>& b, const Transform& pose_b, SurfaceScratch& scratch,
+                   std::vector<SurfacePatchContact>& patches);
+
 /// The patches of a placed surface (b) beyond a plane wall (a), largest
 /// first. Returns false when the whole surface lies beyond the plane (the
 /// body went through: no cut face can push it back).
