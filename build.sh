@@ -17,8 +17,10 @@ base_pkgs=(cmake make g++ pkg-config libgmp-dev libgtest-dev libbenchmark-dev nl
 # VTK's own reader checks the frames in tests/cli_run.sh; pytest runs tests/python; the Python
 # example plots with matplotlib.
 # Chromium runs the viewer's browser tests (tests/browser), headless. pip, setuptools and venv:
-# the offline `pip install .` of the Python module (tests/pip_install.sh).
-test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib chromium python3-pip python3-setuptools python3-venv)
+# the offline `pip install .` of the Python module (tests/pip_install.sh). CGAL: the oracle of
+# the non-convex overlap (tests/contact/surface_overlap_cgal_test.cpp).
+test_pkgs=(python3-vtk9 python3-pytest python3-matplotlib chromium python3-pip python3-setuptools python3-venv
+           libcgal-dev)
 peer_pkgs=(libccd-dev libfcl-dev libbullet-dev libcgal-dev yade)  # yade: bench/yade_*.py
 
 install_missing() {

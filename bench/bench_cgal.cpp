@@ -4,7 +4,14 @@
 // route polyhedral DEM codes take today. Same pairs, one process run; prints
 // ns per pair, the ratio and the largest relative volume difference.
 //   bench_cgal [--pairs N] [--repeat R]
+// With --surfaces, the same for the overlapping mesh pairs of a query-format
+// file (closed surfaces, convex or not): surface_overlap against the
+// corefinement, CGAL as the oracle of the volume, the centroid and the
+// number of pieces (connected components of the intersection's faces), then
+// the median times per size (triangles of A + B) and their ratio.
+//   bench_cgal --surfaces PAIRS.jsonl [--repeat R]
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
@@ -13,9 +20,13 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <map>
 #include <string>
 
 #include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
+#include "gjkdem/io/query_jsonl.hpp"
 #include "random_pairs.hpp"
 
 namespace {
@@ -36,6 +47,14 @@ Mesh to_mesh(const gjkdem::Shape& s, const gjkdem::Transform& pose) {
   return m;
 }
 
+Mesh to_mesh(const gjkdem::Surface& s) {
+  Mesh m;
+  std::vector<Mesh::Vertex_index> v;
+  for (const auto& p : s.vertices) v.push_back(m.add_vertex(Kernel::Point_3(p.x, p.y, p.z)));
+  for (const auto& t : s.triangles) m.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  return m;
+}
+
 template <class F>
 double median_ns(int repeat, std::size_t n, F&& pass) {
   std::vector<double> t;
@@ -50,19 +69,113 @@ double median_ns(int repeat, std::size_t n, F&& pass) {
 
 }  // namespace
 
+// The overlapping mesh pairs of `path` against CGAL's corefinement.
+int compare_surfaces(const std::string& path, int repeat) {
+  using namespace gjkdem;
+  std::ifstream file(path);
+  if (!file) {
+    std::fprintf(stderr, "bench_cgal: cannot read '%s'\n", path.c_str());
+    return 2;
+  }
+  struct Row {
+    std::vector<double> ours, theirs;  // us per pair
+  };
+  std::map<std::size_t, Row> by_size;
+  SurfaceOverlapWorkspace work;
+  double worst_volume = 0, worst_centroid = 0, worst_touching = 0;
+  int pieces_differ = 0, compared = 0, touching = 0, refused = 0;
+  std::string worst_centroid_id;
+  std::string line;
+  while (std::getline(file, line)) {
+    if (io::is_skipped_line(line)) continue;
+    std::string id;
+    const io::PairInput p = io::parse_pair(line, id);
+    if (!p.a.surface || !p.b.surface) continue;
+    const Surface &a = *p.a.surface, &b = *p.b.surface;
+    SurfaceOverlap o = surface_overlap(a, b, work);
+    if (!(o.volume > 0)) continue;
+    const Mesh ma = to_mesh(a), mb = to_mesh(b);
+    Mesh out;
+    bool made = false;
+    const double t_ours = median_ns(repeat, 1, [&] { o = surface_overlap(a, b, work); }) / 1e3;
+    const double t_cgal = median_ns(repeat, 1, [&] {
+      Mesh x = ma, y = mb;  // corefinement modifies its inputs
+      out.clear();
+      made = PMP::corefine_and_compute_intersection(x, y, out);
+    }) / 1e3;
+    if (!made) {  // the intersection is not a manifold surface (pieces touching along an edge): CGAL gives none
+      std::printf("%s: CGAL cannot make the intersection (not manifold); ours %.6e in %zu patches\n", id.c_str(),
+                  o.volume, o.patches.size());
+      ++refused;
+      continue;
+    }
+    const auto exact_volume = PMP::volume(out);
+    if (CGAL::is_zero(exact_volume)) {  // the solids only touch: no centroid; ours must be round-off
+      const double solid = std::min(mass_properties(a).volume, mass_properties(b).volume);
+      worst_touching = std::max(worst_touching, o.volume / solid);
+      ++touching;
+      continue;
+    }
+    const double volume = CGAL::to_double(exact_volume);
+    const auto c = PMP::centroid(out);
+    const Vec3 centroid{CGAL::to_double(c.x()), CGAL::to_double(c.y()), CGAL::to_double(c.z())};
+    auto component = out.add_property_map<Mesh::Face_index, std::size_t>("f:component").first;
+    const std::size_t pieces = PMP::connected_components(out, component);
+    const double size = std::cbrt(volume);
+    worst_volume = std::max(worst_volume, std::fabs(o.volume - volume) / volume);
+    if (length(o.centroid - centroid) / size > worst_centroid) {
+      worst_centroid = length(o.centroid - centroid) / size;
+      worst_centroid_id = id;
+    }
+    ++compared;
+    if (pieces != o.patches.size()) {
+      ++pieces_differ;
+      const double solid = std::min(mass_properties(a).volume, mass_properties(b).volume);
+      std::printf("%s: %zu pieces in CGAL's intersection, %zu patches (volume %.2e of the smaller solid)\n",
+                  id.c_str(), pieces, o.patches.size(), volume / solid);
+    }
+    Row& row = by_size[a.triangles.size() + b.triangles.size()];
+    row.ours.push_back(t_ours), row.theirs.push_back(t_cgal);
+  }
+  if (compared == 0) {
+    std::printf("no overlapping pair\n");
+    return 0;
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::printf("| triangles of A + B | overlapping pairs | gjkdem surface_overlap us | CGAL corefinement us | ratio |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (const auto& [tris, row] : by_size)
+    std::printf("| %zu | %zu | %.1f | %.1f | %.1f |\n", tris, row.ours.size(), median(row.ours), median(row.theirs),
+                median(row.theirs) / median(row.ours));
+  std::printf("\n%d pairs: largest relative volume difference %.2e, centroid difference %.2e of the overlap's "
+              "size (cube root of its volume; %s), pieces differing in %d\n",
+              compared, worst_volume, worst_centroid, worst_centroid_id.c_str(), pieces_differ);
+  if (refused > 0) std::printf("%d pairs CGAL cannot intersect (not manifold)\n", refused);
+  if (touching > 0)
+    std::printf("%d pairs only touch (CGAL's exact volume 0): ours at most %.2e of the smaller solid\n", touching,
+                worst_touching);
+  return 0;
+}
+
 int main(int argc, char** argv) {
   using namespace gjkdem;
   int count = 200, repeat = 3;
+  std::string surfaces;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) count = std::atoi(argv[++i]);
     else if (a == "--repeat" && i + 1 < argc) repeat = std::atoi(argv[++i]);
+    else if (a == "--surfaces" && i + 1 < argc) surfaces = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_cgal [--pairs N] [--repeat R]\n");
+      std::fprintf(stderr, "usage: bench_cgal [--pairs N] [--repeat R] | --surfaces PAIRS.jsonl [--repeat R]\n");
       return 2;
     }
   }
   if (count < 1 || repeat < 1) return 2;
+  if (!surfaces.empty()) return compare_surfaces(surfaces, repeat);
   // Intersecting pairs only: the volume is what is compared.
   std::vector<bench::PolytopePair> pairs;
   OverlapWorkspace work;
