@@ -12,52 +12,10 @@
 
 #include "gjkdem/shape/predicates.hpp"
 #include "gjkdem/tolerances.hpp"
+#include "surface_overlap_detail.hpp"
 
 namespace gjkdem {
 namespace surface_overlap_detail {
-
-// An edge of one surface passing through a triangle of the other.
-struct Crossing {
-  std::uint32_t edge, triangle;
-  Real t;      // along the edge from its lower vertex to its higher
-  Vec3 point;  // relative to the overlap's reference point
-  bool exits;  // the edge, run from lower to higher vertex, leaves the other solid here
-};
-
-// One surface seen against the other solid: its side in the perturbation,
-// the crossings of its edges, the status of its vertices.
-struct View {
-  const Surface* s = nullptr;
-  Side side = Side::A;
-  std::vector<Crossing> crossings;           // sorted by edge, then t
-  std::vector<std::uint32_t> first_crossing;  // per edge, into crossings (size edges + 1)
-  std::vector<std::int8_t> inside;           // per vertex: 1 inside the other solid, 0 outside
-  std::vector<std::uint32_t> in_plane;       // edges lying in the plane of a triangle of the other surface
-  std::vector<std::uint32_t> queue, hits;    // find_status's
-
-  void reset(const Surface& surface, Side which) {
-    s = &surface;
-    side = which;
-    crossings.clear();
-    in_plane.clear();
-  }
-};
-
-Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
-
-// Line pq (an edge of surface `pq_side`, its ends on either side of the
-// plane abc of the other's triangle) passes through the triangle.
-bool passes_through(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
-  const int o1 = perturbed_orient3d_edges(p, q, a, b, pq_side);
-  return perturbed_orient3d_edges(p, q, b, c, pq_side) == o1 && perturbed_orient3d_edges(p, q, c, a, pq_side) == o1;
-}
-
-// Segment pq of surface `pq_side` through triangle abc of the other.
-bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
-  const Side abc = other(pq_side);
-  return perturbed_orient3d(a, b, c, p, abc) != perturbed_orient3d(a, b, c, q, abc) &&
-         passes_through(p, q, a, b, c, pq_side);
-}
 
 // Edge pq of v's surface (its lower vertex p, on side `sp` of the plane of
 // triangle t = abc of the other surface, q on the other side) through that
@@ -70,15 +28,6 @@ void add_crossing(View& v, std::uint32_t e, std::uint32_t t, const Vec3& p, cons
   const Real t_on = dp == dq ? Real(0.5) : std::clamp(dp / (dp - dq), Real(0), Real(1));
   const Vec3 po = p - origin, qo = q - origin;
   v.crossings.push_back({e, t, t_on, po + t_on * (qo - po), sp < 0});
-}
-
-// The crossings sorted along each edge, and where each edge's begin.
-void index_crossings(View& v) {
-  std::sort(v.crossings.begin(), v.crossings.end(),
-            [](const Crossing& x, const Crossing& y) { return x.edge < y.edge || (x.edge == y.edge && x.t < y.t); });
-  v.first_crossing.assign(v.s->edges.size() + 1, 0);
-  for (const Crossing& c : v.crossings) ++v.first_crossing[c.edge + 1];
-  for (std::size_t e = 0; e < v.s->edges.size(); ++e) v.first_crossing[e + 1] += v.first_crossing[e];
 }
 
 // The edges of triangle s of v's surface through triangle t of `solid`,
@@ -95,92 +44,6 @@ void edges_through(View& v, std::uint32_t s, const int (&sides)[3], const Surfac
     if (v.s->edge_triangles[e][0] != s || sides[k] == sides[(k + 1) % 3]) continue;
     add_crossing(v, e, t, v.s->vertices[corners[k]], v.s->vertices[corners[(k + 1) % 3]], sides[k],
                  solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], origin);
-  }
-}
-
-// Whether vertex x of v's surface lies inside `solid`: the parity of the
-// crossings of a segment from x to a point beyond the solid's box.
-bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
-  const Vec3& p = v.s->vertices[x];
-  const Vec3 far{solid.box.hi.x + std::fabs(solid.box.hi.x) + 1, p.y, p.z};
-  std::vector<std::uint32_t>& hits = v.hits;
-  hits.clear();
-  query_box_tree(solid.tree, Aabb{p, far}, hits);
-  int count = 0;
-  for (const std::uint32_t t : hits) {
-    const TriangleIndices& tri = solid.triangles[t];
-    count += crosses(p, far, solid.vertices[tri[0]], solid.vertices[tri[1]], solid.vertices[tri[2]], v.side);
-  }
-  return count % 2 == 1;
-}
-
-// Every vertex's status: outside where it lies beyond the solid's box,
-// carried along the edges (a crossing flips it) from there into the box, a
-// ray where nothing reaches. The walk starts at the box's edge, so its cost
-// follows the vertices inside the box, not the whole surface.
-void find_status(View& v, const Surface& solid) {
-  const Surface& s = *v.s;
-  v.inside.assign(s.vertices.size(), -1);
-  std::vector<std::uint32_t>& queue = v.queue;
-  queue.clear();
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {
-    const Vec3& p = s.vertices[i];
-    if (p.x < solid.box.lo.x || p.y < solid.box.lo.y || p.z < solid.box.lo.z || p.x > solid.box.hi.x ||
-        p.y > solid.box.hi.y || p.z > solid.box.hi.z)
-      v.inside[i] = 0;
-  }
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {  // the box's edge: where the walk starts
-    if (v.inside[i] >= 0) continue;
-    for (std::uint32_t k = s.vertex_edge_begin[i]; k < s.vertex_edge_begin[i + 1]; ++k) {
-      const std::uint32_t e = s.vertex_edges[k];
-      const std::uint32_t j = s.edges[e][0] == i ? s.edges[e][1] : s.edges[e][0];
-      if (v.inside[j] < 0) continue;
-      v.inside[i] = static_cast<std::int8_t>(v.inside[j] ^ ((v.first_crossing[e + 1] - v.first_crossing[e]) & 1));
-      queue.push_back(i);
-      break;
-    }
-  }
-  const auto spread = [&] {
-    while (!queue.empty()) {
-      const std::uint32_t i = queue.back();
-      queue.pop_back();
-      for (std::uint32_t k = s.vertex_edge_begin[i]; k < s.vertex_edge_begin[i + 1]; ++k) {
-        const std::uint32_t e = s.vertex_edges[k];
-        const std::uint32_t j = s.edges[e][0] == i ? s.edges[e][1] : s.edges[e][0];
-        if (v.inside[j] >= 0) continue;
-        const std::uint32_t flips = v.first_crossing[e + 1] - v.first_crossing[e];
-        v.inside[j] = static_cast<std::int8_t>(v.inside[i] ^ (flips & 1));
-        queue.push_back(j);
-      }
-    }
-  };
-  spread();
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i)
-    if (v.inside[i] < 0) {
-      v.inside[i] = inside_by_ray(v, i, solid);
-      queue.push_back(i);
-      spread();
-    }
-}
-
-// Crossings at the same point along an edge (an edge through another
-// surface's edge or vertex) may be sorted either way by their rounded
-// positions: put each run of them in the order the exact statuses imply,
-// an entry where the edge is outside, an exit where it is inside.
-void order_crossings(View& v) {
-  for (std::size_t e = 0; e < v.s->edges.size(); ++e) {
-    bool in = v.inside[v.s->edges[e][0]];
-    for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
-      if (v.crossings[c].exits != in) {
-        std::uint32_t d = c + 1;  // the next crossing that fits
-        while (d < v.first_crossing[e + 1] && v.crossings[d].exits != in) ++d;
-        if (d == v.first_crossing[e + 1]) throw std::logic_error("surface_overlap: crossings out of step along an edge");
-        std::swap(v.crossings[c], v.crossings[d]);
-      }
-      in = !in;
-    }
-    if (in != static_cast<bool>(v.inside[v.s->edges[e][1]]))
-      throw std::logic_error("surface_overlap: an edge's crossings disagree with its ends");
   }
 }
 
@@ -252,79 +115,6 @@ struct Endpoint {
   bool start;
 };
 
-// The solid's wedge at an edge of its surface, seen down the line d (from
-// p): the angle (about d, from `ref`) where it starts and its width,
-// counter-clockwise, between the rays of the edge's two faces.
-struct Wedge {
-  Real start, width;
-};
-
-Wedge wedge_at(const Surface& s, std::uint32_t e, const Vec3& d, const Vec3& ref) {
-  const Vec3& p = s.vertices[s.edges[e][0]];
-  const Vec3 side = cross(d, ref);
-  const auto angle = [&](const Vec3& u) { return std::atan2(dot(u, side), dot(u, ref)); };
-  Real rays[2];
-  Vec3 inward[2];
-  for (int k = 0; k < 2; ++k) {
-    const TriangleIndices& t = s.triangles[s.edge_triangles[e][k]];
-    Vec3 w;  // the triangle's corner off the edge
-    for (const std::uint32_t i : t)
-      if (i != s.edges[e][0] && i != s.edges[e][1]) w = s.vertices[i];
-    rays[k] = angle(w - p);
-    inward[k] = -cross(s.vertices[t[1]] - s.vertices[t[0]], s.vertices[t[2]] - s.vertices[t[0]]);
-  }
-  // The solid lies on the inward side of the first face's ray: counter-
-  // clockwise from it when the inward normal points that way.
-  const Real turn = angle(inward[0]) - rays[0];
-  const bool ccw = std::sin(turn) > 0;
-  const Real from = ccw ? rays[0] : rays[1], to = ccw ? rays[1] : rays[0];
-  Real width = to - from;
-  while (width <= 0) width += 2 * kPi;
-  while (width > 2 * kPi) width -= 2 * kPi;
-  return {from, width};
-}
-
-// Whether the intersection of two wedges about one line is two sectors that
-// touch along the line only: their gaps (the complements) do not meet.
-bool wedges_pinch(const Wedge& x, const Wedge& y) {
-  const auto wrap = [](Real a) {
-    while (a < 0) a += 2 * kPi;
-    while (a >= 2 * kPi) a -= 2 * kPi;
-    return a;
-  };
-  // Gaps: from start + width, of length 2 pi - width; disjoint when the
-  // other gap's start lies outside this one and this one's outside that.
-  const Real gx = wrap(x.start + x.width), lx = 2 * kPi - x.width;
-  const Real gy = wrap(y.start + y.width), ly = 2 * kPi - y.width;
-  const bool y_starts_in_x = wrap(gy - gx) <= lx, x_starts_in_y = wrap(gx - gy) <= ly;
-  return !y_starts_in_x && !x_starts_in_y;
-}
-
-// Edge e of v's surface lies along an edge of `solid`'s (among the
-// triangles `near`) where the two solids' wedges pinch: A ∩ B is two pieces
-// touching along the line there, and e's faces belong one to each.
-bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vector<std::uint32_t>& near) {
-  near.clear();
-  query_box_tree(solid.tree, s.edge_boxes[e], near);
-  const Vec3 &p = s.vertices[s.edges[e][0]], &q = s.vertices[s.edges[e][1]];
-  const Vec3 d = q - p;
-  for (const std::uint32_t t : near)
-    for (const std::uint32_t f : solid.triangle_edges[t]) {
-      const Vec3 &r = solid.vertices[solid.edges[f][0]], &w = solid.vertices[solid.edges[f][1]];
-      const Real scale = dot(d, d) * (dot(r - p, r - p) + dot(w - p, w - p));
-      if (dot(cross(d, r - p), cross(d, r - p)) + dot(cross(d, w - p), cross(d, w - p)) > kCollinearScreenRel2 * scale)
-        continue;  // clearly off the line (the exact test below decides the rest)
-      bool collinear = true;
-      for (int axis = 0; axis < 3 && collinear; ++axis)
-        collinear = cross_sign(p, q, p, r, axis) == 0 && cross_sign(p, q, p, w, axis) == 0;
-      if (!collinear) continue;
-      const Real lo = std::fmin(dot(r - p, d), dot(w - p, d)), hi = std::fmax(dot(r - p, d), dot(w - p, d));
-      if (!(std::fmin(hi, dot(d, d)) > std::fmax(lo, Real(0)))) continue;  // they share no length
-      const Vec3 ref = std::fabs(d.x) < std::fabs(d.y) ? cross(d, Vec3{1, 0, 0}) : cross(d, Vec3{0, 1, 0});
-      if (wedges_pinch(wedge_at(s, e, d, ref), wedge_at(solid, f, d, ref))) return true;
-    }
-  return false;
-}
 
 }  // namespace surface_overlap_detail
 

@@ -1,0 +1,71 @@
+#pragma once
+// The parts of surface_overlap (surface_overlap.cpp) that other files of it
+// share: a surface's edges crossing the other's triangles, decided exactly
+// in the perturbation (shape/predicates.hpp), and the status of its
+// vertices (surface_status.cpp); edges where the two solids pinch
+// (surface_pinch.cpp). Private to src/contact.
+#include <cstdint>
+#include <vector>
+
+#include "gjkdem/shape/predicates.hpp"
+#include "gjkdem/shape/surface.hpp"
+
+namespace gjkdem::surface_overlap_detail {
+
+// An edge of one surface passing through a triangle of the other.
+struct Crossing {
+  std::uint32_t edge, triangle;
+  Real t;      // along the edge from its lower vertex to its higher
+  Vec3 point;  // relative to the overlap's reference point
+  bool exits;  // the edge, run from lower to higher vertex, leaves the other solid here
+};
+
+// One surface seen against the other solid: its side in the perturbation,
+// the crossings of its edges, the status of its vertices.
+struct View {
+  const Surface* s = nullptr;
+  Side side = Side::A;
+  std::vector<Crossing> crossings;           // sorted by edge, then t
+  std::vector<std::uint32_t> first_crossing;  // per edge, into crossings (size edges + 1)
+  std::vector<std::int8_t> inside;           // per vertex: 1 inside the other solid, 0 outside
+  std::vector<std::uint32_t> in_plane;       // edges lying in the plane of a triangle of the other surface
+  std::vector<std::uint32_t> queue, hits;    // find_status's
+
+  void reset(const Surface& surface, Side which) {
+    s = &surface;
+    side = which;
+    crossings.clear();
+    in_plane.clear();
+  }
+};
+
+inline Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
+
+// Line pq (an edge of surface `pq_side`, its ends on either side of the
+// plane abc of the other's triangle) passes through the triangle.
+inline bool passes_through(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
+  const int o1 = perturbed_orient3d_edges(p, q, a, b, pq_side);
+  return perturbed_orient3d_edges(p, q, b, c, pq_side) == o1 && perturbed_orient3d_edges(p, q, c, a, pq_side) == o1;
+}
+
+// Segment pq of surface `pq_side` through triangle abc of the other.
+inline bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Side pq_side) {
+  const Side abc = other(pq_side);
+  return perturbed_orient3d(a, b, c, p, abc) != perturbed_orient3d(a, b, c, q, abc) &&
+         passes_through(p, q, a, b, c, pq_side);
+}
+
+// The crossings sorted along each edge, and where each edge's begin.
+void index_crossings(View& v);
+
+// Every vertex's status, inside or outside `solid`.
+void find_status(View& v, const Surface& solid);
+
+// Crossings at one point along an edge put in the order the statuses imply.
+void order_crossings(View& v);
+
+// Edge e of s lies along an edge of `solid`'s where the two solids' wedges
+// pinch (A ∩ B is two pieces touching along the line there).
+bool pinched(const Surface& s, std::uint32_t e, const Surface& solid, std::vector<std::uint32_t>& near);
+
+}  // namespace gjkdem::surface_overlap_detail
