@@ -20,13 +20,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <string>
 
 #include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
-#include "gjkdem/io/query_jsonl.hpp"
+#include "mesh_pairs.hpp"
 #include "random_pairs.hpp"
 
 namespace {
@@ -72,11 +71,6 @@ double median_ns(int repeat, std::size_t n, F&& pass) {
 // The overlapping mesh pairs of `path` against CGAL's corefinement.
 int compare_surfaces(const std::string& path, int repeat) {
   using namespace gjkdem;
-  std::ifstream file(path);
-  if (!file) {
-    std::fprintf(stderr, "bench_cgal: cannot read '%s'\n", path.c_str());
-    return 2;
-  }
   struct Row {
     std::vector<double> ours, theirs;  // us per pair
   };
@@ -85,15 +79,10 @@ int compare_surfaces(const std::string& path, int repeat) {
   double worst_volume = 0, worst_centroid = 0, worst_touching = 0;
   int pieces_differ = 0, compared = 0, touching = 0, refused = 0;
   std::string worst_centroid_id;
-  std::string line;
-  while (std::getline(file, line)) {
-    if (io::is_skipped_line(line)) continue;
-    std::string id;
-    const io::PairInput p = io::parse_pair(line, id);
-    if (!p.a.surface || !p.b.surface) continue;
-    const Surface &a = *p.a.surface, &b = *p.b.surface;
+  const bool read = bench::for_each_mesh_pair(path, "bench_cgal", [&](const std::string& id, const Surface& a,
+                                                                      const Surface& b) {
     SurfaceOverlap o = surface_overlap(a, b, work);
-    if (!(o.volume > 0)) continue;
+    if (!(o.volume > 0)) return;
     const Mesh ma = to_mesh(a), mb = to_mesh(b);
     Mesh out;
     bool made = false;
@@ -107,14 +96,14 @@ int compare_surfaces(const std::string& path, int repeat) {
       std::printf("%s: CGAL cannot make the intersection (not manifold); ours %.6e in %zu patches\n", id.c_str(),
                   o.volume, o.patches.size());
       ++refused;
-      continue;
+      return;
     }
     const auto exact_volume = PMP::volume(out);
     if (CGAL::is_zero(exact_volume)) {  // the solids only touch: no centroid; ours must be round-off
       const double solid = std::min(mass_properties(a).volume, mass_properties(b).volume);
       worst_touching = std::max(worst_touching, o.volume / solid);
       ++touching;
-      continue;
+      return;
     }
     const double volume = CGAL::to_double(exact_volume);
     const auto c = PMP::centroid(out);
@@ -136,7 +125,8 @@ int compare_surfaces(const std::string& path, int repeat) {
     }
     Row& row = by_size[a.triangles.size() + b.triangles.size()];
     row.ours.push_back(t_ours), row.theirs.push_back(t_cgal);
-  }
+  });
+  if (!read) return 2;
   if (compared == 0) {
     std::printf("no overlapping pair\n");
     return 0;

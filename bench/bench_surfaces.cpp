@@ -7,14 +7,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "gjkdem/collide/surface_distance.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
-#include "gjkdem/io/query_jsonl.hpp"
+#include "mesh_pairs.hpp"
 
 using namespace gjkdem;
 
@@ -46,21 +45,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::ifstream file(in);
-  if (!file) {
-    std::fprintf(stderr, "bench_surfaces: cannot read '%s'\n", in.c_str());
-    return 2;
-  }
   std::map<std::pair<std::size_t, bool>, std::vector<double>> by_size;  // (triangles, overlapping) -> us
   SurfaceOverlapWorkspace work;  // as a caller keeps one per thread
-  std::string line;
   std::printf("%-44s %8s %10s %12s\n", "pair", "tris", "overlap us", "distance us");
-  while (std::getline(file, line)) {
-    if (io::is_skipped_line(line)) continue;
-    std::string id;
-    const io::PairInput p = io::parse_pair(line, id);
-    if (!p.a.surface || !p.b.surface) continue;
-    const Surface &a = *p.a.surface, &b = *p.b.surface;
+  const bool read = bench::for_each_mesh_pair(in, "bench_surfaces", [&](const std::string& id, const Surface& a,
+                                                                         const Surface& b) {
     SurfaceOverlap o;
     const double t_overlap = median_us(repeat, [&] { o = surface_overlap(a, b, work); });
     double t_distance = 0;
@@ -68,7 +57,8 @@ int main(int argc, char** argv) {
     const std::size_t tris = a.triangles.size() + b.triangles.size();
     std::printf("%-44s %8zu %10.2f %12.2f\n", id.c_str(), tris, t_overlap, t_distance);
     by_size[{tris, o.volume > 0}].push_back(t_overlap + t_distance);
-  }
+  });
+  if (!read) return 2;
   std::printf("\n%8s %12s %6s %12s\n", "tris", "kind", "pairs", "median us");
   for (auto& [key, t] : by_size) {
     std::sort(t.begin(), t.end());

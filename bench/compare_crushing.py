@@ -3,9 +3,13 @@ press (bench/yade_crushing.py), side by side (docs/breakage.md):
 
     PYTHONPATH=build/python python3 bench/compare_crushing.py RUN YADE.npz
 
-A grain's size is the diameter of the sphere of its volume; the table gives
-the count, d10/d50/d90 by volume and the volume fraction passing each sieve
-size, at the end of both runs (gjkdem's last frame)."""
+A grain's size is the diameter of the sphere of its volume; the first table
+gives the count, d10/d50/d90 by volume and the volume fraction passing each
+sieve size, at the end of both runs (gjkdem's last frame). The second gives,
+at gjkdem's frames from 0.40 s on (Yade records every 0.01 s from its start),
+the press's height and the force on it (gjkdem: the sum of its plane's
+contact forces in the frame; Yade: the force on the plate) and the number
+of grains."""
 import math
 import sys
 
@@ -36,6 +40,20 @@ def gjkdem_volumes(run):
     return np.array(out), float(frame.time)
 
 
+PLANE_SIDE = 0x80000000  # a contact's first side at or above this is a plane wall
+
+
+def gjkdem_press(run):  # per frame: time, press height, force on the press (N, pushing up), grains
+    view = gjkdem.read_view(run)
+    rows = []
+    for k in range(len(view.index)):
+        f = view.frame(k)
+        first = f.contact_first.astype(np.int64)
+        force = -f.contact_forces[first >= PLANE_SIDE].astype(float).sum(axis=0)[2]
+        rows.append((float(f.time), float(f.plane_points[0][2]), force, int((~f.fixed).sum())))
+    return rows
+
+
 def summary(volumes, sieves):
     sizes = (6 * volumes / math.pi) ** (1 / 3)
     order = np.argsort(sizes)
@@ -58,6 +76,18 @@ def main():
     for name, x, z in zip(names, a, b):
         fmt = "{:.0f}" if name == "grains" else "{:.2f}" if "mm)" in name else "{:.1%}"
         print(f"| {name} | {fmt.format(x)} | {fmt.format(z)} |")
+    if "press" not in y.files:
+        return
+    print()
+    print("| t (s) | press (mm) gjkdem / Yade | press force (N) gjkdem / Yade | grains gjkdem / Yade |")
+    print("|---|---|---|---|")
+    for t, z, force, grains in gjkdem_press(run):
+        j = int(np.argmin(np.abs(y["times"] - t)))
+        if t < 0.4 - 1e-3 or abs(y["times"][j] - t) > 2e-3:
+            continue
+        force = round(force, 2) + 0  # no "-0.00"
+        print(f"| {t:.2f} | {1e3 * z:.2f} / {1e3 * y['press_z'][j]:.2f} | {force:.2f} / {y['press'][j]:.2f} | "
+              f"{grains} / {y['counts'][j]} |")
 
 
 if __name__ == "__main__":
