@@ -9,13 +9,16 @@
 namespace gjkdem {
 namespace {
 
-Real box_distance(const Aabb& a, const Aabb& b) {
+// The squared distance between two boxes (plain selects: libm's fmax is a
+// call, and this runs for every node pair the walk meets).
+Real box_distance2(const Aabb& a, const Aabb& b) {
   Real d2 = 0;
   for (int k = 0; k < 3; ++k) {
-    const Real gap = std::fmax(Real(0), std::fmax(a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]));
-    d2 += gap * gap;
+    const Real below = a.lo[k] - b.hi[k], above = b.lo[k] - a.hi[k];
+    const Real gap = below > above ? below : above;
+    if (gap > 0) d2 += gap * gap;
   }
-  return std::sqrt(d2);
+  return d2;
 }
 
 }  // namespace
@@ -48,11 +51,11 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
     stack.pop_back();
     const BoxTree::Node& n = a.tree.nodes[i];
     const BoxTree::Node& m = b.tree.nodes[j];
-    if (box_distance(n.box, m.box) >= best.distance) continue;
+    if (box_distance2(n.box, m.box) >= best.distance * best.distance) continue;
     if (n.count && m.count) {
       for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
         for (std::uint32_t t = m.first; t < m.first + m.count; ++t) {
-          if (box_distance(a.tree.item_boxes[s], b.tree.item_boxes[t]) >= best.distance) continue;
+          if (box_distance2(a.tree.item_boxes[s], b.tree.item_boxes[t]) >= best.distance * best.distance) continue;
           const std::uint32_t ta = a.tree.items[s], tb = b.tree.items[t];
           batch.push_back(corner(a, ta, 0), corner(a, ta, 1), corner(a, ta, 2), corner(b, tb, 0), corner(b, tb, 1),
                           corner(b, tb, 2));
@@ -66,7 +69,7 @@ SurfaceDistance surface_distance(const Surface& a, const Surface& b) {
     std::pair<std::uint32_t, std::uint32_t> c1 = split_a ? std::pair{n.left, j} : std::pair{i, m.left};
     std::pair<std::uint32_t, std::uint32_t> c2 = split_a ? std::pair{n.right, j} : std::pair{i, m.right};
     const auto gap = [&](const std::pair<std::uint32_t, std::uint32_t>& c) {
-      return box_distance(a.tree.nodes[c.first].box, b.tree.nodes[c.second].box);
+      return box_distance2(a.tree.nodes[c.first].box, b.tree.nodes[c.second].box);
     };
     if (gap(c1) < gap(c2)) std::swap(c1, c2);
     stack.push_back(c1);
