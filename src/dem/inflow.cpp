@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
@@ -50,8 +51,8 @@ bool due(const Inflow& f, const InflowState& s, const Makeup& makeup, Real time)
 }
 
 bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::vector<std::uint32_t>& near,
-             const std::vector<Vec3>& shifts, const ShapeTemplate& t, const Body& body, SurfaceScratch& scratch,
-             std::vector<SurfacePatchContact>& patches) {
+             const std::vector<Vec3>& shifts, const ShapeTemplate& t, const Body& body,
+             std::optional<SurfaceScratch>& scratch, std::vector<SurfacePatchContact>& patches) {
   for (const PlaneWall& p : site.planes)
     if (dot(body.position - p.point, p.normal) < t.reach) return false;
   const Transform pose = shape_pose(t, body);
@@ -64,9 +65,9 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       other_pose.translation += s;
       if (!intersect(t.shape, pose, o.shape, other_pose)) continue;
       // A surface grain's hull is not its solid (a bowl's hollow is free).
-      if (!(t.surface_grain || o.surface_grain) || !t.surface || !o.surface ||
-          surfaces_meet(t.surface, pose, o.surface, other_pose, scratch, patches))
-        return false;
+      if (!(t.surface_grain || o.surface_grain) || !t.surface || !o.surface) return false;
+      if (!scratch) scratch.emplace();  // made once a surface grain is in the way: most steps insert nothing
+      if (surfaces_meet(t.surface, pose, o.surface, other_pose, *scratch, patches)) return false;
     }
   }
   return true;
@@ -120,7 +121,7 @@ std::size_t run_inflows(std::span<const Inflow> inflows, std::span<InflowState> 
                         std::vector<Body>& bodies, std::uint64_t next_id) {
   const Makeup& makeup = site.makeup;
   std::size_t added = 0;
-  SurfaceScratch scratch;
+  std::optional<SurfaceScratch> scratch;
   std::vector<SurfacePatchContact> patches;
   for (std::size_t k = 0; k < inflows.size(); ++k) {
     const Inflow& f = inflows[k];
