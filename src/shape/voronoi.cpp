@@ -64,38 +64,74 @@ VoronoiCells voronoi_cells(const Polytope& solid, std::span<const Vec3> sites) {
   }
   VoronoiCells out;
   out.cells.reserve(sites.size());
+  // Cell i is the solid cut by the bisector planes of site i and the others,
+  // nearest first (their planes cut most, so later planes miss the cell at
+  // once and cost no hull). Once a site lies beyond twice the cell's radius
+  // about site i (and the face tolerance, and a margin far above the
+  // round-off of the plane tests), every farther plane misses the cell: the
+  // sites are sorted by distance a chunk at a time and the walk stops there,
+  // with the cuts, in order, of the walk over every site. The sites whose
+  // planes came within the face tolerance are kept for the faces below.
+  const Real face_tol = 1e-7 * size;
+  Real scale = size;  // of the coordinates, for the round-off of dot products
+  for (const Vec3& v : d.vertices) scale = std::max(scale, max_abs(v));
+  const Real stop_margin = 4 * face_tol + 1e-12 * scale;
+  std::vector<std::uint32_t> order(sites.size());
+  std::vector<Real> d2(sites.size());
+  std::vector<std::vector<std::uint32_t>> near(sites.size());
+  const auto radius_about = [](const Polytope& cell, const Vec3& centre) {
+    Real r2 = 0;
+    for (const Vec3& v : cell.data->vertices) r2 = std::max(r2, dot(v - centre, v - centre));
+    return std::sqrt(r2);
+  };
   for (std::size_t i = 0; i < sites.size(); ++i) {
     Polytope cell = solid;
-    // Nearest sites first: their planes cut most, so later planes miss the
-    // cell at once (the support test) and cost no hull.
-    std::vector<std::uint32_t> order(sites.size());
-    for (std::uint32_t j = 0; j < order.size(); ++j) order[j] = j;
-    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-      const Real dx = dot(sites[x] - sites[i], sites[x] - sites[i]), dy = dot(sites[y] - sites[i], sites[y] - sites[i]);
-      return dx != dy ? dx < dy : x < y;
-    });
-    for (const std::uint32_t j : order) {
+    Real radius = radius_about(cell, sites[i]);
+    for (std::uint32_t j = 0; j < order.size(); ++j) {
+      order[j] = j;
+      d2[j] = dot(sites[j] - sites[i], sites[j] - sites[i]);
+    }
+    const auto closer = [&](std::uint32_t x, std::uint32_t y) { return d2[x] != d2[y] ? d2[x] < d2[y] : x < y; };
+    std::size_t sorted = 0, chunk = 32;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      if (k == sorted) {
+        sorted = std::min(order.size(), sorted + chunk);
+        std::partial_sort(order.begin() + static_cast<std::ptrdiff_t>(k), order.begin() + static_cast<std::ptrdiff_t>(sorted),
+                          order.end(), closer);
+        chunk *= 2;
+      }
+      const std::uint32_t j = order[k];
       if (j == i) continue;
+      if (std::sqrt(d2[j]) > 2 * radius + stop_margin) break;  // this plane and every farther one miss the cell
       const Vec3 normal = sites[j] - sites[i];
       const Real offset = dot(normal, (sites[i] + sites[j]) * Real(0.5));
       Real reach = -std::numeric_limits<Real>::infinity();
       for (const Vec3& v : cell.data->vertices) reach = std::max(reach, dot(normal, v));
+      if (reach > offset - 2 * face_tol * length(normal)) near[i].push_back(j);  // a face may lie on its plane
       if (reach <= offset) continue;  // the plane misses the cell
       PolytopeSplit s = split_polytope(cell, normal, offset);
-      if (s.below) cell = std::move(*s.below);
+      if (s.below) {
+        cell = std::move(*s.below);
+        radius = radius_about(cell, sites[i]);
+      }
     }
     out.cells.push_back(std::move(cell));
   }
+  // A face of cell i on the plane of i and j lies within the face tolerance
+  // of that plane: j is among the sites kept for i.
   const Real smallest = kSmallestCellFaceRel * size * size;
-  for (std::uint32_t i = 0; i < sites.size(); ++i)
-    for (std::uint32_t j = i + 1; j < sites.size(); ++j) {
+  for (std::uint32_t i = 0; i < sites.size(); ++i) {
+    std::sort(near[i].begin(), near[i].end());
+    for (const std::uint32_t j : near[i]) {
+      if (j <= i) continue;
       const Vec3 normal = sites[j] - sites[i];
       const Vec3 u = normal / length(normal);
-      CellFace face = face_on(*out.cells[i].data, u, dot(u, (sites[i] + sites[j]) * Real(0.5)), 1e-7 * size);
+      CellFace face = face_on(*out.cells[i].data, u, dot(u, (sites[i] + sites[j]) * Real(0.5)), face_tol);
       if (!(face.area > smallest)) continue;
       face.a = i, face.b = j, face.normal = u;
       out.faces.push_back(face);
     }
+  }
   return out;
 }
 
