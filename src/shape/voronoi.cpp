@@ -109,9 +109,8 @@ VoronoiCells voronoi_cells(const Polytope& solid, std::span<const Vec3> sites) {
       for (const Vec3& v : cell.data->vertices) reach = std::max(reach, dot(normal, v));
       if (reach > offset - 2 * face_tol * length(normal)) near[i].push_back(j);  // a face may lie on its plane
       if (reach <= offset) continue;  // the plane misses the cell
-      PolytopeSplit s = split_polytope(cell, normal, offset);
-      if (s.below) {
-        cell = std::move(*s.below);
+      if (std::optional<Polytope> below = polytope_below(cell, normal, offset)) {
+        cell = std::move(*below);
         radius = radius_about(cell, sites[i]);
       }
     }

@@ -24,4 +24,9 @@ struct PolytopeSplit {
 /// non-finite offset, or a polytope without volume.
 PolytopeSplit split_polytope(const Polytope& polytope, const Vec3& normal, Real offset);
 
+/// split_polytope(...).below without the piece above made (only its hull,
+/// to tell a sliver from a cut): the cells of voronoi_cells, cut again and
+/// again, keep one side.
+std::optional<Polytope> polytope_below(const Polytope& polytope, const Vec3& normal, Real offset);
+
 }  // namespace gjkdem
