@@ -50,6 +50,8 @@ std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, co
   return convex_hull_2d(q, tol);
 }
 
+constexpr std::size_t kWeldScanPoints = 64;  // at most this many: weld scans instead of hashing
+
 // Drops each point within tol of one kept before it. Two such points both
 // on the hull make a needle face whose plane is noise: the hull of a
 // tessellated sphere from single precision, whose pole ring has points 3e-14
@@ -58,6 +60,20 @@ std::vector<int> polygon_hull(const std::vector<Vec3>& p, const Vec3& origin, co
 // a neighbour lies in one of the 27 cells around.
 void weld(std::vector<Vec3>& p, Real tol) {
   if (!(tol > 0)) return;
+  // Few points: each against the kept ones, no grid (its hash map would
+  // allocate more than it saves). A kept point within tol lies in a cell next
+  // to the point's (up to the rounding of x / tol), so both ways keep the
+  // same points.
+  if (p.size() <= kWeldScanPoints) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      bool near = false;
+      for (std::size_t j = 0; j < kept && !near; ++j) near = length(p[j] - p[i]) <= tol;
+      if (!near) p[kept++] = p[i];
+    }
+    p.resize(kept);
+    return;
+  }
   std::unordered_map<std::uint64_t, std::vector<int>> cells;
   auto cell_of = [&](const Vec3& q, int k) { return static_cast<std::int64_t>(std::floor(q[k] / tol)); };
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
