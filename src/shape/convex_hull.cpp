@@ -12,6 +12,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "gjkdem/tolerances.hpp"
@@ -30,6 +31,57 @@ struct Face {
 std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
+
+// Directed edges (a, b) of points 0..n-1 to a value >= 0: a flat n by n
+// table for small hulls (a hash map's allocation per edge cost more than
+// the hull), a hash map beyond.
+class EdgeMap {
+ public:
+  explicit EdgeMap(std::size_t n) : n_(n) {
+    if (n <= kFlatEdgePoints) flat_.assign(n * n, -1);
+  }
+  void set(int a, int b, int value) {
+    if (flat()) {
+      int& slot = flat_[index(a, b)];
+      size_ += slot < 0;
+      slot = value;
+    } else {
+      map_[edge_key(a, b)] = value;
+    }
+  }
+  /// The value, or -1 where the edge has none.
+  int find(int a, int b) const {
+    if (flat()) return flat_[index(a, b)];
+    const auto it = map_.find(edge_key(a, b));
+    return it == map_.end() ? -1 : it->second;
+  }
+  /// The value of an edge that must have one.
+  int at(int a, int b) const {
+    const int value = find(a, b);
+    if (value < 0) throw std::out_of_range("convex_hull: an edge without its twin");
+    return value;
+  }
+  void erase(int a, int b) {
+    if (flat()) {
+      int& slot = flat_[index(a, b)];
+      size_ -= slot >= 0;
+      slot = -1;
+    } else {
+      map_.erase(edge_key(a, b));
+    }
+  }
+  /// Edges with a value.
+  std::size_t size() const { return flat() ? size_ : map_.size(); }
+
+ private:
+  static constexpr std::size_t kFlatEdgePoints = 128;  // at most this many points: the n by n table (64 KiB)
+  bool flat() const { return n_ <= kFlatEdgePoints; }
+  std::size_t index(int a, int b) const { return static_cast<std::size_t>(a) * n_ + static_cast<std::size_t>(b); }
+  std::size_t n_;
+  std::size_t size_ = 0;
+  std::vector<int> flat_;
+  std::unordered_map<std::uint64_t, int> map_;
+};
 
 Face make_face(const std::vector<Vec3>& p, int a, int b, int c) {
   const Vec3 n = normalized(cross(p[b] - p[a], p[c] - p[a]));
@@ -232,13 +284,13 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
 
   // Solid: start from the tetrahedron, oriented outward.
   std::vector<Face> faces;
-  std::unordered_map<std::uint64_t, int> edge_face;  // directed edge -> face holding it
+  EdgeMap edge_face(p.size());  // directed edge -> face holding it
   auto add_face = [&](int a, int b, int c) {
     faces.push_back(make_face(p, a, b, c));
     const int f = static_cast<int>(faces.size()) - 1;
-    edge_face[edge_key(a, b)] = f;
-    edge_face[edge_key(b, c)] = f;
-    edge_face[edge_key(c, a)] = f;
+    edge_face.set(a, b, f);
+    edge_face.set(b, c, f);
+    edge_face.set(c, a, f);
   };
   if (dot(plane_n, p[i3] - p[i0]) > 0) std::swap(i1, i2);
   add_face(i0, i1, i2);
@@ -272,9 +324,8 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
       stack.pop_back();
       visible.push_back(g);
       for (int k = 0; k < 3; ++k) {
-        const auto twin = edge_face.find(edge_key(faces[g].v[(k + 1) % 3], faces[g].v[k]));
-        if (twin == edge_face.end()) continue;
-        const int h = twin->second;
+        const int h = edge_face.find(faces[g].v[(k + 1) % 3], faces[g].v[k]);
+        if (h < 0) continue;
         if (!is_visible[h] && height(h, apex) > tol) { is_visible[h] = 1; stack.push_back(h); }
       }
     }
@@ -303,11 +354,11 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
         const int g = visible[i];
         for (int k = 0; k < 3; ++k) {
           const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
-          const auto twin = edge_face.find(edge_key(b, a));
-          if (twin == edge_face.end() || is_visible[twin->second]) continue;
-          if (grow && needle(a, b, apex) && height(twin->second, apex) > -tol && folds(a, b, apex, faces[twin->second])) {
-            is_visible[twin->second] = 1;
-            visible.push_back(twin->second);
+          const int twin = edge_face.find(b, a);
+          if (twin < 0 || is_visible[twin]) continue;
+          if (grow && needle(a, b, apex) && height(twin, apex) > -tol && folds(a, b, apex, faces[twin])) {
+            is_visible[twin] = 1;
+            visible.push_back(twin);
             grew = true;
           } else {
             horizon.emplace_back(a, b);
@@ -332,8 +383,8 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
     }
     for (int g : visible)
       for (int k = 0; k < 3; ++k) {
-        const auto it = edge_face.find(edge_key(faces[g].v[k], faces[g].v[(k + 1) % 3]));
-        if (it != edge_face.end() && it->second == g) edge_face.erase(it);
+        const int a = faces[g].v[k], b = faces[g].v[(k + 1) % 3];
+        if (edge_face.find(a, b) == g) edge_face.erase(a, b);
       }
     const int first_new = static_cast<int>(faces.size());
     for (const auto& [a, b] : horizon) add_face(a, b, apex);
@@ -358,14 +409,18 @@ ConvexHull convex_hull(std::span<const Vec3> points) {
   hull.dimension = HullDimension::Solid;
 
   // Closed 2-manifold: every directed edge once, its twin present, V - E + F = 2.
-  std::unordered_map<std::uint64_t, int> count;
+  EdgeMap count(hull.vertices.size());
   for (const auto& t : hull.triangles)
-    for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      count.set(a, b, std::max(count.find(a, b), 0) + 1);
+    }
   bool ok = true;
-  for (const auto& [key, c] : count) {
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (c != 1 || !count.contains(edge_key(b, a))) { ok = false; break; }
-  }
+  for (const auto& t : hull.triangles)
+    for (int k = 0; k < 3 && ok; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (count.find(a, b) != 1 || count.find(b, a) < 0) ok = false;
+    }
   const long v = static_cast<long>(hull.vertices.size()), f = static_cast<long>(hull.triangles.size());
   const long e = static_cast<long>(count.size()) / 2;
   hull.manifold = ok && v - e + f == 2;
@@ -385,9 +440,9 @@ void merge_coplanar_facets(ConvexHull& hull) {
     const auto& tri = hull.triangles[t];
     normal[t] = normalized(cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]));
   }
-  std::unordered_map<std::uint64_t, int> edge_tri;
+  EdgeMap edge_tri(v.size());
   for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) edge_tri[edge_key(hull.triangles[t][k], hull.triangles[t][(k + 1) % 3])] = t;
+    for (int k = 0; k < 3; ++k) edge_tri.set(hull.triangles[t][k], hull.triangles[t][(k + 1) % 3], t);
   // Flood fill over edges between coplanar neighbours.
   std::vector<int> group(nt, -1), stack;
   int groups = 0;
@@ -400,7 +455,7 @@ void merge_coplanar_facets(ConvexHull& hull) {
       stack.pop_back();
       for (int k = 0; k < 3; ++k) {
         const int a = hull.triangles[t][k], b = hull.triangles[t][(k + 1) % 3];
-        const int u = edge_tri.at(edge_key(b, a));
+        const int u = edge_tri.at(b, a);
         if (group[u] >= 0) continue;
         const int far = hull.triangles[u][0] + hull.triangles[u][1] + hull.triangles[u][2] - a - b;
         if (length(normal[u] - normal[seed]) <= kHullParallelTol &&
@@ -424,7 +479,7 @@ void merge_coplanar_facets(ConvexHull& hull) {
     area[group[t]] += cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]);
     for (int k = 0; k < 3; ++k) {
       const int a = tri[k], b = tri[(k + 1) % 3];
-      if (group[edge_tri.at(edge_key(b, a))] != group[t]) simple &= next[group[t]].emplace(a, b).second;
+      if (group[edge_tri.at(b, a)] != group[t]) simple &= next[group[t]].emplace(a, b).second;
     }
   }
   for (int g = 0; g < groups && simple; ++g) {
@@ -446,17 +501,16 @@ void merge_coplanar_facets(ConvexHull& hull) {
     }
   }
   // Facet adjacency: the facet across each boundary edge.
-  std::unordered_map<std::uint64_t, int> edge_facet;
+  EdgeMap edge_facet(v.size());
   for (int f = 0; f < static_cast<int>(hull.facets.size()); ++f) {
     const auto& poly = hull.facets[f];
-    for (std::size_t k = 0; k < poly.size(); ++k) edge_facet[edge_key(poly[k], poly[(k + 1) % poly.size()])] = f;
+    for (std::size_t k = 0; k < poly.size(); ++k) edge_facet.set(poly[k], poly[(k + 1) % poly.size()], f);
   }
   hull.facet_neighbors.assign(hull.facets.size(), {});
   for (int f = 0; f < static_cast<int>(hull.facets.size()); ++f) {
     const auto& poly = hull.facets[f];
     for (std::size_t k = 0; k < poly.size(); ++k) {
-      const auto it = edge_facet.find(edge_key(poly[(k + 1) % poly.size()], poly[k]));
-      hull.facet_neighbors[f].push_back(it == edge_facet.end() ? -1 : it->second);
+      hull.facet_neighbors[f].push_back(edge_facet.find(poly[(k + 1) % poly.size()], poly[k]));
     }
   }
 }
