@@ -225,4 +225,13 @@ inline constexpr Real kHullRelTol = 1e-12;
 /// mass properties measurably.
 inline constexpr Real kCompoundOverlapRelTol = 1e-9;
 
+/// Voronoi cells (shape/voronoi.hpp): a cell's faces are the facets within
+/// kCellFaceRelTol * (the solid's size) of a bisector plane, and its walk
+/// over the other sites stops once one lies beyond twice the cell's radius
+/// plus 4 face tolerances plus kCellStopRoundoffRel * (the largest
+/// coordinate): far above the round-off of the plane tests' dot products,
+/// so the stop skips only planes the tests would skip.
+inline constexpr Real kCellFaceRelTol = 1e-7;
+inline constexpr Real kCellStopRoundoffRel = 1e-12;
+
 }  // namespace gjkdem

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gjkdem/shape/split.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 namespace {
@@ -72,10 +73,10 @@ VoronoiCells voronoi_cells(const Polytope& solid, std::span<const Vec3> sites) {
   // sites are sorted by distance a chunk at a time and the walk stops there,
   // with the cuts, in order, of the walk over every site. The sites whose
   // planes came within the face tolerance are kept for the faces below.
-  const Real face_tol = 1e-7 * size;
+  const Real face_tol = kCellFaceRelTol * size;
   Real scale = size;  // of the coordinates, for the round-off of dot products
   for (const Vec3& v : d.vertices) scale = std::max(scale, max_abs(v));
-  const Real stop_margin = 4 * face_tol + 1e-12 * scale;
+  const Real stop_margin = 4 * face_tol + kCellStopRoundoffRel * scale;
   std::vector<std::uint32_t> order(sites.size());
   std::vector<Real> d2(sites.size());
   std::vector<std::vector<std::uint32_t>> near(sites.size());

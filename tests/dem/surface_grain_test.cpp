@@ -184,13 +184,20 @@ TEST(SurfaceGrain, AGeneratorAndAnInflowFillTheHollowOfABowl) {
   bowl.surface = shared(test::bowl(0.05, 0.06, 24, 8));
   builder.add_body({.shape = bowl, .material = glass, .position = {0, 0, 0}, .fixed = true});
   std::mt19937_64 rng(7);
-  const std::vector<std::uint32_t> placed =
-      builder.fill_region({.variants = {{make_sphere(0.004), {}}}, .count = 30, .lo = {-0.035, -0.035, -0.04},
-                           .hi = {0.035, 0.035, -0.004}, .material = glass, .label = "fill"},
-                          rng);
+  RegionFill fill;
+  fill.variants = {{make_sphere(0.004), {}}};
+  fill.count = 30;
+  fill.lo = {-0.035, -0.035, -0.04}, fill.hi = {0.035, 0.035, -0.004};
+  fill.material = glass;
+  fill.label = "fill";
+  const std::vector<std::uint32_t> placed = builder.fill_region(fill, rng);
   ASSERT_EQ(placed.size(), 30u);
-  builder.add_inflow({.variants = {{make_sphere(0.004), {}}}, .lo = {-0.01, -0.01, -0.002}, .hi = {0.01, 0.01, -0.002},
-                      .material = glass, .rate = 500, .count = 5, .seed = 3});
+  InflowDef inflow;
+  inflow.variants = {{make_sphere(0.004), {}}};
+  inflow.lo = {-0.01, -0.01, -0.002}, inflow.hi = {0.01, 0.01, -0.002};
+  inflow.material = glass;
+  inflow.rate = 500, inflow.count = 5, inflow.seed = 3;
+  builder.add_inflow(inflow);
   World w = builder.build();
   const ShapeTemplate& bowl_template = w.templates[w.bodies[0].shape];
   const Transform bowl_pose = shape_pose(bowl_template, w.bodies[0]);
