@@ -616,8 +616,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     }
     // A surface grain's hull is not its solid (a bowl's hollow is free):
     // the spot's cube against its surface.
-    const std::shared_ptr<const Surface> cube =
-        std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+    std::shared_ptr<const Surface> cube;  // made once a surface grain is near
     SurfaceScratch scratch;
     std::vector<SurfacePatchContact> patches;
     const auto meets = [&](const Near& n, const Vec3& centre, const Transform& ball_pose) {
@@ -625,7 +624,9 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
-      return !t.surface_grain || surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
+      if (!t.surface_grain) return true;
+      if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+      return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
@@ -882,15 +883,18 @@ void WorldBuilder::check_inflow_regions() const {
     }
     for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
       const Body& b = world_.bodies[i];
-      // (A compound's or a surface grain's given shape is its hull: a hopper
-      // of parts or a bowl holds room inside.)
+      // (A compound's given shape is its hull: a hopper of parts holds room
+      // inside. A surface grain's solid is its surface's: a bowl's hollow is
+      // free.)
       const ShapeTemplate& t = world_.templates[b.shape];
-      if (!b.fixed || b.motion != 0 || !t.parts.empty() || t.surface_grain) continue;
+      if (!b.fixed || b.motion != 0 || !t.parts.empty()) continue;
       const Shape& shape = given_shapes_[b.shape];
-      const Transform pose = shape_pose(world_.templates[b.shape], b);
+      const Transform pose = shape_pose(t, b);
       bool inside = true;
       for (const Vec3& c : corners)
-        inside = inside && intersect(Shape{Point{}}, Transform::from(c, Quat{}), shape, pose);
+        inside = inside && (t.surface_grain ? winding_number(t.surface->vertices, t.surface->triangles,
+                                                             apply_inverse(pose, c)) > 0.5
+                                            : intersect(Shape{Point{}}, Transform::from(c, Quat{}), shape, pose));
       if (inside)
         throw BuildError(label + ": its region lies wholly inside " + labels_[i] +
                          ": no body could ever be inserted there", {static_cast<std::uint32_t>(i)});

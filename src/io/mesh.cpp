@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "gjkdem/shape/convex_hull.hpp"
+#include "gjkdem/shape/surface.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::io {
@@ -203,18 +204,7 @@ bool is_watertight(const TriangleMesh& mesh) {
 }
 
 Real winding_number(const TriangleMesh& mesh, const Vec3& p) {
-  // Each triangle's signed solid angle seen from p (Van Oosterom and
-  // Strackee's formula), summed: 4 pi inside a closed mesh, 0 outside, with
-  // no special case for rays through edges or vertices.
-  Real solid = 0;
-  for (const auto& t : mesh.triangles) {
-    const Vec3 a = mesh.vertices[t[0]] - p, b = mesh.vertices[t[1]] - p, c = mesh.vertices[t[2]] - p;
-    const Real la = length(a), lb = length(b), lc = length(c);
-    const Real numerator = dot(a, cross(b, c));
-    const Real denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-    solid += 2 * std::atan2(numerator, denominator);
-  }
-  return solid / (4 * kPi);
+  return gjkdem::winding_number(mesh.vertices, mesh.triangles, p);
 }
 
 ConvexMesh convex_from_mesh(const TriangleMesh& mesh, const std::string& name) {

@@ -297,6 +297,18 @@ Surface polytope_surface(const Polytope& polytope) {
                       std::vector<TriangleIndices>(d.triangles.begin(), d.triangles.end()));
 }
 
+Real winding_number(std::span<const Vec3> vertices, std::span<const TriangleIndices> triangles, const Vec3& p) {
+  Real solid = 0;
+  for (const TriangleIndices& t : triangles) {
+    const Vec3 a = vertices[t[0]] - p, b = vertices[t[1]] - p, c = vertices[t[2]] - p;
+    const Real la = length(a), lb = length(b), lc = length(c);
+    const Real numerator = dot(a, cross(b, c));
+    const Real denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    solid += 2 * std::atan2(numerator, denominator);
+  }
+  return solid / (4 * kPi);
+}
+
 MassProperties mass_properties(const Surface& s) {
   // Volume and first moments by tetrahedra from the middle of the box (for
   // precision far from the origin), then the inertia about the centroid.

@@ -216,6 +216,24 @@ TEST(SurfaceGrain, AGeneratorAndAnInflowFillTheHollowOfABowl) {
   ASSERT_EQ(w.bodies.size(), 36u);
   for (std::size_t i = 31; i < w.bodies.size(); ++i) EXPECT_LT(w.bodies[i].position.z, 0);  // inserted in the hollow
   for (std::size_t i = 1; i < w.bodies.size(); ++i) EXPECT_LT(length(w.bodies[i].position), 0.05) << i;
+
+  // An inflow whose region lies in the bowl's solid (its wall, below the
+  // hollow) could never insert: refused, naming the bowl.
+  WorldBuilder walled(settings);
+  const std::uint32_t stone = walled.add_material({"glass", 2500, 1e7, 0.25, 0.3, 0.5});
+  walled.add_body({.shape = bowl, .material = stone, .position = {0, 0, 0}, .fixed = true, .label = "bowl"});
+  InflowDef buried;
+  buried.variants = {{make_sphere(0.001), {}}};
+  buried.lo = {-0.002, -0.002, -0.057}, buried.hi = {0.002, 0.002, -0.053};
+  buried.material = stone;
+  buried.rate = 500, buried.count = 5;
+  walled.add_inflow(buried);
+  try {
+    (void)walled.build();
+    ADD_FAILURE() << "an inflow inside the bowl's wall was accepted";
+  } catch (const BuildError& e) {
+    EXPECT_NE(std::string(e.what()).find("lies wholly inside bowl"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SurfaceGrain, UStandsUnderTheHertzLawToo) {

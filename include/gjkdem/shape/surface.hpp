@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <span>
 #include <vector>
 
 #include "gjkdem/math/transform.hpp"
@@ -72,6 +73,12 @@ Surface box_surface(const Box& box);
 /// Volume, centroid and inertia (per unit density) of the solid, exactly
 /// from its triangles (the divergence theorem).
 MassProperties mass_properties(const Surface& surface);
+
+/// How many times the closed triangles wind about p: each triangle's signed
+/// solid angle seen from p (Van Oosterom and Strackee), summed over 4 pi. 1
+/// inside an outward surface, 0 outside, with no special case for rays
+/// through edges or corners (a point on the surface gets about 1/2).
+Real winding_number(std::span<const Vec3> vertices, std::span<const TriangleIndices> triangles, const Vec3& p);
 
 /// True when triangles s and t of the surface meet anywhere but in the edge
 /// or vertex they share (exact).
