@@ -591,16 +591,7 @@ class SceneBuilder {
     dem::BondedDef d;
     d.label = r.where();
     d.shape = read_shape(b, "shape");
-    const std::int64_t pieces = b.integer("pieces").value_or(0);
-    if (pieces < 2 || pieces > dem::kMaxBondedPieces)
-      b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
-    d.pieces = static_cast<std::uint32_t>(pieces);
-    const std::int64_t seed = b.integer("seed").value_or(1);
-    if (seed < 0) b.fail("seed", "must be >= 0");
-    d.seed = static_cast<std::uint64_t>(seed);
-    const std::int64_t relaxations = b.integer("relaxations").value_or(3);
-    if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
-    d.relaxations = static_cast<int>(relaxations);
+    read_bonded_cut(b, d);
     b.finish();
     d.material = material_of(r);
     for (const char* key : {"name", "fixed", "motion"})
@@ -870,22 +861,29 @@ class SceneBuilder {
     b.required_string("type");
     Mix mix;
     mix.variants.push_back(read_shape(b, "shape"));
-    const std::int64_t pieces = b.integer("pieces").value_or(0);
-    if (pieces < 2 || pieces > dem::kMaxBondedPieces)
-      b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
-    const std::int64_t seed = b.integer("seed").value_or(1);
-    if (seed < 0) b.fail("seed", "must be >= 0");
-    const std::int64_t relaxations = b.integer("relaxations").value_or(3);
-    if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
+    dem::BondedDef cut;
+    read_bonded_cut(b, cut);
     std::ostringstream json;
     json << toml::json_formatter{*shape_table_at(b, "shape")};
     b.finish();
-    fill.pieces = static_cast<std::uint32_t>(pieces);
-    fill.pieces_seed = static_cast<std::uint64_t>(seed);
-    fill.relaxations = static_cast<int>(relaxations);
-    mix.resolved = {{"shape", {{"type", "bonded"}, {"shape", Json::parse(json.str())}, {"pieces", pieces},
-                               {"seed", seed}, {"relaxations", relaxations}}}};
+    fill.pieces = cut.pieces, fill.pieces_seed = cut.seed, fill.relaxations = cut.relaxations;
+    mix.resolved = {{"shape", {{"type", "bonded"}, {"shape", Json::parse(json.str())}, {"pieces", cut.pieces},
+                               {"seed", cut.seed}, {"relaxations", cut.relaxations}}}};
     return mix;
+  }
+
+  // The cut of a bonded table: pieces (required), seed and relaxations.
+  static void read_bonded_cut(TableReader& b, dem::BondedDef& d) {
+    const std::int64_t pieces = b.integer("pieces").value_or(0);
+    if (pieces < 2 || pieces > dem::kMaxBondedPieces)
+      b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
+    d.pieces = static_cast<std::uint32_t>(pieces);
+    const std::int64_t seed = b.integer("seed").value_or(1);
+    if (seed < 0) b.fail("seed", "must be >= 0");
+    d.seed = static_cast<std::uint64_t>(seed);
+    const std::int64_t relaxations = b.integer("relaxations").value_or(3);
+    if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
+    d.relaxations = static_cast<int>(relaxations);
   }
 
   void read_inflow(TableReader& r) {
