@@ -86,6 +86,29 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
   return true;
 }
 
+void margin_patches(const Surface& grain, const Transform& pose, const Vec3& centre,
+                    std::span<const MarginTriangle> triangles, SurfaceScratch& s,
+                    std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts) {
+  out.clear(), hosts.clear();
+  // In the grain's frame: the triangles' corners move instead of its vertices.
+  s.margin_triangles.clear();
+  for (const MarginTriangle& t : triangles)
+    s.margin_triangles.push_back({{apply_inverse(pose, t.corners[0]), apply_inverse(pose, t.corners[1]),
+                                   apply_inverse(pose, t.corners[2])},
+                                  t.rho});
+  surface_margin_contacts(grain, s.margin_triangles, apply_inverse(pose, centre), s.margin, s.margin_contacts);
+  for (const MarginContact& c : s.margin_contacts) {
+    ContactGeometry g;
+    g.status = GeometryStatus::Touching;
+    g.normal = apply_rotation(pose, c.contact.normal);
+    g.depth = c.contact.depth;
+    g.point = apply(pose, c.contact.point);
+    g.moment = cross(g.point, g.normal);
+    out.push_back({g, g.point});
+    hosts.push_back(c.triangle);
+  }
+}
+
 void match_patch_slots(std::span<const Vec3> anchors, std::span<const PatchAnchor> last, Real reach,
                        std::vector<std::uint32_t>& slots) {
   constexpr std::uint32_t kNone = ~0u;

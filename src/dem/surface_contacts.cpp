@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 
 #include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
@@ -39,6 +40,55 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
                                                                                         : GeometryStatus::Engulfed;
 }
 
+// A grain's contact with a mesh wall's piece under the penetration laws:
+// the grain's index (the other is the piece), or kNotMargin.
+constexpr std::uint32_t kNotMargin = ~0u;
+std::uint32_t margin_grain(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                           const StepContact& c) {
+  if (c.a_is_plane) return kNotMargin;
+  const ShapeTemplate &ta = templates[bodies[c.a].shape], &tb = templates[bodies[c.b].shape];
+  if (margin_piece(ta) && tb.surface_grain) return c.b;
+  if (margin_piece(tb) && ta.surface_grain) return c.a;
+  return kNotMargin;
+}
+
+// The patches of a grain's contacts with the pieces of one mesh wall
+// (`members`: positions in `listed`), found at once so that a patch over a
+// seam is one contact: each goes to the member whose piece its deepest pair
+// touches.
+void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                         const PeriodicCell& cell, std::span<const StepContact> contacts,
+                         std::span<const std::uint32_t> listed, std::span<const std::uint32_t> members,
+                         SurfaceScratch& scratch, std::span<std::vector<SurfacePatchContact>> found,
+                         std::span<GeometryStatus> status) {
+  const StepContact& first = contacts[listed[members[0]]];
+  const std::uint32_t g = margin_grain(bodies, templates, first);
+  const bool grain_is_b = g == first.b;
+  const Body& grain = bodies[g];
+  const ShapeTemplate& tg = templates[grain.shape];
+  const Vec3 shift = grain_is_b ? image_shift_of(cell, first) : Vec3{};  // pieces are never images
+  Transform pose = shape_pose(tg, grain);
+  pose.translation += shift;
+  scratch.margin_pieces.clear();
+  for (const std::uint32_t m : members) {
+    const StepContact& c = contacts[listed[m]];
+    const Body& piece = bodies[grain_is_b ? c.a : c.b];
+    const ShapeTemplate& tp = templates[piece.shape];
+    const Transform at = shape_pose(tp, piece);
+    const Triangle& t = *margin_piece(tp);
+    scratch.margin_pieces.push_back({{apply(at, t.v[0]), apply(at, t.v[1]), apply(at, t.v[2])}, tp.shape.margin});
+    found[m].clear();
+    status[m] = GeometryStatus::Touching;
+  }
+  margin_patches(*tg.surface, pose, grain.position + shift, scratch.margin_pieces, scratch, scratch.margin_found,
+                 scratch.margin_hosts);
+  for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {
+    SurfacePatchContact p = scratch.margin_found[k];
+    if (!grain_is_b) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;  // a -> b
+    found[members[scratch.margin_hosts[k]]].push_back(p);
+  }
+}
+
 // How far a patch may have moved and still be the same: kPatchMatchRel of
 // the smaller moving body's equivalent radius.
 Real match_reach(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
@@ -61,16 +111,44 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   if (static_cast<int>(work.surface.size()) < threads) work.surface.resize(threads);
   if (work.surface_found.size() < listed.size()) work.surface_found.resize(listed.size());
   work.surface_status.resize(listed.size());
-  const std::int64_t n = static_cast<std::int64_t>(listed.size());
+  // Jobs: a grain's contacts with one mesh wall's pieces together (margin
+  // model), every other contact alone.
+  std::vector<std::uint32_t>& in_jobs = work.surface_order;
+  std::vector<std::array<std::uint32_t, 2>>& jobs = work.surface_jobs;
+  in_jobs.resize(listed.size());
+  for (std::uint32_t i = 0; i < in_jobs.size(); ++i) in_jobs[i] = i;
+  const auto wall_of = [&](std::uint32_t i) {  // (grain, wall group, image), or kNotMargin first
+    const StepContact& c = contacts[listed[i]];
+    const std::uint32_t g = margin_grain(bodies, templates, c);
+    if (g == kNotMargin) return std::tuple(kNotMargin, i, std::uint32_t{0});
+    return std::tuple(g, bodies[g == c.b ? c.a : c.b].group, std::uint32_t{c.image});
+  };
+  std::stable_sort(in_jobs.begin(), in_jobs.end(), [&](std::uint32_t x, std::uint32_t y) { return wall_of(x) < wall_of(y); });
+  jobs.clear();
+  for (std::uint32_t begin = 0; begin < in_jobs.size();) {
+    std::uint32_t end = begin + 1;
+    if (std::get<0>(wall_of(in_jobs[begin])) != kNotMargin)
+      while (end < in_jobs.size() && wall_of(in_jobs[end]) == wall_of(in_jobs[begin])) ++end;
+    jobs.push_back({begin, end});
+    begin = end;
+  }
+  const std::int64_t n = static_cast<std::int64_t>(jobs.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4) if (n >= 8)
-  for (std::int64_t i = 0; i < n; ++i) {
+  for (std::int64_t j = 0; j < n; ++j) {
+    const std::span<const std::uint32_t> members(in_jobs.data() + jobs[j][0], jobs[j][1] - jobs[j][0]);
     // Nothing may leave a parallel loop: a failure of the exact overlap (a
     // defect, never bad input) stops the run naming the pair.
     try {
-      work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
-                                            work.surface[thread_id()], work.surface_found[i]);
+      if (std::get<0>(wall_of(members[0])) != kNotMargin) {
+        find_margin_patches(bodies, templates, cell, contacts, listed, members, work.surface[thread_id()],
+                            work.surface_found, work.surface_status);
+      } else {
+        const std::uint32_t i = members[0];
+        work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
+                                              work.surface[thread_id()], work.surface_found[i]);
+      }
     } catch (const std::exception&) {
-      work.surface_status[i] = GeometryStatus::Unsupported;
+      for (const std::uint32_t i : members) work.surface_status[i] = GeometryStatus::Unsupported;
     }
   }
 

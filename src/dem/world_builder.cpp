@@ -720,6 +720,7 @@ void WorldBuilder::check_explicit_bodies() const {
   overlapping_pairs(boxes, sweep, pairs);
   SurfaceScratch surface_scratch;
   std::vector<SurfacePatchContact> patches;
+  std::vector<std::uint32_t> hosts;
   for (const auto& [i, j] : pairs) {  // i < j; reported as the explicit one of smaller index first
     if (!is_explicit[i] && !is_explicit[j]) continue;
     const Body& a = w.bodies[i];
@@ -731,9 +732,20 @@ void WorldBuilder::check_explicit_bodies() const {
     const ShapeTemplate &ta = w.templates[a.shape], &tb = w.templates[b.shape];
     Real depth = 0;
     if (ta.surface_grain || tb.surface_grain) {  // the surfaces' patches (hulls may overlap: hooked rings)
-      if (!ta.surface || !tb.surface) continue;  // no volume: the run reports the pair
-      if (!surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch, patches))
+      const Triangle* piece = margin_piece(a.fixed ? ta : tb);
+      if (piece && (a.fixed ? tb : ta).surface) {  // a mesh wall's piece: the margin model
+        const std::size_t grain = a.fixed ? j : i, wall = a.fixed ? i : j;
+        const ShapeTemplate& tg = w.templates[w.bodies[grain].shape];
+        const Transform& at = poses[wall];
+        const MarginTriangle t{{apply(at, piece->v[0]), apply(at, piece->v[1]), apply(at, piece->v[2])},
+                               w.templates[w.bodies[wall].shape].shape.margin};
+        margin_patches(*tg.surface, poses[grain], w.bodies[grain].position, {&t, 1}, surface_scratch, patches, hosts);
+      } else if (!ta.surface || !tb.surface) {
+        continue;  // no volume: the run reports the pair
+      } else if (!surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch,
+                                  patches)) {
         depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
+      }
       for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
     } else {
       const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
@@ -773,8 +785,9 @@ void WorldBuilder::prepare_shapes() {
 // In a world with surface grains every other template gets the closed
 // surface their contacts take: a solid polytope's hull triangles, a curved
 // shape's inscribed tessellation. Shapes without volume get none (their
-// contacts with surface grains stop the run as unsupported pairs), nor do
-// compounds, refused here.
+// contacts with surface grains stop the run as unsupported pairs), nor do a
+// mesh wall's triangles under the penetration laws (the margin model meets
+// the grains' triangles), nor compounds, refused here.
 void WorldBuilder::prepare_surfaces() {
   std::vector<ShapeTemplate>& templates = world_.templates;
   if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return t.surface_grain; })) return;
@@ -792,7 +805,7 @@ void WorldBuilder::prepare_surfaces() {
     if (!t.parts.empty())
       throw BuildError(who + ": compounds and surface grains cannot be in one world yet (make the compound a surface)",
                        at);
-    if (without_volume(t.shape)) continue;
+    if (without_volume(t.shape) || margin_piece(t)) continue;  // a mesh wall's piece meets them by its margin
     try {
       const Shape& s = t.shape;
       t.surface = std::make_shared<const Surface>(

@@ -6,6 +6,7 @@
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
 // - A ring threaded on a peg hangs from it and stays; a ball settles at the
 //   bottom of a bowl; a U stands under the Hertz law (equivalent depth).
+// - A U stands on a mesh floor's seams as on a plane (the margin model).
 // - Two surface grains collide under the potential form with their energy.
 // - Patch slots: a patch keeps its slot as it moves; a new one takes a free one.
 // - The same bits on one thread and two.
@@ -32,6 +33,15 @@ std::shared_ptr<const Surface> shared(const test::Mesh& m) {
 test::Mesh scaled(test::Mesh m, Real s, const Vec3& shift = {}) {
   for (Vec3& v : m.vertices) v = v * s + shift;
   return m;
+}
+
+// A U 3 cm wide, its arms pointing down (-z), its prism axis along y.
+BodyShape u_arms_down() {
+  test::Mesh u = scaled(test::u_prism(1), 0.01);
+  for (Vec3& v : u.vertices) v = {v.x, v.z, -v.y};
+  BodyShape shape;
+  shape.surface = shared(u);
+  return shape;
 }
 
 WorldSettings volume_settings() {
@@ -109,11 +119,7 @@ TEST(SurfaceGrain, UStandsOnBothFeet) {
   WorldBuilder builder(settings);
   const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
   builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
-  // The U's arms point down (-z): its prism axis along y.
-  test::Mesh u = scaled(test::u_prism(1), 0.01);
-  for (Vec3& v : u.vertices) v = {v.x, v.z, -v.y};
-  BodyShape shape;
-  shape.surface = shared(u);
+  const BodyShape shape = u_arms_down();
   builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.0201}});
   World w = builder.build();
   const Real dt = 2e-5;
@@ -236,24 +242,38 @@ TEST(SurfaceGrain, AGeneratorAndAnInflowFillTheHollowOfABowl) {
   }
 }
 
-TEST(SurfaceGrain, UStandsUnderTheHertzLawToo) {
-  WorldSettings settings;
-  settings.model = ContactModel::Hertz;
-  WorldBuilder builder(settings);
-  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
-  builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
-  test::Mesh u = scaled(test::u_prism(1), 0.01);
-  for (Vec3& v : u.vertices) v = {v.x, v.z, -v.y};
-  BodyShape shape;
-  shape.surface = shared(u);
-  builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.0201}});
-  World w = builder.build();
-  for (int i = 0; i < 20000; ++i) ASSERT_EQ(step(w, 2e-5).status, StepStatus::Ok) << i;
-  const Body& b = w.bodies[0];
-  EXPECT_EQ(w.stats.contacts, 2);
-  EXPECT_LT(length(b.velocity), 1e-4);
-  EXPECT_GT(rotate(shape_orientation(w.templates[b.shape], b), Vec3{0, 0, 1}).z, 1 - 1e-6);
-  EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b));  // the two feet hold its weight
+// Under the Hertz law (equivalent depth) a U stands on a plane on both
+// feet; a mesh floor's triangles are a margin of thickness / 2 about them,
+// and it stands on one as on the plane raised by the margin, with one
+// contact a foot though each foot's edge lies on a seam.
+TEST(SurfaceGrain, UStandsUnderTheHertzLawOnAPlaneAndOnAMeshFloor) {
+  Real height[2];
+  for (int mesh = 0; mesh < 2; ++mesh) {
+    WorldSettings settings;
+    settings.model = ContactModel::Hertz;
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+    const Real thickness = 0.002;
+    if (mesh) {  // two strips of two triangles, the seam y = 0 under both feet
+      const std::vector<Vec3> v{{-0.1, -0.1, 0}, {0.1, -0.1, 0}, {0.1, 0, 0}, {-0.1, 0, 0}, {0.1, 0.1, 0}, {-0.1, 0.1, 0}};
+      const std::vector<std::array<std::uint32_t, 3>> t{{0, 1, 2}, {0, 2, 3}, {3, 2, 4}, {3, 4, 5}};
+      builder.add_mesh_walls(v, t, thickness, rock, "floor");
+    } else {
+      builder.add_plane({0, 0, thickness / 2}, {0, 0, 1}, rock, "floor");
+    }
+    const BodyShape shape = u_arms_down();
+    builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.0211}});
+    World w = builder.build();
+    for (int i = 0; i < 20000; ++i) ASSERT_EQ(step(w, 2e-5).status, StepStatus::Ok) << i;
+    const Body& b = w.bodies.back();
+    EXPECT_EQ(w.stats.contacts, 2) << mesh;
+    EXPECT_LT(length(b.velocity), 1e-4) << mesh;
+    EXPECT_GT(rotate(shape_orientation(w.templates[b.shape], b), Vec3{0, 0, 1}).z, 1 - 1e-6) << mesh;
+    EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b)) << mesh;
+    height[mesh] = b.position.z;
+  }
+  EXPECT_GT(height[0], 0.01);
+  EXPECT_NEAR(height[1], height[0], 1e-7);
 }
 
 TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {

@@ -5,6 +5,7 @@
 // (What the broad phase keeps that a bit-exact resume needs is state:
 // World::search. What passes between the halves of a step, and a domain's
 // role in a domain run, is the step's context: step_context.hpp.)
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -85,6 +86,10 @@ struct StepWorkspace {
   std::vector<std::uint32_t> surface_listed;                   ///< contacts of surface grains before expansion
   std::vector<std::vector<SurfacePatchContact>> surface_found; ///< and their patches
   std::vector<GeometryStatus> surface_status;                  ///< and whether they could be found
+  /// The listed contacts in jobs (surface_jobs: [begin, end) of surface_order):
+  /// one contact, or a grain's contacts with the pieces of one mesh wall.
+  std::vector<std::uint32_t> surface_order;
+  std::vector<std::array<std::uint32_t, 2>> surface_jobs;
   std::vector<StepContact> expanded;      ///< the contact list being expanded (swapped with contacts)
   std::vector<PairKey> expanded_keys;
   std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gjkdem/contact/surface_half_space.hpp"
+#include "gjkdem/contact/surface_margin.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
@@ -27,18 +28,25 @@
 
 namespace gjkdem::dem {
 
+struct SurfacePatchContact {
+  ContactGeometry geometry;  ///< normal a -> b
+  Vec3 centroid;             ///< of the patch's volume, world
+};
+
 /// One thread's scratch for surface contacts (memory reused from call to call).
 struct SurfaceScratch {
   SurfaceOverlapWorkspace overlap;
   Surface moved;                       ///< the surface of fewer vertices, in the other's frame
   std::shared_ptr<const Surface> moved_from;  ///< what `moved` is a copy of (its topology then needs no copy)
   HalfSpaceScratch half_space;         ///< against a plane
+  SurfaceMarginScratch margin;         ///< against triangles with a margin
+  std::vector<MarginTriangle> margin_triangles;  ///< in the grain's frame
+  std::vector<MarginContact> margin_contacts;
+  std::vector<MarginTriangle> margin_pieces;     ///< a job's pieces, world
+  std::vector<SurfacePatchContact> margin_found;
+  std::vector<std::uint32_t> margin_hosts;
 };
 
-struct SurfacePatchContact {
-  ContactGeometry geometry;  ///< normal a -> b
-  Vec3 centroid;             ///< of the patch's volume, world
-};
 
 /// The patches of two placed surfaces, largest first. Returns false when a
 /// piece of the overlap has volume but no contact area (one solid wholly
@@ -60,6 +68,24 @@ bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pos
 /// body went through: no cut face can push it back).
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
                            SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
+
+/// A mesh wall's piece under the Hertz and linear laws (a triangle with a
+/// margin, which meets surface grains by margin_patches): its triangle, or
+/// null for any other template.
+inline const Triangle* margin_piece(const ShapeTemplate& t) noexcept {
+  return t.wall_face && t.shape.margin > 0 ? std::get_if<Triangle>(&t.shape.core) : nullptr;
+}
+
+/// The contacts of a placed surface grain with the triangles of a mesh
+/// wall's pieces (world coordinates) under the Hertz and linear laws: the
+/// seed's margin model (contact/surface_margin.hpp), one a patch however
+/// many pieces it touches; `centre` is the grain's centre of mass. Each has
+/// a depth and a point midway across the margin, no volume or area; normals
+/// point from the wall to the grain. `hosts` gets, per contact, the
+/// triangle its deepest pair touches.
+void margin_patches(const Surface& grain, const Transform& pose, const Vec3& centre,
+                    std::span<const MarginTriangle> triangles, SurfaceScratch& scratch,
+                    std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts);
 
 /// Slots for one pair's patches: `anchors` of the patches now; `last` the
 /// slots and anchors of its patches last step. Nearest pairs first, a patch

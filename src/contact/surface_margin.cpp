@@ -1,0 +1,133 @@
+#include "gjkdem/contact/surface_margin.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gjkdem {
+namespace {
+
+// The point of triangle abc nearest p, by the region p projects into
+// (corner, edge or face).
+Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const Real d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const Real d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const Real vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const Real d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const Real vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const Real va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const Real sum = va + vb + vc;
+  if (!(sum > 0)) return a;  // a degenerate triangle: its first corner
+  return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+}  // namespace
+
+void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> triangles, const Vec3& centre,
+                             SurfaceMarginScratch& w, std::vector<MarginContact>& out) {
+  out.clear();
+  w.pairs.clear();
+  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+    const MarginTriangle& t = triangles[i];
+    const Vec3 grow{t.rho, t.rho, t.rho};
+    w.near.clear();
+    query_box_tree(s.tree, {min(min(t.corners[0], t.corners[1]), t.corners[2]) - grow,
+                            max(max(t.corners[0], t.corners[1]), t.corners[2]) + grow},
+                   w.near);
+    // In the surface's triangle order, not the tree's: the patches then do
+    // not depend on how the tree split the surface (moved, it splits otherwise).
+    std::sort(w.near.begin(), w.near.end());
+    for (const std::uint32_t f : w.near) w.pairs.push_back({i, f});
+  }
+  if (w.pairs.empty()) return;
+  w.batch.clear();
+  for (const SurfaceMarginScratch::Pair& p : w.pairs) {
+    const std::array<Vec3, 3>& c = triangles[p.triangle].corners;
+    const TriangleIndices& v = s.triangles[p.facet];
+    w.batch.push_back(c[0], c[1], c[2], s.vertices[v[0]], s.vertices[v[1]], s.vertices[v[2]]);
+  }
+  triangle_distances(w.batch, w.distances);
+
+  // Each close pair's contact; its surface triangle's corners joined into patches.
+  w.close.clear();
+  w.patch_of.reset(s.vertices.size());
+  for (std::uint32_t i = 0; i < w.pairs.size(); ++i) {
+    const TriangleDistanceBlock& r = w.distances[i / kTriangleLanes];
+    const std::size_t l = i % kTriangleLanes;
+    const Real d = r.distance[l];
+    const MarginTriangle& t = triangles[w.pairs[i].triangle];
+    if (!(d < t.rho)) continue;
+    const TriangleIndices& v = s.triangles[w.pairs[i].facet];
+    w.patch_of.join(v[0], v[1]), w.patch_of.join(v[0], v[2]);
+    const Vec3 on_triangle{r.witness_a[0][l], r.witness_a[1][l], r.witness_a[2][l]};
+    if (d > 0) {
+      const Vec3 on_surface{r.witness_b[0][l], r.witness_b[1][l], r.witness_b[2][l]};
+      const Vec3 n = (on_surface - on_triangle) / d;
+      // Midway between the margin's boundary (rho out) and the surface (d out).
+      w.close.push_back({{on_triangle + n * ((t.rho + d) / 2), n, t.rho - d}, i});
+      continue;
+    }
+    // Crossing: along the normal, to the solid's side.
+    const Vec3 face = cross(t.corners[1] - t.corners[0], t.corners[2] - t.corners[0]);
+    const Vec3 up = dot(centre - t.corners[0], face) >= 0 ? normalized(face) : -normalized(face);
+    Real lowest = 0;  // of the surface triangle's corners above the plane (<= 0: it crosses)
+    for (const std::uint32_t k : v) lowest = std::fmin(lowest, dot(s.vertices[k] - t.corners[0], up));
+    w.close.push_back({{on_triangle + up * ((t.rho + lowest) / 2), up, t.rho - lowest}, i});
+  }
+  if (w.close.empty()) return;
+
+  // Patches in the order of their first close pairs; each takes its deepest.
+  std::vector<std::uint32_t> roots;
+  for (const SurfaceMarginScratch::Close& c : w.close) {
+    const std::uint32_t root = w.patch_of.find(s.triangles[w.pairs[c.pair].facet][0]);
+    const auto at = std::find(roots.begin(), roots.end(), root);
+    if (at == roots.end()) {
+      roots.push_back(root);
+      out.push_back({c.contact, w.pairs[c.pair].triangle});
+    } else if (c.contact.depth > out[at - roots.begin()].contact.depth) {
+      out[at - roots.begin()] = {c.contact, w.pairs[c.pair].triangle};
+    }
+  }
+
+  // The corners within a margin, each for its nearest triangle: a flat
+  // face's point lies under the face's middle, where one pair's witness
+  // would lie at any of its corners, and a corner over a seam counts once.
+  w.vertex_distance.resize(s.vertices.size(), INFINITY);
+  w.vertex_triangle.resize(s.vertices.size());
+  w.touched.clear();
+  for (const SurfaceMarginScratch::Close& c : w.close) {
+    const MarginTriangle& t = triangles[w.pairs[c.pair].triangle];
+    for (const std::uint32_t k : s.triangles[w.pairs[c.pair].facet]) {
+      const Real d = length(s.vertices[k] - nearest_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]));
+      if (std::isinf(w.vertex_distance[k])) w.touched.push_back(k);
+      if (d < w.vertex_distance[k]) w.vertex_distance[k] = d, w.vertex_triangle[k] = w.pairs[c.pair].triangle;
+    }
+  }
+  std::sort(w.touched.begin(), w.touched.end());  // sums in vertex order
+  std::vector<Vec3> weighted(out.size());
+  std::vector<Real> weight(out.size(), 0);
+  for (const std::uint32_t k : w.touched) {
+    const MarginTriangle& t = triangles[w.vertex_triangle[k]];
+    const Real d = w.vertex_distance[k];
+    w.vertex_distance[k] = INFINITY;  // left as found, for the next call
+    if (!(d < t.rho)) continue;
+    const std::size_t p = std::find(roots.begin(), roots.end(), w.patch_of.find(k)) - roots.begin();
+    const Vec3 v = s.vertices[k];
+    const Vec3 q = nearest_on_triangle(v, t.corners[0], t.corners[1], t.corners[2]);
+    // Midway between the corner and the margin's boundary beyond it.
+    weighted[p] += (q + v + (d > 0 ? (v - q) * (t.rho / d) : Vec3{})) * (0.5 * (t.rho - d));
+    weight[p] += t.rho - d;
+  }
+  for (std::size_t p = 0; p < out.size(); ++p)
+    if (weight[p] > 0) out[p].contact.point = weighted[p] / weight[p];
+}
+
+}  // namespace gjkdem
