@@ -31,13 +31,17 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
                                                                                         : GeometryStatus::Through;
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
-  const Transform pose_a = shape_pose(ta, a);
-  // Hulls apart (GJK on the templates' convex shapes, which hold the
-  // surfaces): no patch, and nothing to move or traverse.
-  if (!intersect(ta.shape, pose_a, tb.shape, pose_b)) return GeometryStatus::Touching;
-  if (!ta.surface || !tb.surface) return GeometryStatus::Unsupported;
-  return surface_patches(ta.surface, pose_a, tb.surface, pose_b, model, scratch, out) ? GeometryStatus::Touching
-                                                                                        : GeometryStatus::Engulfed;
+  // A compound meets a surface grain part by part, as it meets other bodies.
+  PartPose pa = part_pose(ta, a, c.part_a), pb = part_pose(tb, b, c.part_b);
+  pb.pose.translation += image_shift_of(cell, c);
+  const std::shared_ptr<const Surface>& sa = ta.parts.empty() ? ta.surface : ta.parts[c.part_a].surface;
+  const std::shared_ptr<const Surface>& sb = tb.parts.empty() ? tb.surface : tb.parts[c.part_b].surface;
+  // Hulls apart (GJK on the convex shapes that hold the surfaces): no
+  // patch, and nothing to move or traverse.
+  if (!intersect(*pa.shape, pa.pose, *pb.shape, pb.pose)) return GeometryStatus::Touching;
+  if (!sa || !sb) return GeometryStatus::Unsupported;
+  return surface_patches(sa, pa.pose, sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
+                                                                        : GeometryStatus::Engulfed;
 }
 
 // A grain's contact with a mesh wall's piece under the penetration laws:
@@ -183,12 +187,16 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     const Transform frame = shape_pose(templates[lo.shape], lo);
     anchors.clear();
     for (const SurfacePatchContact& p : patches) anchors.push_back(apply_inverse(frame, p.centroid));
+    // A patch's key: its slot in the low half of the parts field, the part
+    // of a compound it touches (the grain's is 0) in the high half: patches
+    // of one part follow each other, parts in order, as the list is sorted.
     const PairKey key = work.keys[k];
+    const std::uint32_t part = std::uint32_t{c.part_a} + c.part_b;
     before.clear();
-    for (auto it = std::lower_bound(last.begin(), last.end(), key,
+    for (auto it = std::lower_bound(last.begin(), last.end(), PairKey{key.lo, key.hi, 0},
                                     [](const PairState& s, const PairKey& x) { return s.key < x; });
          it != last.end() && it->key.lo == key.lo && it->key.hi == key.hi; ++it)
-      before.push_back({it->key.parts, it->anchor});
+      if (it->key.parts >> 16 == part) before.push_back({it->key.parts & 0xffffu, it->anchor});
     match_patch_slots(anchors, before, match_reach(bodies, templates, c), slots);
     order.resize(patches.size());
     for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -200,7 +208,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
       patch.active = true;
       patch.anchor = anchors[i];
       out.push_back(patch);
-      keys.push_back({key.lo, key.hi, slots[i]});
+      keys.push_back({key.lo, key.hi, part << 16 | slots[i]});
     }
   }
   contacts.swap(out);

@@ -740,11 +740,19 @@ void WorldBuilder::check_explicit_bodies() const {
         const MarginTriangle t{{apply(at, piece->v[0]), apply(at, piece->v[1]), apply(at, piece->v[2])},
                                w.templates[w.bodies[wall].shape].shape.margin};
         margin_patches(*tg.surface, poses[grain], w.bodies[grain].position, {&t, 1}, surface_scratch, patches, hosts);
-      } else if (!ta.surface || !tb.surface) {
-        continue;  // no volume: the run reports the pair
-      } else if (!surface_patches(ta.surface, poses[i], tb.surface, poses[j], ContactModel::Volume, surface_scratch,
-                                  patches)) {
-        depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
+      } else {  // part by part for a compound
+        for (std::size_t pa = 0; pa < std::max<std::size_t>(ta.parts.size(), 1); ++pa)
+          for (std::size_t pb = 0; pb < std::max<std::size_t>(tb.parts.size(), 1); ++pb) {
+            const std::shared_ptr<const Surface>& sa = ta.parts.empty() ? ta.surface : ta.parts[pa].surface;
+            const std::shared_ptr<const Surface>& sb = tb.parts.empty() ? tb.surface : tb.parts[pb].surface;
+            if (!sa || !sb) continue;  // no volume: the run reports the pair
+            const Transform at_a = ta.parts.empty() ? poses[i] : compose(poses[i], ta.parts[pa].pose);
+            const Transform at_b = tb.parts.empty() ? poses[j] : compose(poses[j], tb.parts[pb].pose);
+            if (!surface_patches(sa, at_a, sb, at_b, ContactModel::Volume, surface_scratch, patches))
+              depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
+            for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
+          }
+        patches.clear();
       }
       for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
     } else {
@@ -782,12 +790,12 @@ void WorldBuilder::prepare_shapes() {
   }
 }
 
-// In a world with surface grains every other template gets the closed
-// surface their contacts take: a solid polytope's hull triangles, a curved
-// shape's inscribed tessellation. Shapes without volume get none (their
-// contacts with surface grains stop the run as unsupported pairs), nor do a
-// mesh wall's triangles under the penetration laws (the margin model meets
-// the grains' triangles), nor compounds, refused here.
+// In a world with surface grains every other template, and every part of a
+// compound, gets the closed surface their contacts take: a solid
+// polytope's hull triangles, a curved shape's inscribed tessellation.
+// Shapes without volume get none (their contacts with surface grains stop
+// the run as unsupported pairs), nor do a mesh wall's triangles under the
+// penetration laws (the margin model meets the grains' triangles).
 void WorldBuilder::prepare_surfaces() {
   std::vector<ShapeTemplate>& templates = world_.templates;
   if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return t.surface_grain; })) return;
@@ -802,18 +810,21 @@ void WorldBuilder::prepare_surfaces() {
                                                 : labels_[user[k]];
     const std::vector<std::uint32_t> at =
         user[k] == kNoBody ? std::vector<std::uint32_t>{} : std::vector<std::uint32_t>{static_cast<std::uint32_t>(user[k])};
-    if (!t.parts.empty())
-      throw BuildError(who + ": compounds and surface grains cannot be in one world yet (make the compound a surface)",
-                       at);
-    if (without_volume(t.shape) || margin_piece(t)) continue;  // a mesh wall's piece meets them by its margin
-    try {
-      const Shape& s = t.shape;
-      t.surface = std::make_shared<const Surface>(
-          std::holds_alternative<Box>(s.core) && s.margin == 0 ? box_surface(std::get<Box>(s.core))
-          : solid_polytope(s) ? polytope_surface(std::get<Polytope>(s.core))
-                              : polytope_surface(tessellate(s, settings_.tessellation).polytope));
-    } catch (const SurfaceError& e) {
-      throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
+    const auto boundary = [&](const Shape& s) {
+      try {
+        return std::make_shared<const Surface>(
+            std::holds_alternative<Box>(s.core) && s.margin == 0 ? box_surface(std::get<Box>(s.core))
+            : solid_polytope(s) ? polytope_surface(std::get<Polytope>(s.core))
+                                : polytope_surface(tessellate(s, settings_.tessellation).polytope));
+      } catch (const SurfaceError& e) {
+        throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
+      }
+    };
+    if (!t.parts.empty()) {
+      for (TemplatePart& part : t.parts)
+        if (!part.surface && !without_volume(part.shape)) part.surface = boundary(part.shape);
+    } else if (!without_volume(t.shape) && !margin_piece(t)) {  // a mesh wall's piece meets them by its margin
+      t.surface = boundary(t.shape);
     }
   }
 }

@@ -3,6 +3,7 @@
 // - A surface cube and a convex cube push the same on a plane and on a
 //   block (no seam: the same solid); an L and its compound of two boxes too
 //   where only one box touches.
+// - A compound meets a surface grain part by part, as its parts would.
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
 // - A ring threaded on a peg hangs from it and stays; a ball settles at the
 //   bottom of a bowl; a U stands under the Hertz law (equivalent depth).
@@ -12,7 +13,9 @@
 // - The same bits on one thread and two.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -108,6 +111,44 @@ TEST(SurfaceGrain, AnLPushesAsItsCompoundWhereNoSeamIsTouched) {
     ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok);
     EXPECT_EQ(w.stats.contacts, 1) << surface;
     force[surface] = b.force, torque[surface] = b.torque;
+  }
+  EXPECT_GT(length(force[0]), 1e-3);
+  EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0]));
+  EXPECT_LT(length(torque[1] - torque[0]), 1e-9 * length(force[0]) * 0.01);
+}
+
+// A compound meets a surface grain part by part: a surface bar pressed
+// into both parts of a fixed compound of two boxes is pushed as by the two
+// boxes as separate bodies, one patch each, springs included.
+TEST(SurfaceGrain, ACompoundMeetsASurfaceGrainPartByPart) {
+  const std::vector<PlacedShape> parts{{Shape{Box{{0.01, 0.01, 0.01}}}, Transform::from({-0.015, 0, 0}, Quat{})},
+                                       {Shape{Box{{0.01, 0.01, 0.01}}}, Transform::from({0.015, 0, 0}, Quat{})}};
+  Vec3 force[2], torque[2];
+  for (int compound = 0; compound < 2; ++compound) {
+    WorldBuilder builder(volume_settings());
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    if (compound) {
+      builder.add_body({.shape = {.parts = parts}, .material = rock, .fixed = true});
+    } else {
+      for (const PlacedShape& p : parts)
+        builder.add_body({.shape = {p.shape, {}}, .material = rock, .position = p.pose.translation, .fixed = true});
+    }
+    BodyShape bar;
+    bar.surface = shared(test::box_surface({-0.03, -0.005, -0.005}, {0.03, 0.005, 0.005}));
+    builder.add_body({.shape = bar, .material = rock, .position = {0, 0, 0.02}});
+    builder.accept_initial_overlaps();
+    World w = builder.build();
+    Body& b = w.bodies.back();  // tilted a little into both boxes' tops
+    b.orientation = normalized(Quat{1, 0.01, -0.02, 0.03});
+    b.position = {0.001, 0.002, 0.0149};
+    b.velocity = {0.01, 0, -0.02};
+    b.angular_momentum = {1e-7, 2e-7, 0};
+    for (int i = 0; i < 100; ++i) ASSERT_EQ(step(w, 1e-6).status, StepStatus::Ok) << i;  // springs build up
+    EXPECT_EQ(w.stats.contacts, 2) << compound;
+    // One spring store each: the contacts' keys strictly increasing.
+    const std::vector<PairKey>& keys = w.work.keys;
+    EXPECT_TRUE(std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<PairKey>()) == keys.end()) << compound;
+    force[compound] = b.force, torque[compound] = b.torque;
   }
   EXPECT_GT(length(force[0]), 1e-3);
   EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0]));

@@ -92,7 +92,7 @@ angular_velocity = [0.0, 0.0, 4.0]
 
 )";
 
-// Surface grains and compounds are not in one world yet: two scenes.
+// Surface grains, in a scene of their own.
 constexpr const char* kSurfaces = R"(
 [shapes]
 tet = { type = "surface", vertices = [[0, 0, 0], [0.012, 0, 0], [0, 0.012, 0], [0, 0, 0.012]], triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]] }

@@ -27,6 +27,9 @@ struct TemplatePart {
   Real curvature_radius = 0;     ///< for the Hertz law: of the part alone (as for a template)
   Real volume = 0;               ///< of the part (0 for fixed pieces)
   std::optional<Shape> given{};  ///< the part as given, where `shape` is its tessellation (volume law)
+  /// Its boundary as surface grains meet it (as ShapeTemplate::surface), in
+  /// the part's frame; null in a world without surface grains.
+  std::shared_ptr<const Surface> surface;
 };
 
 /// A shape and its mass properties per unit density, computed once and
