@@ -3,6 +3,7 @@
 // - A surface cube and a convex cube push the same on a plane and on a
 //   block (no seam: the same solid); an L and its compound of two boxes too
 //   where only one box touches.
+// - A corner on a mesh floor pushes as on a plane at the margin's face.
 // - A compound meets a surface grain part by part, as its parts would.
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
 // - A ring threaded on a peg hangs from it and stays; a ball settles at the
@@ -315,6 +316,70 @@ TEST(SurfaceGrain, UStandsUnderTheHertzLawOnAPlaneAndOnAMeshFloor) {
   }
   EXPECT_GT(height[0], 0.01);
   EXPECT_NEAR(height[1], height[0], 1e-7);
+}
+
+// One corner of a grain within a flat mesh floor's margin: the margin model
+// pushes with the force a plane at the margin's face gives the convex grain
+// (depth rho - h along the floor's normal), at the corner, midway across
+// the margin, on random tilts, near the floor's seams too, one contact.
+TEST(SurfaceGrain, ACornerOnAMeshFloorPushesAsOnAPlaneAtItsMargin) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  const std::vector<Vec3> floor_v{{-0.1, -0.1, 0}, {0.1, -0.1, 0}, {0.1, 0.1, 0}, {-0.1, 0.1, 0}, {0, 0, 0}};
+  const std::vector<std::array<std::uint32_t, 3>> floor_t{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const Real rho = 0.001;
+  int compared = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 12; ++k) corners.push_back(Vec3{u(rng), u(rng), u(rng)} * 0.01);
+    const Polytope hull = make_polytope(corners);
+    const Quat turn = normalized(Quat{u(rng), u(rng), u(rng), u(rng)});
+    const Vec3 at{0.004 * u(rng), 0.004 * u(rng), 0};
+    // Lowered until its lowest corner lies 0.4 rho above the floor's middle.
+    Real lowest = INFINITY;
+    std::size_t low = 0;
+    for (std::size_t k = 0; k < hull.data->vertices.size(); ++k) {
+      const Real z = rotate(turn, hull.data->vertices[k]).z;
+      if (z < lowest) lowest = z, low = k;
+    }
+    Real second = INFINITY;  // the next corner must be out of the margin: one corner touches
+    for (std::size_t k = 0; k < hull.data->vertices.size(); ++k)
+      if (k != low) second = std::fmin(second, rotate(turn, hull.data->vertices[k]).z);
+    if (second - lowest < 2 * rho) continue;
+    Vec3 force[2];
+    for (int surface = 0; surface < 2; ++surface) {
+      WorldSettings settings;
+      settings.model = ContactModel::Hertz;
+      WorldBuilder builder(settings);
+      const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+      BodyShape shape;
+      if (surface) {
+        builder.add_mesh_walls(floor_v, floor_t, 2 * rho, rock, "floor");
+        shape.surface = std::make_shared<const Surface>(polytope_surface(hull));
+      } else {
+        builder.add_plane({0, 0, rho}, {0, 0, 1}, rock, "floor");
+        shape.shape = Shape{hull};
+      }
+      builder.add_body({.shape = shape, .material = rock, .position = {0, 0, 0.05}});
+      World w = builder.build();
+      Body& b = w.bodies.back();
+      const ShapeTemplate& t = w.templates[b.shape];
+      b.orientation = normalized(turn * t.principal.rotation);
+      b.position = at + rotate(turn, t.unit_mass.centroid) + Vec3{0, 0, 0.4 * rho - lowest};
+      b.velocity = {0.01, -0.02, -0.03};
+      ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok) << trial;
+      ASSERT_EQ(w.stats.contacts, 1) << trial << " " << surface;
+      force[surface] = b.force;
+      if (!surface) continue;
+      // (The plane pushes at its cut face's middle, so only the force compares.)
+      const Vec3 corner = apply(shape_pose(t, b), hull.data->vertices[low]);
+      for (const StepContact& c : w.work.contacts)
+        if (c.active) EXPECT_LT(length(c.geometry.point - Vec3{corner.x, corner.y, (corner.z + rho) / 2}), 1e-12);
+    }
+    EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0])) << trial;
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
 }
 
 TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {
