@@ -161,6 +161,14 @@ inline constexpr Real kContactMergeCos = 0.999;
 /// a body straddling two coplanar triangles tilt near the shared edge.
 inline constexpr Real kWallMergeCos = 0.9;
 
+/// DEM wall meshes: a contact with a piece is in the piece's face region when
+/// its normal lies within this cosine of the triangle's normal; otherwise it
+/// touches an edge or a corner, and beside a deeper face-region contact of
+/// the same body and wall (within the body's radius) it is the same touch
+/// seen over a seam, and is dropped. Round-off of GJK's normals on a face
+/// is far below it; a real edge contact tilts by more.
+inline constexpr Real kWallFaceRegionCos = 1 - 1e-9;
+
 /// DEM worlds: an explicit body may start touching another body or a wall
 /// (stacks do), but not overlapping it by more than this times its bounding
 /// radius (relative): WorldBuilder refuses that start, naming the two.

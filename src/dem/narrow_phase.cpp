@@ -1,6 +1,7 @@
 #include "gjkdem/dem/narrow_phase.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <tuple>
 
@@ -75,12 +76,47 @@ ContactGeometry body_contact(const Shape& sa, const Transform& pa, const Shape& 
   return c;
 }
 
+namespace {
+
+struct WallKey {  // a moving body's part against one wall group
+  std::uint32_t body, part, group;
+  std::size_t index;
+};
+
+// A body near a seam of a mesh wall touches the neighbouring piece's edge
+// too, with a tilted normal and less depth: inside that piece's edge or
+// corner region. Such a contact beside a deeper contact in a piece's face
+// region (within the body's radius) is the same touch: it is dropped.
+void drop_seam_echoes(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                      std::vector<StepContact>& contacts, std::span<const WallKey> run) {
+  const auto in_face_region = [&](const StepContact& c, std::uint32_t body) {
+    const Body& piece = bodies[c.a == body ? c.b : c.a];
+    const ShapeTemplate& t = templates[piece.shape];
+    if (!t.wall_face) return true;  // not a mesh wall's piece: no regions
+    const Triangle& f = *t.wall_face;
+    const Vec3 n = apply_rotation(shape_pose(t, piece), normalized(cross(f.v[1] - f.v[0], f.v[2] - f.v[0])));
+    return std::fabs(dot(n, c.geometry.normal)) >= kWallFaceRegionCos;
+  };
+  const Real reach = templates[bodies[run[0].body].shape].curvature_radius;
+  for (const WallKey& k : run) {
+    StepContact& c = contacts[k.index];
+    if (in_face_region(c, k.body)) continue;
+    for (const WallKey& other : run) {
+      const StepContact& o = contacts[other.index];
+      if (other.index != k.index && o.active && o.geometry.depth > c.geometry.depth &&
+          length(o.geometry.point - c.geometry.point) <= reach && in_face_region(o, other.body)) {
+        c.active = false;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                          std::vector<StepContact>& contacts) {
-  struct Key {  // a moving body's part against one wall group
-    std::uint32_t body, part, group;
-    std::size_t index;
-  };
+  using Key = WallKey;
   std::vector<Key> keys;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
@@ -101,6 +137,13 @@ void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemp
     while (end < keys.size() && keys[end].body == keys[begin].body && keys[end].part == keys[begin].part &&
            keys[end].group == keys[begin].group)
       ++end;
+    const std::size_t run_end = end;
+    if (end - begin > 1) {
+      drop_seam_echoes(bodies, templates, contacts, std::span(keys).subspan(begin, end - begin));
+      end = std::stable_partition(keys.begin() + begin, keys.begin() + end,
+                                  [&](const Key& k) { return contacts[k.index].active; }) -
+            keys.begin();
+    }
     if (end - begin > 1) {
       points.clear();
       for (std::size_t k = begin; k < end; ++k) {
@@ -130,7 +173,7 @@ void merge_wall_contacts(std::span<const Body> bodies, std::span<const ShapeTemp
         c.geometry.moment = cross(c.geometry.point, c.geometry.normal);
       }
     }
-    begin = end;
+    begin = run_end;
   }
 }
 

@@ -285,16 +285,19 @@ TEST(NarrowPhaseTest, MergeMakesOneContactOfTwoCoplanarTrianglesOfOneMesh) {
   EXPECT_NEAR(before[deep].geometry.depth, 2e-4, 1e-12);
   EXPECT_LT(before[1 - deep].geometry.depth, before[deep].geometry.depth);
 
+  // The edge's contact is the face's seen over the seam (its normal tilted
+  // off the triangle's): dropped, the face's kept as it was, under the
+  // sphere's centre.
   merge_wall_contacts(w.bodies, w.templates, contacts);
   EXPECT_TRUE(contacts[deep].active) << "the deeper triangle carries the contact";
   EXPECT_FALSE(contacts[1 - deep].active);
   const ContactGeometry& g = contacts[deep].geometry;
   EXPECT_EQ(g.depth, before[deep].geometry.depth) << "the deepest depth";
   EXPECT_EQ(g.normal, before[deep].geometry.normal) << "the deepest normal";
-  const Real d0 = before[0].geometry.depth, d1 = before[1].geometry.depth;
-  const Vec3 point = (before[0].geometry.point * d0 + before[1].geometry.point * d1) / (d0 + d1);
-  expect_vec_near(g.point, point, 1e-15, "depth-weighted mean point");
-  expect_vec_near(g.moment, cross(point, g.normal), 1e-15, "moment at the merged point");
+  expect_vec_near(g.point, before[deep].geometry.point, 1e-15, "the face's point");
+  expect_vec_near({g.point.x, g.point.y, 0}, {w.bodies[0].position.x, w.bodies[0].position.y, 0}, 1e-15,
+                  "under the sphere's centre");
+  expect_vec_near(g.moment, cross(g.point, g.normal), 1e-15, "moment at the point");
 }
 
 TEST(NarrowPhaseTest, MergeLeavesTrianglesOfTwoMeshesAndPlaneContactsAlone) {
