@@ -85,7 +85,8 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   if (w.close.empty()) return;
 
   // Patches in the order of their first close pairs; each takes its deepest.
-  std::vector<std::uint32_t> roots;
+  std::vector<std::uint32_t>& roots = w.roots;
+  roots.clear();
   for (const SurfaceMarginScratch::Close& c : w.close) {
     const std::uint32_t root = w.patch_of.find(s.triangles[w.pairs[c.pair].facet][0]);
     const auto at = std::find(roots.begin(), roots.end(), root);
@@ -112,8 +113,10 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
     }
   }
   std::sort(w.touched.begin(), w.touched.end());  // sums in vertex order
-  std::vector<Vec3> weighted(out.size());
-  std::vector<Real> weight(out.size(), 0);
+  std::vector<Vec3>& weighted = w.weighted;
+  std::vector<Real>& weight = w.weight;
+  weighted.assign(out.size(), Vec3{});
+  weight.assign(out.size(), 0);
   for (const std::uint32_t k : w.touched) {
     const MarginTriangle& t = triangles[w.vertex_triangle[k]];
     const Real d = w.vertex_distance[k];

@@ -56,6 +56,9 @@ struct SurfaceMarginScratch {
   UnionFind patch_of;              ///< of the surface's vertices
   std::vector<Real> vertex_distance;  ///< per vertex, to its nearest margin triangle (infinite: not near)
   std::vector<std::uint32_t> vertex_triangle, touched;
+  std::vector<std::uint32_t> roots;  ///< per patch, its vertices' root
+  std::vector<Vec3> weighted;        ///< per patch, the corners' weighted sum
+  std::vector<Real> weight;
 };
 
 /// The contacts of `surface` with `triangles`, everything in the surface's
