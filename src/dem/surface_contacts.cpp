@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <tuple>
+#include <utility>
 
 #include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
@@ -70,26 +70,38 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
   const bool grain_is_b = g == first.b;
   const Body& grain = bodies[g];
   const ShapeTemplate& tg = templates[grain.shape];
-  const Vec3 shift = grain_is_b ? image_shift_of(cell, first) : Vec3{};  // pieces are never images
-  Transform pose = shape_pose(tg, grain);
-  pose.translation += shift;
+  // Periodic worlds: each contact has b at its image, the grain or a piece.
+  // The grain stays where it is and each piece moves to where it meets it,
+  // so the pieces met across the cell's face are one surface with the others
+  // (one patch over that seam too); a patch found with a piece whose
+  // contact has the grain at an image is moved there.
+  const Transform pose = shape_pose(tg, grain);
   scratch.margin_pieces.clear();
   for (const std::uint32_t m : members) {
     const StepContact& c = contacts[listed[m]];
     const Body& piece = bodies[grain_is_b ? c.a : c.b];
     const ShapeTemplate& tp = templates[piece.shape];
-    const Transform at = shape_pose(tp, piece);
+    Transform at = shape_pose(tp, piece);
+    const Vec3 image = image_shift_of(cell, c);
+    at.translation += grain_is_b ? -image : image;
     const Triangle& t = *margin_piece(tp);
     scratch.margin_pieces.push_back({{apply(at, t.v[0]), apply(at, t.v[1]), apply(at, t.v[2])}, tp.shape.margin});
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
-  margin_patches(*tg.surface, pose, grain.position + shift, scratch.margin_pieces, scratch, scratch.margin_found,
+  margin_patches(*tg.surface, pose, grain.position, scratch.margin_pieces, scratch, scratch.margin_found,
                  scratch.margin_hosts);
   for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {
     SurfacePatchContact p = scratch.margin_found[k];
-    if (!grain_is_b) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;  // a -> b
-    found[members[scratch.margin_hosts[k]]].push_back(p);
+    const std::uint32_t host = members[scratch.margin_hosts[k]];
+    if (grain_is_b) {
+      const Vec3 image = image_shift_of(cell, contacts[listed[host]]);
+      p.geometry.point += image, p.centroid += image;
+    } else {
+      p.geometry.normal = -p.geometry.normal;  // a -> b
+    }
+    p.geometry.moment = cross(p.geometry.point, p.geometry.normal);
+    found[host].push_back(p);
   }
 }
 
@@ -121,17 +133,17 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<std::array<std::uint32_t, 2>>& jobs = work.surface_jobs;
   in_jobs.resize(listed.size());
   for (std::uint32_t i = 0; i < in_jobs.size(); ++i) in_jobs[i] = i;
-  const auto wall_of = [&](std::uint32_t i) {  // (grain, wall group, image), or kNotMargin first
+  const auto wall_of = [&](std::uint32_t i) {  // (grain, wall group), or (kNotMargin, i)
     const StepContact& c = contacts[listed[i]];
     const std::uint32_t g = margin_grain(bodies, templates, c);
-    if (g == kNotMargin) return std::tuple(kNotMargin, i, std::uint32_t{0});
-    return std::tuple(g, bodies[g == c.b ? c.a : c.b].group, std::uint32_t{c.image});
+    if (g == kNotMargin) return std::pair(kNotMargin, i);
+    return std::pair(g, bodies[g == c.b ? c.a : c.b].group);
   };
   std::stable_sort(in_jobs.begin(), in_jobs.end(), [&](std::uint32_t x, std::uint32_t y) { return wall_of(x) < wall_of(y); });
   jobs.clear();
   for (std::uint32_t begin = 0; begin < in_jobs.size();) {
     std::uint32_t end = begin + 1;
-    if (std::get<0>(wall_of(in_jobs[begin])) != kNotMargin)
+    if (wall_of(in_jobs[begin]).first != kNotMargin)
       while (end < in_jobs.size() && wall_of(in_jobs[end]) == wall_of(in_jobs[begin])) ++end;
     jobs.push_back({begin, end});
     begin = end;
@@ -143,7 +155,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     // Nothing may leave a parallel loop: a failure of the exact overlap (a
     // defect, never bad input) stops the run naming the pair.
     try {
-      if (std::get<0>(wall_of(members[0])) != kNotMargin) {
+      if (wall_of(members[0]).first != kNotMargin) {
         find_margin_patches(bodies, templates, cell, contacts, listed, members, work.surface[thread_id()],
                             work.surface_found, work.surface_status);
       } else {

@@ -3,7 +3,8 @@
 // - A surface cube and a convex cube push the same on a plane and on a
 //   block (no seam: the same solid); an L and its compound of two boxes too
 //   where only one box touches.
-// - A corner on a mesh floor pushes as on a plane at the margin's face.
+// - A corner on a mesh floor pushes as on a plane at the margin's face; a
+//   cube across a periodic face rests on a mesh floor as in the middle.
 // - A compound meets a surface grain part by part, as its parts would.
 // - A U-shaped grain stands on both feet: two patches, level and at rest.
 // - A ring threaded on a peg hangs from it and stays; a ball settles at the
@@ -384,6 +385,40 @@ TEST(SurfaceGrain, ACornerOnAMeshFloorPushesAsOnAPlaneAtItsMargin) {
     ++compared;
   }
   EXPECT_GT(compared, 10);
+}
+
+// In a cell periodic along x, a cube across the cell's face rests on a mesh
+// floor spanning the cell as one in the middle does: the pieces it meets
+// through an image are placed where they meet it, one patch over the face,
+// whether the pieces (grain added first) or the grain carry the image.
+TEST(SurfaceGrain, ACubeAcrossAPeriodicFaceRestsOnAMeshFloorAsInTheMiddle) {
+  Real height[3];
+  for (int run = 0; run < 3; ++run) {  // 0: in the middle; 1: across, grain first; 2: across, floor first
+    WorldSettings settings;
+    settings.model = ContactModel::Hertz;
+    settings.periodic.axes[0] = true;
+    settings.periodic.lo = {0, 0, 0};
+    settings.periodic.hi = {0.1, 0, 0};
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+    const std::vector<Vec3> v{{0, -0.1, 0}, {0.05, -0.1, 0}, {0.1, -0.1, 0}, {0, 0.1, 0}, {0.05, 0.1, 0}, {0.1, 0.1, 0}};
+    const std::vector<std::array<std::uint32_t, 3>> t{{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+    if (run == 2) builder.add_mesh_walls(v, t, 0.002, rock, "floor");
+    BodyShape cube;
+    cube.surface = shared(test::box_surface({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}));
+    const std::uint32_t at = builder.add_body({.shape = cube, .material = rock, .position = {run ? 0.0999 : 0.05, 0, 0.0112}});
+    if (run != 2) builder.add_mesh_walls(v, t, 0.002, rock, "floor");
+    World w = builder.build();
+    for (int i = 0; i < 5000; ++i) ASSERT_EQ(step(w, 2e-5).status, StepStatus::Ok) << i;
+    const Body& b = w.bodies[at];
+    EXPECT_EQ(w.stats.contacts, 1) << run;
+    EXPECT_LT(length(b.velocity), 1e-4) << run;
+    EXPECT_LT(length(b.force), 1e-3 * 9.81 * mass_of(w, b)) << run;
+    height[run] = b.position.z;
+  }
+  EXPECT_GT(height[0], 0.0105);
+  EXPECT_NEAR(height[1], height[0], 1e-7);
+  EXPECT_NEAR(height[2], height[0], 1e-7);
 }
 
 TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {
