@@ -57,8 +57,22 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   triangle_distances(w.batch, w.distances);
 
   // Each close pair's contact; its surface triangle's corners joined into patches.
+  // The corners of the close pairs' triangles get local ids as they are met
+  // (set back at the end), so that the work follows the contact, not the
+  // surface's size.
+  constexpr std::uint32_t kNone = ~0u;
+  w.local_of.resize(s.vertices.size(), kNone);
+  w.met.clear();
+  w.patch_of.reset(0);
+  const auto local = [&](std::uint32_t v) {
+    if (w.local_of[v] == kNone) {
+      w.local_of[v] = static_cast<std::uint32_t>(w.met.size());
+      w.met.push_back(v);
+      w.patch_of.add();
+    }
+    return w.local_of[v];
+  };
   w.close.clear();
-  w.patch_of.reset(s.vertices.size());
   for (std::uint32_t i = 0; i < w.pairs.size(); ++i) {
     const TriangleDistanceBlock& r = w.distances[i / kTriangleLanes];
     const std::size_t l = i % kTriangleLanes;
@@ -66,7 +80,8 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
     const MarginTriangle& t = triangles[w.pairs[i].triangle];
     if (!(d < t.rho)) continue;
     const TriangleIndices& v = s.triangles[w.pairs[i].facet];
-    w.patch_of.join(v[0], v[1]), w.patch_of.join(v[0], v[2]);
+    const std::uint32_t first = local(v[0]);
+    w.patch_of.join(first, local(v[1])), w.patch_of.join(first, local(v[2]));
     const Vec3 on_triangle{r.witness_a[0][l], r.witness_a[1][l], r.witness_a[2][l]};
     if (d > 0) {
       const Vec3 on_surface{r.witness_b[0][l], r.witness_b[1][l], r.witness_b[2][l]};
@@ -88,7 +103,7 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   std::vector<std::uint32_t>& roots = w.roots;
   roots.clear();
   for (const SurfaceMarginScratch::Close& c : w.close) {
-    const std::uint32_t root = w.patch_of.find(s.triangles[w.pairs[c.pair].facet][0]);
+    const std::uint32_t root = w.patch_of.find(w.local_of[s.triangles[w.pairs[c.pair].facet][0]]);
     const auto at = std::find(roots.begin(), roots.end(), root);
     if (at == roots.end()) {
       roots.push_back(root);
@@ -101,34 +116,35 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   // The corners within a margin, each for its nearest triangle: a flat
   // face's point lies under the face's middle, where one pair's witness
   // would lie at any of its corners, and a corner over a seam counts once.
-  w.vertex_distance.resize(s.vertices.size(), INFINITY);
-  w.vertex_triangle.resize(s.vertices.size());
-  w.touched.clear();
+  w.vertex_distance.assign(w.met.size(), INFINITY);  // by local id
+  w.vertex_triangle.resize(w.met.size());
   for (const SurfaceMarginScratch::Close& c : w.close) {
     const MarginTriangle& t = triangles[w.pairs[c.pair].triangle];
     for (const std::uint32_t k : s.triangles[w.pairs[c.pair].facet]) {
       const Real d = length(s.vertices[k] - nearest_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]));
-      if (std::isinf(w.vertex_distance[k])) w.touched.push_back(k);
-      if (d < w.vertex_distance[k]) w.vertex_distance[k] = d, w.vertex_triangle[k] = w.pairs[c.pair].triangle;
+      const std::uint32_t at = w.local_of[k];
+      if (d < w.vertex_distance[at]) w.vertex_distance[at] = d, w.vertex_triangle[at] = w.pairs[c.pair].triangle;
     }
   }
+  w.touched = w.met;
   std::sort(w.touched.begin(), w.touched.end());  // sums in vertex order
   std::vector<Vec3>& weighted = w.weighted;
   std::vector<Real>& weight = w.weight;
   weighted.assign(out.size(), Vec3{});
   weight.assign(out.size(), 0);
   for (const std::uint32_t k : w.touched) {
-    const MarginTriangle& t = triangles[w.vertex_triangle[k]];
-    const Real d = w.vertex_distance[k];
-    w.vertex_distance[k] = INFINITY;  // left as found, for the next call
+    const std::uint32_t at = w.local_of[k];
+    const MarginTriangle& t = triangles[w.vertex_triangle[at]];
+    const Real d = w.vertex_distance[at];
     if (!(d < t.rho)) continue;
-    const std::size_t p = std::find(roots.begin(), roots.end(), w.patch_of.find(k)) - roots.begin();
+    const std::size_t p = std::find(roots.begin(), roots.end(), w.patch_of.find(at)) - roots.begin();
     const Vec3 v = s.vertices[k];
     const Vec3 q = nearest_on_triangle(v, t.corners[0], t.corners[1], t.corners[2]);
     // Midway between the corner and the margin's boundary beyond it.
     weighted[p] += (q + v + (d > 0 ? (v - q) * (t.rho / d) : Vec3{})) * (0.5 * (t.rho - d));
     weight[p] += t.rho - d;
   }
+  for (const std::uint32_t k : w.met) w.local_of[k] = kNone;  // left as found, for the next call
   for (std::size_t p = 0; p < out.size(); ++p)
     if (weight[p] > 0) out[p].contact.point = weighted[p] / weight[p];
 }

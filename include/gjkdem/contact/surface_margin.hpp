@@ -53,8 +53,10 @@ struct SurfaceMarginScratch {
     std::uint32_t pair;
   };
   std::vector<Close> close;        ///< one per pair closer than its rho
-  UnionFind patch_of;              ///< of the surface's vertices
-  std::vector<Real> vertex_distance;  ///< per vertex, to its nearest margin triangle (infinite: not near)
+  std::vector<std::uint32_t> local_of;  ///< per vertex of the surface: its local id, or ~0 (not met)
+  std::vector<std::uint32_t> met;       ///< the vertices met, by local id
+  UnionFind patch_of;                   ///< of the local ids
+  std::vector<Real> vertex_distance;    ///< by local id, to its nearest margin triangle
   std::vector<std::uint32_t> vertex_triangle, touched;
   std::vector<std::uint32_t> roots;  ///< per patch, its vertices' root
   std::vector<Vec3> weighted;        ///< per patch, the corners' weighted sum
