@@ -117,13 +117,15 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   // face's point lies under the face's middle, where one pair's witness
   // would lie at any of its corners, and a corner over a seam counts once.
   w.vertex_distance.assign(w.met.size(), INFINITY);  // by local id
-  w.vertex_triangle.resize(w.met.size());
+  w.vertex_nearest.resize(w.met.size());
+  w.vertex_rho.resize(w.met.size());
   for (const SurfaceMarginScratch::Close& c : w.close) {
     const MarginTriangle& t = triangles[w.pairs[c.pair].triangle];
     for (const std::uint32_t k : s.triangles[w.pairs[c.pair].facet]) {
-      const Real d = length(s.vertices[k] - nearest_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]));
+      const Vec3 q = nearest_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]);
+      const Real d = length(s.vertices[k] - q);
       const std::uint32_t at = w.local_of[k];
-      if (d < w.vertex_distance[at]) w.vertex_distance[at] = d, w.vertex_triangle[at] = w.pairs[c.pair].triangle;
+      if (d < w.vertex_distance[at]) w.vertex_distance[at] = d, w.vertex_nearest[at] = q, w.vertex_rho[at] = t.rho;
     }
   }
   w.touched = w.met;
@@ -134,15 +136,14 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
   weight.assign(out.size(), 0);
   for (const std::uint32_t k : w.touched) {
     const std::uint32_t at = w.local_of[k];
-    const MarginTriangle& t = triangles[w.vertex_triangle[at]];
-    const Real d = w.vertex_distance[at];
-    if (!(d < t.rho)) continue;
+    const Real d = w.vertex_distance[at], rho = w.vertex_rho[at];
+    if (!(d < rho)) continue;
     const std::size_t p = std::find(roots.begin(), roots.end(), w.patch_of.find(at)) - roots.begin();
     const Vec3 v = s.vertices[k];
-    const Vec3 q = nearest_on_triangle(v, t.corners[0], t.corners[1], t.corners[2]);
+    const Vec3 q = w.vertex_nearest[at];
     // Midway between the corner and the margin's boundary beyond it.
-    weighted[p] += (q + v + (d > 0 ? (v - q) * (t.rho / d) : Vec3{})) * (0.5 * (t.rho - d));
-    weight[p] += t.rho - d;
+    weighted[p] += (q + v + (d > 0 ? (v - q) * (rho / d) : Vec3{})) * (0.5 * (rho - d));
+    weight[p] += rho - d;
   }
   for (const std::uint32_t k : w.met) w.local_of[k] = kNone;  // left as found, for the next call
   for (std::size_t p = 0; p < out.size(); ++p)

@@ -84,8 +84,7 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     Transform at = shape_pose(tp, piece);
     const Vec3 image = image_shift_of(cell, c);
     at.translation += grain_is_b ? -image : image;
-    const Triangle& t = *margin_piece(tp);
-    scratch.margin_pieces.push_back({{apply(at, t.v[0]), apply(at, t.v[1]), apply(at, t.v[2])}, tp.shape.margin});
+    scratch.margin_pieces.push_back(placed_margin_triangle(tp, at));
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
@@ -133,18 +132,20 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<std::array<std::uint32_t, 2>>& jobs = work.surface_jobs;
   in_jobs.resize(listed.size());
   for (std::uint32_t i = 0; i < in_jobs.size(); ++i) in_jobs[i] = i;
-  const auto wall_of = [&](std::uint32_t i) {  // (grain, wall group), or (kNotMargin, i)
+  // (grain, wall group) of each listed contact, or (kNotMargin, its position).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& walls = work.surface_walls;
+  walls.resize(listed.size());
+  for (std::uint32_t i = 0; i < listed.size(); ++i) {
     const StepContact& c = contacts[listed[i]];
     const std::uint32_t g = margin_grain(bodies, templates, c);
-    if (g == kNotMargin) return std::pair(kNotMargin, i);
-    return std::pair(g, bodies[g == c.b ? c.a : c.b].group);
-  };
-  std::stable_sort(in_jobs.begin(), in_jobs.end(), [&](std::uint32_t x, std::uint32_t y) { return wall_of(x) < wall_of(y); });
+    walls[i] = g == kNotMargin ? std::pair(kNotMargin, i) : std::pair(g, bodies[g == c.b ? c.a : c.b].group);
+  }
+  std::stable_sort(in_jobs.begin(), in_jobs.end(), [&](std::uint32_t x, std::uint32_t y) { return walls[x] < walls[y]; });
   jobs.clear();
   for (std::uint32_t begin = 0; begin < in_jobs.size();) {
     std::uint32_t end = begin + 1;
-    if (wall_of(in_jobs[begin]).first != kNotMargin)
-      while (end < in_jobs.size() && wall_of(in_jobs[end]) == wall_of(in_jobs[begin])) ++end;
+    if (walls[in_jobs[begin]].first != kNotMargin)
+      while (end < in_jobs.size() && walls[in_jobs[end]] == walls[in_jobs[begin]]) ++end;
     jobs.push_back({begin, end});
     begin = end;
   }
@@ -155,7 +156,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     // Nothing may leave a parallel loop: a failure of the exact overlap (a
     // defect, never bad input) stops the run naming the pair.
     try {
-      if (wall_of(members[0]).first != kNotMargin) {
+      if (walls[members[0]].first != kNotMargin) {
         find_margin_patches(bodies, templates, cell, contacts, listed, members, work.surface[thread_id()],
                             work.surface_found, work.surface_status);
       } else {

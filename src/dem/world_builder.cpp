@@ -736,19 +736,17 @@ void WorldBuilder::check_explicit_bodies() const {
       if (piece && (a.fixed ? tb : ta).surface) {  // a mesh wall's piece: the margin model
         const std::size_t grain = a.fixed ? j : i, wall = a.fixed ? i : j;
         const ShapeTemplate& tg = w.templates[w.bodies[grain].shape];
-        const Transform& at = poses[wall];
-        const MarginTriangle t{{apply(at, piece->v[0]), apply(at, piece->v[1]), apply(at, piece->v[2])},
-                               w.templates[w.bodies[wall].shape].shape.margin};
+        const MarginTriangle t = placed_margin_triangle(w.templates[w.bodies[wall].shape], poses[wall]);
         margin_patches(*tg.surface, poses[grain], w.bodies[grain].position, {&t, 1}, surface_scratch, patches, hosts);
       } else {  // part by part for a compound
         for (std::size_t pa = 0; pa < std::max<std::size_t>(ta.parts.size(), 1); ++pa)
           for (std::size_t pb = 0; pb < std::max<std::size_t>(tb.parts.size(), 1); ++pb) {
-            const std::shared_ptr<const Surface>& sa = ta.parts.empty() ? ta.surface : ta.parts[pa].surface;
-            const std::shared_ptr<const Surface>& sb = tb.parts.empty() ? tb.surface : tb.parts[pb].surface;
-            if (!sa || !sb) continue;  // no volume: the run reports the pair
+            const std::shared_ptr<const Surface>& part_a = ta.parts.empty() ? ta.surface : ta.parts[pa].surface;
+            const std::shared_ptr<const Surface>& part_b = tb.parts.empty() ? tb.surface : tb.parts[pb].surface;
+            if (!part_a || !part_b) continue;  // no volume: the run reports the pair
             const Transform at_a = ta.parts.empty() ? poses[i] : compose(poses[i], ta.parts[pa].pose);
             const Transform at_b = tb.parts.empty() ? poses[j] : compose(poses[j], tb.parts[pb].pose);
-            if (!surface_patches(sa, at_a, sb, at_b, ContactModel::Volume, surface_scratch, patches))
+            if (!surface_patches(part_a, at_a, part_b, at_b, ContactModel::Volume, surface_scratch, patches))
               depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
             for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
           }

@@ -57,7 +57,9 @@ struct SurfaceMarginScratch {
   std::vector<std::uint32_t> met;       ///< the vertices met, by local id
   UnionFind patch_of;                   ///< of the local ids
   std::vector<Real> vertex_distance;    ///< by local id, to its nearest margin triangle
-  std::vector<std::uint32_t> vertex_triangle, touched;
+  std::vector<Vec3> vertex_nearest;     ///< by local id, the point of that triangle nearest it
+  std::vector<Real> vertex_rho;         ///< by local id, that triangle's margin
+  std::vector<std::uint32_t> touched;
   std::vector<std::uint32_t> roots;  ///< per patch, its vertices' root
   std::vector<Vec3> weighted;        ///< per patch, the corners' weighted sum
   std::vector<Real> weight;

@@ -76,6 +76,13 @@ inline const Triangle* margin_piece(const ShapeTemplate& t) noexcept {
   return t.wall_face && t.shape.margin > 0 ? std::get_if<Triangle>(&t.shape.core) : nullptr;
 }
 
+/// A mesh wall's piece (margin_piece) placed at `pose`: its triangle in
+/// world coordinates, with its margin.
+inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const Transform& pose) noexcept {
+  const Triangle& t = *margin_piece(piece);
+  return {{apply(pose, t.v[0]), apply(pose, t.v[1]), apply(pose, t.v[2])}, piece.shape.margin};
+}
+
 /// The contacts of a placed surface grain with the triangles of a mesh
 /// wall's pieces (world coordinates) under the Hertz and linear laws: the
 /// seed's margin model (contact/surface_margin.hpp), one a patch however
