@@ -93,7 +93,7 @@ py::array_t<double> from_vec3(const Vec3& v) {
 }
 
 const Shape& convex_of(const PyShape& s, const char* what) {
-  if (!s.parts.empty())
+  if (s.compound())
     fail(what, "a compound is for worlds (WorldBuilder); queries take one convex shape (query its parts one by one)");
   return s.shape;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/round_region.hpp"
 #include "gjkdem/math/transform.hpp"
 #include "gjkdem/shape/shape.hpp"
@@ -25,6 +26,8 @@ struct PyShape {
   Transform offset;  ///< shape frame -> the user's frame
   std::string type;
   std::vector<PlacedShape> parts;  ///< a compound's convex parts (empty otherwise)
+  std::vector<dem::PlacedSurface> surface_parts;  ///< a compound's surfaces, parts after `parts`
+  bool compound() const noexcept { return !parts.empty() || !surface_parts.empty(); }
 };
 
 /// The convex shape of `s`; raises ValueError for a compound (queries take

@@ -80,7 +80,8 @@ PyShape make_shape(const std::string& text, io::ShapeFrame frame = io::ShapeFram
 }
 
 MassProperties mass_of(const PyShape& s) {
-  return s.parts.empty() ? mass_properties(s.shape) : mass_properties(s.parts);
+  if (!s.compound()) return mass_properties(s.shape);
+  return dem::make_compound_template(s.parts, false, s.surface_parts).unit_mass;
 }
 
 // JSON as TOML inline-table text: the scene reader's input. Strings keep
@@ -105,12 +106,13 @@ std::string toml_text(const Json& v) {
 }
 
 // A compound of these parts, its hull for where a bound will do.
-PyShape compound_of(std::vector<PlacedShape> parts) {
+PyShape compound_of(std::vector<PlacedShape> parts, std::vector<dem::PlacedSurface> surfaces) {
   PyShape c;
   c.type = "compound";
   c.parts = std::move(parts);
+  c.surface_parts = std::move(surfaces);
   try {
-    c.shape = dem::make_compound_template(c.parts, false).shape;
+    c.shape = dem::make_compound_template(c.parts, false, c.surface_parts).shape;
   } catch (const std::invalid_argument& e) {
     throw py::value_error(e.what());
   }
@@ -138,7 +140,7 @@ PyShape scene_shape(const std::string& type, Json fields) {
   for (const std::string& w : s.warnings)
     py::module_::import("warnings").attr("warn")("gjkdem: " + w, py::handle(PyExc_UserWarning));
   if (s.shape.surface) throw py::value_error("Shape: a surface grain is a gjkdem.Surface");
-  if (!s.shape.parts.empty()) return compound_of(std::move(s.shape.parts));
+  if (dem::is_compound(s.shape)) return compound_of(std::move(s.shape.parts), std::move(s.shape.surface_parts));
   return {s.shape.shape, s.shape.pose, type, {}};
 }
 
@@ -179,20 +181,29 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
           py::arg("shape"))
       .def_static(
           "compound",
-          [](const std::vector<PyShape>& parts) {
-            if (parts.empty()) throw py::value_error("a compound needs at least one part");
+          [](const py::sequence& parts) {
+            if (parts.size() == 0) throw py::value_error("a compound needs at least one part");
             std::vector<PlacedShape> placed;
-            for (const PyShape& p : parts) {
-              if (!p.parts.empty()) throw py::value_error("a part cannot itself be a compound");
-              placed.push_back({p.shape, p.offset});
+            std::vector<dem::PlacedSurface> surfaces;
+            for (const py::handle& p : parts) {
+              if (py::isinstance<Surface>(p)) {
+                surfaces.push_back({p.cast<std::shared_ptr<Surface>>(), Transform::identity()});
+                continue;
+              }
+              if (!py::isinstance<PyShape>(p)) throw py::value_error("a compound's parts are gjkdem.Shape or gjkdem.Surface");
+              const PyShape& s = p.cast<const PyShape&>();
+              if (s.compound()) throw py::value_error("a part cannot itself be a compound");
+              placed.push_back({s.shape, s.offset});
             }
-            return compound_of(std::move(placed));
+            return compound_of(std::move(placed), std::move(surfaces));
           },
           py::arg("parts"),
-          "A non-convex grain as a rigid union of convex parts (each placed by its own center and rotation),\n"
-          "for WorldBuilder: parts may touch, not overlap (checked when a body is added). Queries refuse it.")
-      .def_property_readonly("parts", [](const PyShape& s) { return s.parts.size(); },
-                             "How many convex parts (0 for a convex shape).")
+          "A non-convex grain as a rigid union of parts, for WorldBuilder: convex Shapes (each placed by its\n"
+          "own center and rotation) and closed Surfaces (in the compound's frame, met by their patches, after\n"
+          "the Shapes in part order). Parts may touch, not overlap (checked when a body is added). Queries\n"
+          "refuse it.")
+      .def_property_readonly("parts", [](const PyShape& s) { return s.parts.size() + s.surface_parts.size(); },
+                             "How many parts (0 for a convex shape).")
       .def_property_readonly("type", [](const PyShape& s) { return s.type; })
       .def_property_readonly("margin", [](const PyShape& s) { return s.shape.margin; })
       .def_property_readonly("volume", [](const PyShape& s) { return mass_of(s).volume; },

@@ -41,7 +41,7 @@ dem::BodyShape body_shape(const py::handle& shape, const char* what) {
   }
   if (!py::isinstance<PyShape>(shape)) fail(what, "expected a gjkdem.Shape or a gjkdem.Surface");
   const PyShape& s = shape.cast<const PyShape&>();
-  return {s.shape, s.offset, s.parts};
+  return {s.shape, s.offset, s.parts, s.surface_parts};
 }
 
 // A shape or a sequence of them, as the builder's variants.
@@ -372,7 +372,7 @@ void bind_world(py::module_& m) {
             // Moving bodies given one Shape object share one template, as a
             // scene's do: the builder keeps, per Shape object (held alive
             // here, so its id stays its own), the shared shape it made.
-            if (!fixed && def.shape.parts.empty()) {
+            if (!fixed && !dem::is_compound(def.shape)) {
               if (!py::hasattr(self, "_shared_shapes")) self.attr("_shared_shapes") = py::dict();
               py::dict shared = self.attr("_shared_shapes");
               const py::int_ key(reinterpret_cast<std::uintptr_t>(shape_object.ptr()));

@@ -17,7 +17,7 @@ constexpr int kSiteTries = 1000;                        // per site: rejection f
 
 // The solid an assembly is cut from, in its shape's frame.
 Polytope solid_of(const BodyShape& s, int tessellation, const std::string& label) {
-  if (!s.parts.empty() || s.surface)
+  if (is_compound(s) || s.surface)
     throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound or a surface");
   const bool sharp = s.shape.margin == 0;
   if (const Polytope* p = std::get_if<Polytope>(&s.shape.core); p && sharp) {

@@ -29,7 +29,7 @@ using detail::plane_side;
 void note_template_kinds(std::span<const ShapeTemplate> templates, TemplateKinds& kinds) {
   if (kinds.seen > templates.size()) kinds = {};
   for (; kinds.seen < templates.size(); ++kinds.seen) {
-    kinds.surface_grains |= templates[kinds.seen].surface_grain;
+    kinds.surface_grains |= holds_surface(templates[kinds.seen]);
     kinds.wall_faces |= templates[kinds.seen].wall_face.has_value();
   }
 }

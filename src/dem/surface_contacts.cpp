@@ -1,5 +1,6 @@
 // The contacts of surface grains: one per patch (stages.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -7,13 +8,22 @@
 #include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
 #include "stages.hpp"
+#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::dem::detail {
 namespace {
 
-bool of_surface_grain(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
-  return templates[bodies[c.b].shape].surface_grain || (!c.a_is_plane && templates[bodies[c.a].shape].surface_grain);
+// A contact with a surface on either side (a surface grain or a compound's
+// surface part): found by the patches of surfaces.
+bool of_surface(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
+  return surface_side(templates[bodies[c.b].shape], c.part_b) ||
+         (!c.a_is_plane && surface_side(templates[bodies[c.a].shape], c.part_a));
+}
+
+// The surface a side of a contact meets by (a compound's: its part's).
+const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::uint32_t part) {
+  return t.parts.empty() ? t.surface : t.parts[part].surface;
 }
 
 // The patches of one listed contact, or why there are none to find.
@@ -21,21 +31,20 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
                             const StepContact& c, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
   out.clear();
+  // A compound meets a surface part by part, as it meets other bodies.
   const Body& b = bodies[c.b];
   const ShapeTemplate& tb = templates[b.shape];
-  Transform pose_b = shape_pose(tb, b);
-  pose_b.translation += image_shift_of(cell, c);
-  if (c.a_is_plane && !tb.surface) return GeometryStatus::Unsupported;
+  PartPose pb = part_pose(tb, b, c.part_b);
+  pb.pose.translation += image_shift_of(cell, c);
+  const std::shared_ptr<const Surface>& sb = surface_of(tb, c.part_b);
+  if (c.a_is_plane && !sb) return GeometryStatus::Unsupported;
   if (c.a_is_plane)
-    return plane_surface_patches(planes[c.a], *tb.surface, pose_b, model, scratch, out) ? GeometryStatus::Touching
-                                                                                        : GeometryStatus::Through;
+    return plane_surface_patches(planes[c.a], *sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
+                                                                                : GeometryStatus::Through;
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
-  // A compound meets a surface grain part by part, as it meets other bodies.
-  PartPose pa = part_pose(ta, a, c.part_a), pb = part_pose(tb, b, c.part_b);
-  pb.pose.translation += image_shift_of(cell, c);
-  const std::shared_ptr<const Surface>& sa = ta.parts.empty() ? ta.surface : ta.parts[c.part_a].surface;
-  const std::shared_ptr<const Surface>& sb = tb.parts.empty() ? tb.surface : tb.parts[c.part_b].surface;
+  const PartPose pa = part_pose(ta, a, c.part_a);
+  const std::shared_ptr<const Surface>& sa = surface_of(ta, c.part_a);
   // Hulls apart (GJK on the convex shapes that hold the surfaces): no
   // patch, and nothing to move or traverse.
   if (!intersect(*pa.shape, pa.pose, *pb.shape, pb.pose)) return GeometryStatus::Touching;
@@ -51,8 +60,8 @@ std::uint32_t margin_grain(std::span<const Body> bodies, std::span<const ShapeTe
                            const StepContact& c) {
   if (c.a_is_plane) return kNotMargin;
   const ShapeTemplate &ta = templates[bodies[c.a].shape], &tb = templates[bodies[c.b].shape];
-  if (margin_piece(ta) && tb.surface_grain) return c.b;
-  if (margin_piece(tb) && ta.surface_grain) return c.a;
+  if (margin_piece(ta) && surface_side(tb, c.part_b)) return c.b;
+  if (margin_piece(tb) && surface_side(ta, c.part_a)) return c.a;
   return kNotMargin;
 }
 
@@ -70,12 +79,13 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
   const bool grain_is_b = g == first.b;
   const Body& grain = bodies[g];
   const ShapeTemplate& tg = templates[grain.shape];
+  const std::uint32_t part = grain_is_b ? first.part_b : first.part_a;  // a compound's surface part
   // Periodic worlds: each contact has b at its image, the grain or a piece.
   // The grain stays where it is and each piece moves to where it meets it,
   // so the pieces met across the cell's face are one surface with the others
   // (one patch over that seam too); a patch found with a piece whose
   // contact has the grain at an image is moved there.
-  const Transform pose = shape_pose(tg, grain);
+  const Transform pose = part_pose(tg, grain, part).pose;
   scratch.margin_pieces.clear();
   for (const std::uint32_t m : members) {
     const StepContact& c = contacts[listed[m]];
@@ -88,7 +98,7 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
-  margin_patches(*tg.surface, pose, grain.position, scratch.margin_pieces, scratch, scratch.margin_found,
+  margin_patches(*surface_of(tg, part), pose, grain.position, scratch.margin_pieces, scratch, scratch.margin_found,
                  scratch.margin_hosts);
   for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {
     SurfacePatchContact p = scratch.margin_found[k];
@@ -102,6 +112,23 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     p.geometry.moment = cross(p.geometry.point, p.geometry.normal);
     found[host].push_back(p);
   }
+}
+
+// A patch's key is its pair's with the parts field holding the parts it
+// touches and its slot: `prefix | slot`, the slot within `slot_mask`.
+// Where at most one side is a compound, its part (0 for none) in the high
+// half and the slot in the low: patches of one part follow each other,
+// parts in order, as the list is sorted. Where both are, a flag bit above
+// the pair key's parts (10 bits each: kMaxCompoundParts), the two parts and
+// an 11-bit slot: those keys follow the pair's other contacts' keys.
+struct PatchKeys {
+  std::uint32_t prefix, slot_mask;
+};
+static_assert(kMaxCompoundParts <= 1024, "two compounds' patch keys hold 10 bits a part");
+PatchKeys patch_keys_of(const PairKey& key, bool two_compounds) {
+  const std::uint32_t lo = key.parts >> 16, hi = key.parts & 0xffffu;  // pair_key's parts
+  if (!two_compounds) return {(lo + hi) << 16, 0xffffu};
+  return {1u << 31 | lo << 21 | hi << 11, 0x7ffu};
 }
 
 // How far a patch may have moved and still be the same: kPatchMatchRel of
@@ -121,7 +148,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<std::uint32_t>& listed = work.surface_listed;
   listed.clear();
   for (std::uint32_t k = 0; k < contacts.size(); ++k)
-    if (of_surface_grain(bodies, templates, contacts[k])) listed.push_back(k);
+    if (of_surface(bodies, templates, contacts[k])) listed.push_back(k);
   if (listed.empty()) return;
   if (static_cast<int>(work.surface.size()) < threads) work.surface.resize(threads);
   if (work.surface_found.size() < listed.size()) work.surface_found.resize(listed.size());
@@ -132,19 +159,22 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<std::array<std::uint32_t, 2>>& jobs = work.surface_jobs;
   in_jobs.resize(listed.size());
   for (std::uint32_t i = 0; i < in_jobs.size(); ++i) in_jobs[i] = i;
-  // (grain, wall group) of each listed contact, or (kNotMargin, its position).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& walls = work.surface_walls;
+  // (grain, its part, wall group) of each listed contact, or (kNotMargin,
+  // its position, 0).
+  std::vector<std::array<std::uint32_t, 3>>& walls = work.surface_walls;
   walls.resize(listed.size());
   for (std::uint32_t i = 0; i < listed.size(); ++i) {
     const StepContact& c = contacts[listed[i]];
     const std::uint32_t g = margin_grain(bodies, templates, c);
-    walls[i] = g == kNotMargin ? std::pair(kNotMargin, i) : std::pair(g, bodies[g == c.b ? c.a : c.b].group);
+    walls[i] = g == kNotMargin ? std::array{kNotMargin, i, 0u}
+               : g == c.b      ? std::array{g, std::uint32_t{c.part_b}, bodies[c.a].group}
+                               : std::array{g, std::uint32_t{c.part_a}, bodies[c.b].group};
   }
   std::stable_sort(in_jobs.begin(), in_jobs.end(), [&](std::uint32_t x, std::uint32_t y) { return walls[x] < walls[y]; });
   jobs.clear();
   for (std::uint32_t begin = 0; begin < in_jobs.size();) {
     std::uint32_t end = begin + 1;
-    if (walls[in_jobs[begin]].first != kNotMargin)
+    if (walls[in_jobs[begin]][0] != kNotMargin)
       while (end < in_jobs.size() && walls[in_jobs[end]] == walls[in_jobs[begin]]) ++end;
     jobs.push_back({begin, end});
     begin = end;
@@ -156,7 +186,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     // Nothing may leave a parallel loop: a failure of the exact overlap (a
     // defect, never bad input) stops the run naming the pair.
     try {
-      if (walls[members[0]].first != kNotMargin) {
+      if (walls[members[0]][0] != kNotMargin) {
         find_margin_patches(bodies, templates, cell, contacts, listed, members, work.surface[thread_id()],
                             work.surface_found, work.surface_status);
       } else {
@@ -176,6 +206,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<Vec3> anchors;
   std::vector<PatchAnchor> before;
   std::vector<std::uint32_t> slots, order;
+  bool resort = false;
   std::size_t next = 0;
   for (std::uint32_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
@@ -200,17 +231,25 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     const Transform frame = shape_pose(templates[lo.shape], lo);
     anchors.clear();
     for (const SurfacePatchContact& p : patches) anchors.push_back(apply_inverse(frame, p.centroid));
-    // A patch's key: its slot in the low half of the parts field, the part
-    // of a compound it touches (the grain's is 0) in the high half: patches
-    // of one part follow each other, parts in order, as the list is sorted.
     const PairKey key = work.keys[k];
-    const std::uint32_t part = std::uint32_t{c.part_a} + c.part_b;
+    const bool two_compounds = !c.a_is_plane && !templates[bodies[c.a].shape].parts.empty() &&
+                               !templates[bodies[c.b].shape].parts.empty();
+    const PatchKeys patch_keys = patch_keys_of(key, two_compounds);
+    resort |= two_compounds;
     before.clear();
     for (auto it = std::lower_bound(last.begin(), last.end(), PairKey{key.lo, key.hi, 0},
                                     [](const PairState& s, const PairKey& x) { return s.key < x; });
          it != last.end() && it->key.lo == key.lo && it->key.hi == key.hi; ++it)
-      if (it->key.parts >> 16 == part) before.push_back({it->key.parts & 0xffffu, it->anchor});
+      if ((it->key.parts & ~patch_keys.slot_mask) == patch_keys.prefix)
+        before.push_back({it->key.parts & patch_keys.slot_mask, it->anchor});
     match_patch_slots(anchors, before, match_reach(bodies, templates, c), slots);
+    if (*std::max_element(slots.begin(), slots.end()) > patch_keys.slot_mask) {  // more patches than keys: stop, naming the pair
+      StepContact stop = c;
+      stop.surface = true;
+      stop.geometry.status = GeometryStatus::Unsupported;
+      out.push_back(stop), keys.push_back(key);
+      continue;
+    }
     order.resize(patches.size());
     for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return slots[x] < slots[y]; });
@@ -221,8 +260,16 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
       patch.active = true;
       patch.anchor = anchors[i];
       out.push_back(patch);
-      keys.push_back({key.lo, key.hi, part << 16 | slots[i]});
+      keys.push_back({key.lo, key.hi, patch_keys.prefix | slots[i]});
     }
+  }
+  if (resort) {  // two compounds' patches follow their pair's other contacts: the list sorted by key again
+    std::vector<std::uint32_t> by_key(out.size());
+    for (std::uint32_t i = 0; i < by_key.size(); ++i) by_key[i] = i;
+    std::sort(by_key.begin(), by_key.end(), [&](std::uint32_t x, std::uint32_t y) { return keys[x] < keys[y]; });
+    contacts.clear(), work.keys.clear();
+    for (const std::uint32_t i : by_key) contacts.push_back(out[i]), work.keys.push_back(keys[i]);
+    return;
   }
   contacts.swap(out);
   work.keys.swap(keys);

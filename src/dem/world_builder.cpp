@@ -39,6 +39,15 @@ bool without_volume(const Shape& s) {
           std::holds_alternative<Box>(s.core));
 }
 
+// The closed surface surface grains meet a convex shape of volume by: a
+// solid polytope's hull triangles, a curved shape's inscribed tessellation
+// (throws SurfaceError for a flat one).
+Surface boundary_surface(const Shape& s, int tessellation) {
+  if (std::holds_alternative<Box>(s.core) && s.margin == 0) return box_surface(std::get<Box>(s.core));
+  if (solid_polytope(s)) return polytope_surface(std::get<Polytope>(s.core));
+  return polytope_surface(tessellate(s, tessellation).polytope);
+}
+
 }  // namespace
 
 namespace {
@@ -228,9 +237,9 @@ std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, con
   try {
     if (shape.surface) {
       t = make_surface_template(shape.surface, fixed);
-    } else if (!shape.parts.empty()) {
-      check_compound(shape.parts, label);
-      t = make_compound_template(shape.parts, fixed);
+    } else if (is_compound(shape)) {
+      check_compound(shape, label);
+      t = make_compound_template(shape.parts, fixed, shape.surface_parts);
     } else {
       t = fixed ? make_wall_template(shape.shape) : make_template(shape.shape);
     }
@@ -242,17 +251,54 @@ std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, con
   return static_cast<std::uint32_t>(world_.templates.size() - 1);
 }
 
-// A compound's parts may touch, not overlap (their volumes add up).
-void WorldBuilder::check_compound(std::span<const PlacedShape> parts, const std::string& label) const {
-  if (parts.size() > kMaxCompoundParts)
+// A compound's parts may touch, not overlap (their volumes add up): convex
+// parts by their penetration depth, a surface and another part by the
+// patches of their overlap (depth: volume over contact area).
+void WorldBuilder::check_compound(const BodyShape& shape, const std::string& label) const {
+  const std::span<const PlacedShape> parts = shape.parts;
+  const std::span<const PlacedSurface> surfaces = shape.surface_parts;
+  const std::size_t n = parts.size() + surfaces.size();
+  if (n > kMaxCompoundParts)
     throw BuildError(label + ": a compound has at most " + std::to_string(kMaxCompoundParts) + " parts");
+  const auto overlap_error = [&](std::size_t i, std::size_t j, const std::string& by) {
+    return BuildError(label + ": parts " + std::to_string(i) + " and " + std::to_string(j) + " overlap " + by +
+                      " (parts may touch, not overlap: their volumes add up)");
+  };
   for (std::size_t i = 0; i < parts.size(); ++i)
     for (std::size_t j = i + 1; j < parts.size(); ++j) {
       const Real size = 2 * std::fmax(bounding_radius(parts[i].shape), bounding_radius(parts[j].shape));
       const PenetrationResult p = penetration(parts[i].shape, parts[i].pose, parts[j].shape, parts[j].pose);
       if (p.intersect && p.depth > kCompoundOverlapRelTol * size)
-        throw BuildError(label + ": parts " + std::to_string(i) + " and " + std::to_string(j) + " overlap by " +
-                         number_text(p.depth) + " m (parts may touch, not overlap: their volumes add up)");
+        throw overlap_error(i, j, "by " + number_text(p.depth) + " m");
+    }
+  if (surfaces.empty()) return;
+  // Each part's closed surface (a convex part's boundary) and its radius.
+  std::vector<std::shared_ptr<const Surface>> solids;
+  std::vector<Real> radii;
+  for (const PlacedShape& p : parts) {
+    try {
+      solids.push_back(std::make_shared<const Surface>(boundary_surface(p.shape, settings_.tessellation)));
+    } catch (const SurfaceError& e) {
+      throw BuildError(label + ": part " + std::to_string(solids.size()) + " cannot meet its surface parts: " + e.what());
+    }
+    radii.push_back(bounding_radius(p.shape));
+  }
+  for (const PlacedSurface& p : surfaces) {
+    solids.push_back(p.surface);
+    radii.push_back(bounding_radius(Shape{make_polytope(p.surface->vertices)}));
+  }
+  const auto pose_of = [&](std::size_t k) { return k < parts.size() ? parts[k].pose : surfaces[k - parts.size()].pose; };
+  SurfaceScratch scratch;
+  std::vector<SurfacePatchContact> patches;
+  for (std::size_t j = parts.size(); j < n; ++j)
+    for (std::size_t i = 0; i < j; ++i) {
+      if (!surface_patches(solids[i], pose_of(i), solids[j], pose_of(j), ContactModel::Volume, scratch, patches))
+        throw overlap_error(i, j, "(one wholly inside the other)");
+      const Real size = 2 * std::fmax(radii[i], radii[j]);
+      for (const SurfacePatchContact& p : patches)
+        if (p.geometry.depth > kCompoundOverlapRelTol * size)
+          throw overlap_error(i, j, "by " + number_text(p.geometry.volume) + " m^3 (mean depth " +
+                                        number_text(p.geometry.depth) + " m)");
     }
 }
 
@@ -552,7 +598,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   for (const BodyShape& s : f.variants) {
     Real radius = 0;
     if (f.pieces > 0) {  // cut per assembly below: no template of the whole
-      if (!s.parts.empty() || s.surface)
+      if (is_compound(s) || s.surface)
         throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound or a surface");
       radius = bounding_radius(s.shape);
     } else {
@@ -690,6 +736,48 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   return placed;
 }
 
+namespace {
+
+// How deep a part of body a and a part of body b overlap at the start, in a
+// world with surfaces: a surface and a mesh wall's piece by the margin
+// model, a convex part and a piece by their penetration, two parts by their
+// surfaces' patches (infinite: one wholly inside the other); 0 where a part
+// has no surface to meet the other by (no volume: the run reports the pair).
+Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std::uint32_t pa, const Body& b,
+                   std::uint32_t pb, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches,
+                   std::vector<std::uint32_t>& hosts) {
+  const ShapeTemplate &ta = templates[a.shape], &tb = templates[b.shape];
+  const PartPose at_a = part_pose(ta, a, pa), at_b = part_pose(tb, b, pb);
+  const auto surface_of = [](const ShapeTemplate& t, std::uint32_t part) -> const std::shared_ptr<const Surface>& {
+    return t.parts.empty() ? t.surface : t.parts[part].surface;
+  };
+  patches.clear();
+  if (margin_piece(ta) || margin_piece(tb)) {
+    const bool piece_is_a = margin_piece(ta) != nullptr;
+    const ShapeTemplate& other = piece_is_a ? tb : ta;
+    const std::uint32_t part = piece_is_a ? pb : pa;
+    const PartPose& piece = piece_is_a ? at_a : at_b;
+    const PartPose& body = piece_is_a ? at_b : at_a;
+    if (!surface_side(other, part)) {
+      const PenetrationResult pr = penetration(*body.shape, body.pose, *piece.shape, piece.pose);
+      return pr.intersect ? pr.depth : 0;
+    }
+    const MarginTriangle t = placed_margin_triangle(piece_is_a ? ta : tb, piece.pose);
+    margin_patches(*surface_of(other, part), body.pose, (piece_is_a ? b : a).position, {&t, 1}, scratch, patches,
+                   hosts);
+  } else {
+    const std::shared_ptr<const Surface>&sa = surface_of(ta, pa), &sb = surface_of(tb, pb);
+    if (!sa || !sb) return 0;
+    if (!surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches))
+      return std::numeric_limits<Real>::infinity();
+  }
+  Real depth = 0;
+  for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
+  return depth;
+}
+
+}  // namespace
+
 // Explicit bodies must not overlap each other, fixed bodies or planes
 // (touching is fine: stacks start touching). Generated bodies are placed
 // clear of everything added before them.
@@ -731,28 +819,11 @@ void WorldBuilder::check_explicit_bodies() const {
     const Real tol = kStartOverlapRelTol * bounding_radius(is_explicit[i] ? sa : sb);
     const ShapeTemplate &ta = w.templates[a.shape], &tb = w.templates[b.shape];
     Real depth = 0;
-    if (ta.surface_grain || tb.surface_grain) {  // the surfaces' patches (hulls may overlap: hooked rings)
-      const Triangle* piece = margin_piece(a.fixed ? ta : tb);
-      if (piece && (a.fixed ? tb : ta).surface) {  // a mesh wall's piece: the margin model
-        const std::size_t grain = a.fixed ? j : i, wall = a.fixed ? i : j;
-        const ShapeTemplate& tg = w.templates[w.bodies[grain].shape];
-        const MarginTriangle t = placed_margin_triangle(w.templates[w.bodies[wall].shape], poses[wall]);
-        margin_patches(*tg.surface, poses[grain], w.bodies[grain].position, {&t, 1}, surface_scratch, patches, hosts);
-      } else {  // part by part for a compound
-        for (std::size_t pa = 0; pa < std::max<std::size_t>(ta.parts.size(), 1); ++pa)
-          for (std::size_t pb = 0; pb < std::max<std::size_t>(tb.parts.size(), 1); ++pb) {
-            const std::shared_ptr<const Surface>& part_a = ta.parts.empty() ? ta.surface : ta.parts[pa].surface;
-            const std::shared_ptr<const Surface>& part_b = tb.parts.empty() ? tb.surface : tb.parts[pb].surface;
-            if (!part_a || !part_b) continue;  // no volume: the run reports the pair
-            const Transform at_a = ta.parts.empty() ? poses[i] : compose(poses[i], ta.parts[pa].pose);
-            const Transform at_b = tb.parts.empty() ? poses[j] : compose(poses[j], tb.parts[pb].pose);
-            if (!surface_patches(part_a, at_a, part_b, at_b, ContactModel::Volume, surface_scratch, patches))
-              depth = std::numeric_limits<Real>::infinity();  // one wholly inside the other
-            for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
-          }
-        patches.clear();
-      }
-      for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);
+    if (holds_surface(ta) || holds_surface(tb)) {  // part by part, surfaces by their patches (hooked rings' hulls overlap)
+      const std::size_t a_parts = std::max<std::size_t>(ta.parts.size(), 1), b_parts = std::max<std::size_t>(tb.parts.size(), 1);
+      for (std::uint32_t pa = 0; pa < a_parts; ++pa)
+        for (std::uint32_t pb = 0; pb < b_parts; ++pb)
+          depth = std::fmax(depth, start_overlap(w.templates, a, pa, b, pb, surface_scratch, patches, hosts));
     } else {
       const PenetrationResult pr = penetration(sa, poses[i], sb, poses[j]);
       if (pr.intersect) depth = pr.depth;
@@ -783,7 +854,8 @@ void WorldBuilder::prepare_shapes() {
     if (world_.templates[t].parts.empty()) {
       prepare_for_volume_law(world_.templates[t].shape, world_.templates[t].given, who, user[t]);
     } else {  // the hull stays: it only bounds the parts
-      for (TemplatePart& part : world_.templates[t].parts) prepare_for_volume_law(part.shape, part.given, who, user[t]);
+      for (TemplatePart& part : world_.templates[t].parts)
+        if (!part.surface_grain) prepare_for_volume_law(part.shape, part.given, who, user[t]);
     }
   }
 }
@@ -796,7 +868,7 @@ void WorldBuilder::prepare_shapes() {
 // penetration laws (the margin model meets the grains' triangles).
 void WorldBuilder::prepare_surfaces() {
   std::vector<ShapeTemplate>& templates = world_.templates;
-  if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return t.surface_grain; })) return;
+  if (std::none_of(templates.begin(), templates.end(), [](const ShapeTemplate& t) { return holds_surface(t); })) return;
   constexpr std::size_t kNoBody = ~std::size_t{0};  // an inflow's template
   std::vector<std::size_t> user(templates.size(), kNoBody);
   for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
@@ -810,10 +882,7 @@ void WorldBuilder::prepare_surfaces() {
         user[k] == kNoBody ? std::vector<std::uint32_t>{} : std::vector<std::uint32_t>{static_cast<std::uint32_t>(user[k])};
     const auto boundary = [&](const Shape& s) {
       try {
-        return std::make_shared<const Surface>(
-            std::holds_alternative<Box>(s.core) && s.margin == 0 ? box_surface(std::get<Box>(s.core))
-            : solid_polytope(s) ? polytope_surface(std::get<Polytope>(s.core))
-                                : polytope_surface(tessellate(s, settings_.tessellation).polytope));
+        return std::make_shared<const Surface>(boundary_surface(s, settings_.tessellation));
       } catch (const SurfaceError& e) {
         throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
       }

@@ -68,21 +68,28 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
   std::filesystem::rename(tmp, file);
 }
 
-DisplayMesh display_mesh(const dem::ShapeTemplate& t) {
-  if (t.surface_grain) {  // its own triangles, not its hull
-    DisplayMesh m;
-    m.vertices = t.surface->vertices;
-    m.polygon_begin.push_back(0);
-    for (const TriangleIndices& tri : t.surface->triangles) {
-      m.indices.insert(m.indices.end(), tri.begin(), tri.end());
-      m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
-    }
-    return m;
+namespace {
+
+// A surface's own triangles (a surface grain's, not its hull).
+DisplayMesh surface_mesh(const Surface& s) {
+  DisplayMesh m;
+  m.vertices = s.vertices;
+  m.polygon_begin.push_back(0);
+  for (const TriangleIndices& tri : s.triangles) {
+    m.indices.insert(m.indices.end(), tri.begin(), tri.end());
+    m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
   }
+  return m;
+}
+
+}  // namespace
+
+DisplayMesh display_mesh(const dem::ShapeTemplate& t) {
+  if (t.surface_grain) return surface_mesh(*t.surface);
   if (t.parts.empty()) return display_mesh(t.shape);
   DisplayMesh m;
   for (const dem::TemplatePart& p : t.parts) {
-    const DisplayMesh part = display_mesh(p.shape);
+    const DisplayMesh part = p.surface_grain ? surface_mesh(*p.surface) : display_mesh(p.shape);
     const std::uint32_t first = static_cast<std::uint32_t>(m.vertices.size()), at = static_cast<std::uint32_t>(m.indices.size());
     for (const Vec3& v : part.vertices) m.vertices.push_back(apply(p.pose, v));
     for (const std::uint32_t i : part.indices) m.indices.push_back(first + i);

@@ -61,21 +61,31 @@ toml::table shape_table(const Shape& s, const Transform& pose) {
   return t;
 }
 
+// A surface as the scene gives it, its vertices in its own frame; placed
+// by `pose` where given (a compound's surface part).
+toml::table surface_table(const Surface& s, const Transform* pose) {
+  toml::array vertices, triangles;
+  for (const Vec3& v : s.vertices) vertices.push_back(array_of(v));
+  for (const TriangleIndices& tri : s.triangles)
+    triangles.push_back(toml::array{std::int64_t{tri[0]}, std::int64_t{tri[1]}, std::int64_t{tri[2]}});
+  toml::table out;
+  out.insert("type", "surface"), out.insert("vertices", std::move(vertices));
+  out.insert("triangles", std::move(triangles));
+  if (pose) {
+    out.insert("center", array_of(pose->translation));
+    out.insert("rotation", array_of(quat_from_matrix(pose->rotation)));
+  }
+  return out;
+}
+
 // A template as the scene gives it, in its own shape frame.
 toml::table template_table(const dem::ShapeTemplate& t) {
-  if (t.surface_grain) {
-    toml::array vertices, triangles;
-    for (const Vec3& v : t.surface->vertices) vertices.push_back(array_of(v));
-    for (const TriangleIndices& tri : t.surface->triangles)
-      triangles.push_back(toml::array{std::int64_t{tri[0]}, std::int64_t{tri[1]}, std::int64_t{tri[2]}});
-    toml::table out;
-    out.insert("type", "surface"), out.insert("vertices", std::move(vertices));
-    out.insert("triangles", std::move(triangles));
-    return out;
-  }
+  if (t.surface_grain) return surface_table(*t.surface, nullptr);
   if (!t.parts.empty()) {
     toml::array parts;
-    for (const dem::TemplatePart& p : t.parts) parts.push_back(shape_table(p.given ? *p.given : p.shape, p.pose));
+    for (const dem::TemplatePart& p : t.parts)
+      parts.push_back(p.surface_grain ? surface_table(*p.surface, &p.pose)
+                                      : shape_table(p.given ? *p.given : p.shape, p.pose));
     toml::table out;
     out.insert("type", "compound"), out.insert("parts", std::move(parts));
     return out;

@@ -413,10 +413,11 @@ class SceneBuilder {
     }
   }
 
-  // A compound's parts: SHAPE tables (`parts`) or the objects of a mesh file
-  // (`file`, `scale`), each the convex hull of its triangles.
-  std::vector<PlacedShape> compound_parts(TableReader& r, const toml::table& t) {
-    std::vector<PlacedShape> parts;
+  // A compound's parts: SHAPE tables (`parts`; a surface goes to the
+  // surface parts) or the objects of a mesh file (`file`, `scale`), each the
+  // convex hull of its triangles.
+  void read_compound_parts(TableReader& r, const toml::table& t, ShapeSpec& s) {
+    std::vector<PlacedShape>& parts = s.parts;
     if (r.has("file")) {
       if (r.has("parts")) r.fail("parts", "give either 'parts' or 'file', not both");
       const std::filesystem::path file = file_of(r, "file");
@@ -431,7 +432,7 @@ class SceneBuilder {
       } catch (const MeshError& e) {
         r.fail("file", e.what());
       }
-      return parts;
+      return;
     }
     const toml::node* n = r.find("parts");
     const toml::array* a = n ? n->as_array() : nullptr;
@@ -444,9 +445,9 @@ class SceneBuilder {
       if (part.get("type") && part.get("type")->value<std::string>() == std::optional<std::string>("compound"))
         throw SceneError(where + ": a part cannot itself be a compound" + line_of(part));
       const ShapeSpec p = read_shape_table(part, where);
-      parts.push_back({p.shape, p.pose});
+      if (p.surface) s.surface_parts.push_back({p.surface, p.pose});
+      else parts.push_back({p.shape, p.pose});
     }
-    return parts;
   }
 
   // A SHAPE table: the types of query-format.md, plus platonic and mesh, and
@@ -522,9 +523,10 @@ class SceneBuilder {
     } else if (type == "surface") {
       const Real scale = r.positive("scale", 1.0);
       s.surface = mesh_surface(r, scale);
+      s.pose = Transform::from(r.vec3("center").value_or(Vec3{}), r.rotation("rotation").value_or(Quat{}));
       r.finish();
     } else if (type == "compound") {
-      s.parts = compound_parts(r, *t);
+      read_compound_parts(r, *t, s);
       r.finish();
     } else if (type == "bonded") {
       r.fail("type", "\"bonded\" is the shape of a [[body]] or of a [[generator]]'s single `shape` only (written "
@@ -797,6 +799,8 @@ class SceneBuilder {
           m.base_size = std::fmax(m.base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));
         if (m.base.surface)  // a surface grain: of the sphere about its frame holding its vertices
           for (const Vec3& v : m.base.surface->vertices) m.base_size = std::fmax(m.base_size, 2 * length(v));
+        for (const dem::PlacedSurface& p : m.base.surface_parts)
+          for (const Vec3& v : p.surface->vertices) m.base_size = std::fmax(m.base_size, 2 * length(apply(p.pose, v)));
         if (!(m.base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
       }
       mix_parts.push_back(std::move(m));

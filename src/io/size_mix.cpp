@@ -6,6 +6,31 @@
 #include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::io::detail {
+namespace {
+
+// A surface scaled by k, checked again: scaling rounds every vertex.
+std::shared_ptr<const Surface> scaled_surface(const std::shared_ptr<const Surface>& surface, Real k,
+                                              const std::string& where) {
+  if (k == 1) return surface;
+  std::vector<Vec3> vertices = surface->vertices;
+  for (Vec3& vertex : vertices) vertex *= k;
+  try {
+    return std::make_shared<const Surface>(make_surface(std::move(vertices), surface->triangles));
+  } catch (const SurfaceError& e) {
+    throw SceneError(where + ": the surface scaled by " + std::to_string(k) + " is no longer one: " + e.what());
+  }
+}
+
+// The volume of a shape as a scene gives it (a compound's: its parts' sum).
+Real volume_of(const dem::BodyShape& shape) {
+  if (shape.surface) return shape.surface->volume;
+  if (!dem::is_compound(shape)) return mass_properties(shape.shape).volume;
+  Real volume = shape.parts.empty() ? 0 : mass_properties(shape.parts).volume;
+  for (const dem::PlacedSurface& p : shape.surface_parts) volume += p.surface->volume;
+  return volume;
+}
+
+}  // namespace
 
 SampledMix sample_mix(std::span<const MixPart> parts, std::span<const SizeClass> given, std::int64_t per_group,
                       bool by_mass, std::mt19937_64& rng) {
@@ -29,22 +54,15 @@ SampledMix sample_mix(std::span<const MixPart> parts, std::span<const SizeClass>
           shape.shape = random_polyhedron(static_cast<int>(poly->vertices), draw(rng), rng);
         } else {
           const Real k = sized ? draw(rng) / part.base_size : 1;
-          shape = {scaled(part.base.shape, k), part.base.pose, part.base.parts, part.base.surface};
+          shape = part.base;
+          shape.shape = scaled(part.base.shape, k);
           shape.pose.translation *= k;
           for (PlacedShape& p : shape.parts) p.shape = scaled(p.shape, k), p.pose.translation *= k;
-          if (shape.surface && k != 1) {  // checked again: scaling rounds every vertex
-            std::vector<Vec3> vertices = shape.surface->vertices;
-            for (Vec3& vertex : vertices) vertex *= k;
-            try {
-              shape.surface = std::make_shared<const Surface>(make_surface(std::move(vertices), shape.surface->triangles));
-            } catch (const SurfaceError& e) {
-              throw SceneError(part.where + ": the surface scaled by " + std::to_string(k) + " is no longer one: " + e.what());
-            }
-          }
+          if (shape.surface) shape.surface = scaled_surface(shape.surface, k, part.where);
+          for (dem::PlacedSurface& p : shape.surface_parts)
+            p.surface = scaled_surface(p.surface, k, part.where), p.pose.translation *= k;
         }
-        volumes[c].push_back(shape.surface          ? shape.surface->volume
-                             : shape.parts.empty() ? mass_properties(shape.shape).volume
-                                                   : mass_properties(shape.parts).volume);
+        volumes[c].push_back(volume_of(shape));
         mix.variants.push_back(std::move(shape));
       }
     }

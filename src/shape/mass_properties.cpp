@@ -96,19 +96,24 @@ MassProperties mass_properties(const Shape& shape) {
 }
 
 MassProperties mass_properties(std::span<const PlacedShape> parts) {
-  MassProperties out;
   std::vector<MassProperties> each;
-  for (const PlacedShape& p : parts) {
-    each.push_back(mass_properties(p.shape));
-    out.volume += each.back().volume;
-    out.centroid += apply(p.pose, each.back().centroid) * each.back().volume;
+  std::vector<Transform> poses;
+  for (const PlacedShape& p : parts) each.push_back(mass_properties(p.shape)), poses.push_back(p.pose);
+  return union_mass_properties(each, poses);
+}
+
+MassProperties union_mass_properties(std::span<const MassProperties> each, std::span<const Transform> poses) {
+  MassProperties out;
+  for (std::size_t k = 0; k < each.size(); ++k) {
+    out.volume += each[k].volume;
+    out.centroid += apply(poses[k], each[k].centroid) * each[k].volume;
   }
   if (out.volume > 0) out.centroid = out.centroid / out.volume;
   Real inertia[3][3] = {};
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    const Mat3& r = parts[k].pose.rotation;
+  for (std::size_t k = 0; k < each.size(); ++k) {
+    const Mat3& r = poses[k].rotation;
     const Mat3 turned = r * each[k].inertia * transpose(r);  // about the part's centroid, compound axes
-    const Vec3 d = apply(parts[k].pose, each[k].centroid) - out.centroid;
+    const Vec3 d = apply(poses[k], each[k].centroid) - out.centroid;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         inertia[i][j] += turned.row[i][j] + each[k].volume * ((i == j ? dot(d, d) : 0) - d[i] * d[j]);

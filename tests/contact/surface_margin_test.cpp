@@ -124,7 +124,9 @@ TEST(SurfaceMargin, ABoxPastThePlanePushesBackAlongTheNormal) {
   ASSERT_FALSE(out.empty());
   EXPECT_NEAR(deepest(out), 0.4, 1e-12);  // the top face at 1 against the margin's side at 0.6
   for (const ContactPoint& c : out) {
-    if (c.depth == deepest(out)) EXPECT_LT(length(c.normal - Vec3{0, 0, -1}), 1e-12);
+    if (c.depth == deepest(out)) {
+      EXPECT_LT(length(c.normal - Vec3{0, 0, -1}), 1e-12);
+    }
   }
   // Resting on top of it instead, 0.05 above: one contact, depth 0.05, upwards.
   const std::array<Vec3, 3> under{Vec3{-5, -5, -1.05}, Vec3{5, -5, -1.05}, Vec3{0, 8, -1.05}};

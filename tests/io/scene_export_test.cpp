@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -92,6 +93,17 @@ angular_velocity = [0.0, 0.0, 4.0]
 
 )";
 
+// A compound of a box and a surface (a 1 cm cube turned a quarter about z
+// and moved by its center), touching at x = 0.
+constexpr const char* kSurfaceCompound = R"(
+[[body]]
+shape = { type = "compound", parts = [ { type = "box", half_extents = [0.005, 0.005, 0.005], center = [-0.005, 0.005, 0.005] }, { type = "surface", vertices = [[0, 0, 0], [0.01, 0, 0], [0.01, 0.01, 0], [0, 0.01, 0], [0, 0, 0.01], [0.01, 0, 0.01], [0.01, 0.01, 0.01], [0, 0.01, 0.01]], triangles = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]], center = [0.01, 0, 0], rotation = [0.7071067811865476, 0.0, 0.0, 0.7071067811865476] } ] }
+material = "rock"
+position = [-0.03, 0.0, 0.03]
+angular_velocity = [0.0, 0.0, 4.0]
+
+)";
+
 // Surface grains, in a scene of their own.
 constexpr const char* kSurfaces = R"(
 [shapes]
@@ -134,11 +146,21 @@ std::vector<Vec3> reach(const dem::World& w, const dem::Body& b) {
 }
 
 TEST(SceneExport, AnExportedStateIsTheSameWorldReadFromAnotherFolder) {
-  for (const char* extra : {kCompound, kSurfaces}) {
-  SCOPED_TRACE(extra == kCompound ? "with a compound" : "with surface grains");
+  for (const char* extra : {kCompound, kSurfaces, kSurfaceCompound}) {
+  SCOPED_TRACE(extra == kCompound ? "with a compound" : extra == kSurfaces ? "with surface grains" : "with a surface part");
   const std::string source = std::string(kCommon) + extra;
   Folder f;
   Scene scene = load_scene(source, "export.toml", f.dir / "scene");
+  if (extra == kSurfaceCompound) {  // the surface placed by its center and rotation: the 2 x 1 x 1 cm box they make
+    const auto compound = std::find_if(scene.world.templates.begin(), scene.world.templates.end(),
+                                       [](const dem::ShapeTemplate& t) { return !t.parts.empty(); });
+    ASSERT_NE(compound, scene.world.templates.end());
+    const dem::ShapeTemplate& t = *compound;
+    ASSERT_EQ(t.parts.size(), 2u);
+    EXPECT_TRUE(t.parts[1].surface_grain && !t.parts[0].surface_grain);
+    EXPECT_NEAR(t.unit_mass.volume, 2e-6, 1e-18);
+    EXPECT_LT(length(t.unit_mass.centroid - Vec3{0, 0.005, 0.005}), 1e-15);
+  }
   dem::RunState run = dem::plan_run(0.02, 2e-5, 0.01);
   ASSERT_EQ(dem::run(scene.world, run, {}).status, dem::RunStatus::Completed);
   const dem::World& w = scene.world;
@@ -168,7 +190,7 @@ TEST(SceneExport, AnExportedStateIsTheSameWorldReadFromAnotherFolder) {
     EXPECT_LT(length(b.angular_momentum - a.angular_momentum), 1e-9 * length(a.angular_momentum) + 1e-18);
     EXPECT_EQ(v.materials[b.material].name, w.materials[a.material].name);
   }
-  EXPECT_EQ(moving, extra == kCompound ? 14 : 15);
+  EXPECT_EQ(moving, extra == kSurfaces ? 15 : 14);
   for (std::size_t k = 0; k < w.names.size(); ++k) EXPECT_EQ(v.names[k].name, w.names[k].name);
   EXPECT_GT(w.stats.contacts, 0) << "a state with contacts to start from";
 

@@ -148,6 +148,38 @@ def test_surface_grains_settle_on_a_floor_in_a_world():
     assert len(w.contacts()["forces"]) >= 3
 
 
+def test_a_compound_takes_surfaces_as_parts():
+    """An L surface and a box filling its notch: the 2x2x1 box they make (mass
+    properties of the solid, not of the hull), standing on a floor."""
+    ell = l_prism(0.01)
+    notch = gjkdem.Shape("box", half_extents=[0.005, 0.005, 0.005], center=[0.007, 0.007, 0.0])
+    grain = gjkdem.Shape.compound([notch, ell])
+    assert grain.parts == 2 and grain.type == "compound"
+    assert grain.volume == pytest.approx(4e-6, rel=1e-12)
+    assert np.allclose(grain.centroid, [0.002, 0.002, 0.0], atol=1e-15)
+    with pytest.raises(ValueError, match="queries take one convex shape"):
+        gjkdem.intersect(grain, notch)
+    with pytest.raises(ValueError, match="gjkdem.Shape or gjkdem.Surface"):
+        gjkdem.Shape.compound([notch, "not a part"])
+    s = gjkdem.Settings()
+    s.model = "volume"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("rock", density=2500, youngs_modulus=1e7, restitution=0.3, friction=0.5)
+    b.add_plane([0, 0, 0], [0, 0, 1], "rock")
+    b.add_body(grain, "rock", position=[0, 0, 0.0051])
+    w = b.build()
+    assert w.masses()[0] == pytest.approx(2500 * 4e-6, rel=1e-12)
+    w.run(0.3, dt=5e-5)
+    assert np.linalg.norm(w.velocities[0]) < 1e-3
+    assert w.positions[0][2] == pytest.approx(0.005, abs=2e-4)  # on its face, 1 cm thick
+    assert len(w.contacts()["forces"]) == 2  # the L's patch and the box's contact
+    sunk = gjkdem.Shape.compound([gjkdem.Shape("box", half_extents=[0.005, 0.005, 0.005], center=[0.0, 0.0, 0.0]), ell])
+    again = gjkdem.WorldBuilder(s)
+    again.add_material("rock", density=2500, youngs_modulus=1e7)
+    with pytest.raises(ValueError, match="parts 0 and 1 overlap"):
+        again.add_body(sunk, "rock")
+
+
 def test_surfaces_are_refused_where_they_cannot_go():
     b = gjkdem.WorldBuilder()
     b.add_material("rock", density=2500, youngs_modulus=1e7)

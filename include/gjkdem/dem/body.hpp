@@ -18,18 +18,28 @@
 
 namespace gjkdem::dem {
 
-/// A convex part of a compound template (a non-convex grain as a rigid union
-/// of convex parts): contacts are found part against part.
+/// A part of a compound template (a non-convex grain as a rigid union of
+/// parts): contacts are found part against part. A part is convex, or a
+/// closed surface met by its patches as a surface grain is (surface_grain).
 struct TemplatePart {
-  Shape shape;                   ///< as the contact model sees it, in the part's frame
+  Shape shape;                   ///< as the contact model sees it, in the part's frame (a surface part: its hull, a bound)
   Transform pose;                ///< part frame -> the template's shape frame
   Real radius = 0;               ///< of a sphere about the part frame's origin holding the part
   Real curvature_radius = 0;     ///< for the Hertz law: of the part alone (as for a template)
   Real volume = 0;               ///< of the part (0 for fixed pieces)
   std::optional<Shape> given{};  ///< the part as given, where `shape` is its tessellation (volume law)
   /// Its boundary as surface grains meet it (as ShapeTemplate::surface), in
-  /// the part's frame; null in a world without surface grains.
+  /// the part's frame; null in a world without surface grains. A surface
+  /// part's own surface.
   std::shared_ptr<const Surface> surface;
+  /// The part is a closed surface, convex or not (as ShapeTemplate::surface_grain).
+  bool surface_grain = false;
+};
+
+/// A closed surface placed in a compound's frame: a part met by its patches.
+struct PlacedSurface {
+  std::shared_ptr<const Surface> surface;
+  Transform pose;  ///< surface frame -> the compound's frame
 };
 
 /// A shape and its mass properties per unit density, computed once and
@@ -80,15 +90,28 @@ ShapeTemplate make_template(const Shape& shape);
 /// its principal frame is the shape's own frame.
 ShapeTemplate make_wall_template(const Shape& shape);
 
-/// A compound of convex parts (placed in the compound's frame), moving
-/// (exact mass properties of the union; throws std::invalid_argument for a
-/// part without volume) or fixed (no mass). Parts must not overlap: the
-/// builder checks it.
-ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fixed);
+/// A compound of convex parts and then closed surfaces (each one closed
+/// shell, as a surface grain), placed in the compound's frame, moving (exact
+/// mass properties of the union; throws std::invalid_argument for a part
+/// without volume) or fixed (no mass). Parts must not overlap: the builder
+/// checks it.
+ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fixed,
+                                     std::span<const PlacedSurface> surfaces = {});
 
 /// A surface grain, moving (exact mass properties of its solid) or fixed (no
 /// mass: a bowl, a peg).
 ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed);
+
+/// Whether a body of template `t` meets others at `part` (0 for a body of
+/// one shape) by the patches of surfaces: a surface grain, or a compound's
+/// surface part.
+inline bool surface_side(const ShapeTemplate& t, std::uint32_t part) noexcept {
+  return t.parts.empty() ? t.surface_grain : t.parts[part].surface_grain;
+}
+
+/// Whether any part of template `t` is a surface (surface_side): worlds
+/// with one give every other shape a surface to be met by.
+bool holds_surface(const ShapeTemplate& t) noexcept;
 
 
 

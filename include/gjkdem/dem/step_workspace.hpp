@@ -91,7 +91,7 @@ struct StepWorkspace {
   /// one contact, or a grain's contacts with the pieces of one mesh wall.
   std::vector<std::uint32_t> surface_order;
   std::vector<std::array<std::uint32_t, 2>> surface_jobs;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> surface_walls;  ///< per listed contact: (grain, wall group)
+  std::vector<std::array<std::uint32_t, 3>> surface_walls;  ///< per listed contact: (grain, its part, wall group)
   std::vector<StepContact> expanded;      ///< the contact list being expanded (swapped with contacts)
   std::vector<PairKey> expanded_keys;
   std::vector<std::uint32_t> moving;      ///< indices of the moving and driven bodies

@@ -84,11 +84,18 @@ struct BodyShape {
   /// in the shape's frame; `shape` is then ignored. Parts may touch, not
   /// overlap (checked); contacts are found part against part.
   std::vector<PlacedShape> parts{};
+  /// A compound's closed surfaces (each checked by make_surface, one
+  /// shell), parts after `parts` (part indices count them after those),
+  /// each met by its patches as a surface grain is.
+  std::vector<PlacedSurface> surface_parts{};
   /// Non-null: a surface grain of this closed surface (shape/surface.hpp:
   /// make_surface checked it), in the shape's frame; `shape` and `parts` are
   /// then ignored.
   std::shared_ptr<const Surface> surface{};
 };
+
+/// Whether the shape is a compound (of convex parts, surfaces or both).
+inline bool is_compound(const BodyShape& s) noexcept { return !s.parts.empty() || !s.surface_parts.empty(); }
 
 /// The most parts of a compound (part indices key the pair store in 16 bits).
 inline constexpr std::size_t kMaxCompoundParts = 1024;
@@ -282,7 +289,7 @@ class WorldBuilder {
 
  private:
   std::uint32_t add_template(const BodyShape& shape, bool fixed, const std::string& label);
-  void check_compound(std::span<const PlacedShape> parts, const std::string& label) const;
+  void check_compound(const BodyShape& shape, const std::string& label) const;
   std::uint64_t next_id() const noexcept;
   void place(Body& body, const BodyShape& shape, const Vec3& position, const Quat& rotation, const Vec3& velocity,
              const Vec3& spin) const;

@@ -31,6 +31,10 @@ MassProperties mass_properties(const Shape& shape);
 /// of mass (parallel axes). Throws as mass_properties(Shape) for a part.
 MassProperties mass_properties(std::span<const PlacedShape> parts);
 
+/// The same from each part's own mass properties (in its frame) and its
+/// pose in the compound's frame: the rule both unions follow.
+MassProperties union_mass_properties(std::span<const MassProperties> each, std::span<const Transform> poses);
+
 /// The inertia about `centroid` (per unit density) of the solid a closed,
 /// outward triangle surface bounds, given its volume and centroid: the
 /// divergence theorem, by tetrahedra from the centroid.
