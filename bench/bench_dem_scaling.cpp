@@ -28,10 +28,14 @@
 // the overlap region) and the GJK test alone; per candidate that does not
 // touch, the query (issue 12's goal: under 5 us per contact).
 //
-//   bench_dem_scaling --free-fall [--threads T] [--steps S] [--export FILE]
+//   bench_dem_scaling --free-fall [--threads T] [--steps S] [--export FILE] [--final FILE] [--dt-scale K]
 //
 // times 1,000 grains falling freely instead; `--export FILE` writes them (and
-// FILE.spin, their angular velocities) for bench/yade_free_fall.py.
+// FILE.spin, their angular velocities) for bench/yade_free_fall.py;
+// `--final FILE` writes each grain's hull vertices at the end, world axes,
+// from its centre of mass (how far it turned: bench/compare_rotation.py);
+// `--dt-scale K` runs the same time in steps K times as long (K > 1, the
+// critical step still exported) or as short (K < 1, a reference).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -207,7 +211,8 @@ Footprint footprint(const World& w) {
 // walls, falling from rest and tumbling (spin ~ 10 rad/s per axis) for
 // `steps` steps (no contact ever). Prints the
 // cost per particle-step, the first step (start-up) excluded.
-void free_fall(int threads, int steps, const std::string& export_file) {
+void free_fall(int threads, int steps, const std::string& export_file, const std::string& final_file,
+               Real dt_scale) {
   std::vector<BlockBody> bodies;
   std::mt19937_64 rng(7);
   for (int i = 0; i < kBlockCount; ++i)
@@ -228,19 +233,40 @@ void free_fall(int threads, int steps, const std::string& export_file) {
     }
     std::printf("exported %zu grains to %s (dt %.17g)\n", w.bodies.size(), export_file.c_str(), dt);
   }
-  step(w, dt);  // start-up: every box made, the static tree, buffers
+  // The same span of time, the first step and `steps` more, in steps of dt * dt_scale.
+  const Real h = dt * dt_scale;
+  const long total = std::lround((steps + 1) / dt_scale);
+  if (std::fabs(total * dt_scale - (steps + 1)) > 1e-9 * (steps + 1)) {
+    std::fprintf(stderr, "--dt-scale: (steps + 1) / K must be a whole number of steps\n");
+    std::exit(2);
+  }
+  const int first = static_cast<int>(std::max(1L, std::lround(1 / dt_scale)));
+  const int timed = static_cast<int>(total - first);
+  for (int i = 0; i < first; ++i) step(w, h);  // start-up: every box made, the static tree, buffers
   const auto t0 = std::chrono::steady_clock::now();
   int updates = 0;
-  for (int i = 0; i < steps; ++i) {
-    step(w, dt);
+  for (int i = 0; i < timed; ++i) {
+    step(w, h);
     updates += w.stats.box_updates;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("free fall: %zu grains, %d steps of %.3g s: %.4f us per particle-step; %d contacts; "
               "%.3f box updates per particle-step (skin %.3g)\n",
-              w.bodies.size(), steps, dt, 1e6 * seconds / steps / static_cast<double>(w.bodies.size()),
-              w.stats.contacts, static_cast<double>(updates) / steps / static_cast<double>(w.bodies.size()),
+              w.bodies.size(), timed, h, 1e6 * seconds / timed / static_cast<double>(w.bodies.size()),
+              w.stats.contacts, static_cast<double>(updates) / timed / static_cast<double>(w.bodies.size()),
               w.settings.box_skin);
+  if (!final_file.empty()) {  // each grain's hull vertices, world axes, from its centre of mass
+    std::ofstream out(final_file);
+    out.precision(17);
+    for (const Body& b : w.bodies) {
+      const Transform pose = shape_pose(w, b);
+      for (const Vec3& v : std::get<Polytope>(w.templates[b.shape].shape.core).data->vertices) {
+        const Vec3 x = apply(pose, v) - b.position;
+        out << x.x << ' ' << x.y << ' ' << x.z << ' ';
+      }
+      out << '\n';
+    }
+  }
 }
 
 // The narrow phase alone on the contact list of the world's last step (its
@@ -285,7 +311,8 @@ int main(int argc, char** argv) {
   bool cubes = false;
   int threads = 0, settle = 20, steps = 0, free_fall_steps = 0;
   bool narrow = false;
-  std::string export_prefix, block_cache;
+  std::string export_prefix, block_cache, final_file;
+  Real dt_scale = 1;
   std::vector<int> counts;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -296,6 +323,8 @@ int main(int argc, char** argv) {
     else if (a == "--export" && i + 1 < argc) export_prefix = argv[++i];
     else if (a == "--block" && i + 1 < argc) block_cache = argv[++i];
     else if (a == "--free-fall") free_fall_steps = 2000;
+    else if (a == "--final" && i + 1 < argc) final_file = argv[++i];
+    else if (a == "--dt-scale" && i + 1 < argc) dt_scale = std::atof(argv[++i]);
     else if (a == "--narrow") narrow = true;
     else if (a == "--skin" && i + 1 < argc) g_skin = std::atof(argv[++i]);
     else if (std::atoi(a.c_str()) >= kBlockCount && std::atoi(a.c_str()) % kBlockCount == 0) counts.push_back(std::atoi(a.c_str()));
@@ -303,7 +332,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: %s [--shape poly|cube] [--threads T] [--settle S] [--steps S] [--export PREFIX] [--block FILE]\n"
                    "          [--skin S] [--narrow] N [N ...]\n"
-                   "       %s --free-fall [--threads T] [--steps S] [--skin S] [--export FILE]\n"
+                   "       %s --free-fall [--threads T] [--steps S] [--skin S] [--export FILE] [--final FILE] [--dt-scale K]\n"
                    "  --skin: box skin, relative to each grain's reach (WorldSettings::box_skin)\n"
                    "  N: multiples of 1000 (default 1000 10000 100000)\n",
                    argv[0], argv[0]);
@@ -311,7 +340,11 @@ int main(int argc, char** argv) {
     }
   }
   if (free_fall_steps > 0) {
-    free_fall(threads, steps > 0 ? steps : free_fall_steps, export_prefix);
+    if (!(dt_scale > 0 && dt_scale <= 1000)) {
+      std::fprintf(stderr, "--dt-scale: must be > 0 and at most 1000\n");
+      return 2;
+    }
+    free_fall(threads, steps > 0 ? steps : free_fall_steps, export_prefix, final_file, dt_scale);
     return 0;
   }
   // Under mpirun with more than one rank, the timed steps run on domains

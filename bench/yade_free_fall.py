@@ -4,7 +4,11 @@
 # (docs/benchmarks.md).
 #
 #   bench_dem_scaling --free-fall --export fall.txt      # prints the time step it uses
-#   yade -j2 -n -x bench/yade_free_fall.py fall.txt DT [STEPS]
+#   yade -j2 -n -x bench/yade_free_fall.py fall.txt DT [STEPS [FINAL]]
+#
+# FINAL: each grain's hull vertices at the end, world axes, from its centre
+# of mass, one grain per line (as bench_dem_scaling --final writes them, for
+# bench/compare_rotation.py).
 #
 # fall.txt: a first line to skip, then one grain per line as its world-frame
 # hull vertices; fall.txt.spin: each grain's angular velocity (rad/s). No
@@ -21,6 +25,7 @@ from yade.minieigenHP import Vector3
 
 path, dt = sys.argv[1], float(sys.argv[2])
 steps = int(sys.argv[3]) if len(sys.argv) > 3 else 4000
+final = sys.argv[4] if len(sys.argv) > 4 else None
 
 with open(path) as f:
     f.readline()
@@ -35,7 +40,12 @@ mat = PolyhedraMat(density=2500, young=2.7e9, poisson=0.25, frictionAngle=math.a
 O.materials.append(mat)
 ids = O.bodies.append([polyhedra_utils.polyhedra(mat, v=v) for v in hulls])
 for i, w in zip(ids, spins):
-    O.bodies[i].state.angVel = w
+    s = O.bodies[i].state
+    s.angVel = w
+    # An aspherical body turns by its angular momentum (NewtonIntegrator's
+    # exactAsphericalRot): L = R I R^T w, I its principal moments.
+    local = s.ori.conjugate() * w
+    s.angMom = s.ori * Vector3(s.inertia[0] * local[0], s.inertia[1] * local[1], s.inertia[2] * local[2])
 
 O.engines = [
     ForceResetter(),
@@ -52,3 +62,8 @@ seconds = time.time() - t0
 n = len(hulls)
 contacts = sum(1 for i in O.interactions if i.isReal)
 print("yade free fall: N=%d steps=%d contacts=%d us/part-step=%.4f" % (n, steps, contacts, 1e6 * seconds / steps / n))
+if final:
+    with open(final, "w") as out:
+        for i in ids:
+            b = O.bodies[i]
+            out.write(" ".join("%.17g %.17g %.17g" % tuple(b.state.ori * v) for v in b.shape.v) + "\n")
