@@ -18,6 +18,7 @@
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
 #include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/io/run_output.hpp"
 #include "shape/surface_shapes.hpp"
 
 namespace gjkdem::dem {
@@ -188,6 +189,22 @@ TEST(SurfaceCompound, TwoCompoundsKeepEachPairOfPartsApart) {
   EXPECT_GT(length(force[0]), 1e-3);
   EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0]));
   EXPECT_LT(length(torque[1] - torque[0]), 1e-9 * length(force[0]) * 0.01);
+}
+
+// Frames draw a surface part's own triangles (the U's 28), placed, and the
+// convex part's faces (the box's 6).
+TEST(SurfaceCompound, FramesDrawTheSurfacePartsOwnTriangles) {
+  const std::shared_ptr<const Surface> u = u_arms_down();
+  const Transform shift = Transform::from({0.1, 0, 0}, Quat{});
+  const std::vector<PlacedShape> box{kHollowBox};
+  const std::vector<PlacedSurface> surfaces{{u, shift}};
+  const io::DisplayMesh m = io::display_mesh(make_compound_template(box, false, surfaces));
+  ASSERT_EQ(u->triangles.size(), 28u);
+  EXPECT_EQ(m.polygon_begin.size(), 1u + 6u + 28u);
+  Aabb drawn{m.vertices[0], m.vertices[0]};
+  for (const Vec3& v : m.vertices) drawn.lo = min(drawn.lo, v), drawn.hi = max(drawn.hi, v);
+  EXPECT_LT(length(drawn.hi - Vec3{0.13, 0.01, 0}), 1e-12);  // the U moved 10 cm along x
+  EXPECT_LT(length(drawn.lo - Vec3{0.01, 0, -0.02}), 1e-12);  // the box
 }
 
 TEST(SurfaceCompound, OverlappingPartsAreRefusedNamingThem) {
