@@ -165,6 +165,9 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
              Json j = to_json(fields, "shape");
              if (type == "surface")
                throw py::value_error("Shape(\"surface\"): a surface grain is a gjkdem.Surface (vertices, triangles)");
+             if (type == "shell")
+               throw py::value_error("Shape(\"shell\"): thin shells are made by scenes only so far (a [[body]] with "
+                                     "shape = { type = \"shell\", ... }, docs/scenes.md)");
              if (type == "platonic" || type == "random_polyhedron" || type == "compound" ||
                  (type == "mesh" && j.contains("file")))
                return scene_shape(type, std::move(j));

@@ -125,8 +125,22 @@ ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool
   return t;
 }
 
+ShapeTemplate make_shell_template(std::shared_ptr<const Shell> shell, bool fixed) {
+  const Shape hull{make_polytope(shell->vertices), shell->margin};
+  ShapeTemplate t = make_wall_template(hull);
+  if (!fixed) {
+    t.unit_mass = mass_properties(*shell);
+    t.principal = principal_axes(t.unit_mass.inertia);
+    t.curvature_radius = std::sqrt(shell->area / (4 * kPi));
+    t.reach = 0;
+    for (const Vec3& v : shell->vertices) t.reach = std::fmax(t.reach, length(v - t.unit_mass.centroid) + shell->margin);
+  }
+  t.shell = std::move(shell);
+  return t;
+}
+
 bool holds_surface(const ShapeTemplate& t) noexcept {
-  return t.surface_grain || std::any_of(t.parts.begin(), t.parts.end(), [](const TemplatePart& p) { return p.surface_grain; });
+  return t.surface_grain || t.shell || std::any_of(t.parts.begin(), t.parts.end(), [](const TemplatePart& p) { return p.surface_grain; });
 }
 
 PartPose part_pose(const ShapeTemplate& t, const Body& b, std::uint32_t part) noexcept {

@@ -17,8 +17,8 @@ constexpr int kSiteTries = 1000;                        // per site: rejection f
 
 // The solid an assembly is cut from, in its shape's frame.
 Polytope solid_of(const BodyShape& s, int tessellation, const std::string& label) {
-  if (is_compound(s) || s.surface)
-    throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound or a surface");
+  if (is_compound(s) || s.surface || s.shell)
+    throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound, a surface or a shell");
   const bool sharp = s.shape.margin == 0;
   if (const Polytope* p = std::get_if<Polytope>(&s.shape.core); p && sharp) {
     if (!(p->data->volume > 0)) throw BuildError(label + ": the shape of a bonded assembly has no volume");

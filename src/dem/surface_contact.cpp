@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <tuple>
 
 #include "gjkdem/contact/surface_half_space.hpp"
@@ -106,6 +108,69 @@ void margin_patches(const Surface& grain, const Transform& pose, const Vec3& cen
     g.moment = cross(g.point, g.normal);
     out.push_back({g, g.point});
     hosts.push_back(c.triangle);
+  }
+}
+
+void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aabb& near, SurfaceScratch& s,
+                            std::vector<MarginTriangle>& out) {
+  out.clear();
+  // The box in the shell's frame: the box of its corners taken back.
+  constexpr Real kInf = std::numeric_limits<Real>::infinity();
+  Aabb local{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{(k & 1) ? near.hi.x : near.lo.x, (k & 2) ? near.hi.y : near.lo.y, (k & 4) ? near.hi.z : near.lo.z};
+    const Vec3 p = apply_inverse(pose, corner);
+    local.lo = min(local.lo, p), local.hi = max(local.hi, p);
+  }
+  s.shell_near.clear();
+  query_box_tree(shell.tree, local, s.shell_near);
+  std::sort(s.shell_near.begin(), s.shell_near.end());  // in triangle order, whatever the tree's
+  for (const std::uint32_t t : s.shell_near) {
+    const TriangleIndices& tri = shell.triangles[t];
+    out.push_back({{apply(pose, shell.vertices[tri[0]]), apply(pose, shell.vertices[tri[1]]), apply(pose, shell.vertices[tri[2]])},
+                   shell.margin});
+  }
+}
+
+void plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& s,
+                         std::vector<SurfacePatchContact>& out) {
+  out.clear();
+  const Real rho = shell.margin;
+  std::vector<Real>& h = s.shell_heights;
+  h.resize(shell.vertices.size());
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = dot(apply(pose, shell.vertices[i]) - wall.point, wall.normal);
+  UnionFind& patch = s.shell_corners;
+  patch.reset(shell.vertices.size());
+  for (const TriangleIndices& t : shell.triangles) {  // the close corners of one triangle: one patch
+    std::int64_t first = -1;
+    for (const std::uint32_t v : t) {
+      if (!(h[v] < rho)) continue;
+      if (first < 0) first = v;
+      else patch.join(static_cast<std::uint32_t>(first), v);
+    }
+  }
+  struct Sum {
+    Real weight = 0, depth = 0;
+    Vec3 point;
+  };
+  std::vector<std::pair<std::uint32_t, Sum>> sums;  // by root, in corner order
+  for (std::uint32_t i = 0; i < h.size(); ++i) {
+    if (!(h[i] < rho)) continue;
+    const std::uint32_t root = patch.find(i);
+    auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& x) { return x.first == root; });
+    if (it == sums.end()) sums.push_back({root, {}}), it = sums.end() - 1;
+    const Real w = rho - h[i];
+    const Vec3 at = apply(pose, shell.vertices[i]) + wall.normal * ((rho - h[i]) / 2 - rho);  // midway across the margin
+    it->second.weight += w, it->second.point += w * at, it->second.depth = std::fmax(it->second.depth, w);
+  }
+  for (const auto& [root, sum] : sums) {
+    ContactGeometry g;
+    g.status = GeometryStatus::Touching;
+    g.normal = wall.normal;
+    g.depth = sum.depth;
+    g.point = sum.point / sum.weight;
+    g.moment = cross(g.point, g.normal);
+    out.push_back({g, g.point});
   }
 }
 

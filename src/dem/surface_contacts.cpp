@@ -14,16 +14,36 @@
 namespace gjkdem::dem::detail {
 namespace {
 
-// A contact with a surface on either side (a surface grain or a compound's
-// surface part): found by the patches of surfaces.
+// A contact with a surface on either side (a surface grain, a compound's
+// surface part or a thin shell): found by the patches of surfaces.
 bool of_surface(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
-  return surface_side(templates[bodies[c.b].shape], c.part_b) ||
-         (!c.a_is_plane && surface_side(templates[bodies[c.a].shape], c.part_a));
+  const ShapeTemplate& tb = templates[bodies[c.b].shape];
+  if (surface_side(tb, c.part_b) || tb.shell) return true;
+  if (c.a_is_plane) return false;
+  const ShapeTemplate& ta = templates[bodies[c.a].shape];
+  return surface_side(ta, c.part_a) || ta.shell;
 }
 
 // The surface a side of a contact meets by (a compound's: its part's).
 const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::uint32_t part) {
   return t.parts.empty() ? t.surface : t.parts[part].surface;
+}
+
+// The contacts of a thin shell with another body (a part of it) by the
+// margin model, normals a -> b: the body's surface against the shell's
+// triangles near it; a shell, a mesh wall or a shape without volume it
+// cannot meet (the run stops naming the pair).
+GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
+                             std::uint32_t part, const PartPose& other_pose, const Vec3& other_centre, bool shell_is_a,
+                             SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
+  const std::shared_ptr<const Surface>& surface = surface_of(other, part);
+  if (other.shell || margin_piece(other) || !surface) return GeometryStatus::Unsupported;
+  placed_shell_triangles(*shell.shell, shell_pose, aabb(*other_pose.shape, other_pose.pose), scratch,
+                         scratch.margin_pieces);
+  margin_patches(*surface, other_pose.pose, other_centre, scratch.margin_pieces, scratch, out, scratch.margin_hosts);
+  if (!shell_is_a)
+    for (SurfacePatchContact& p : out) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;
+  return GeometryStatus::Touching;
 }
 
 // The patches of one listed contact, or why there are none to find.
@@ -37,6 +57,10 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   PartPose pb = part_pose(tb, b, c.part_b);
   pb.pose.translation += image_shift_of(cell, c);
   const std::shared_ptr<const Surface>& sb = surface_of(tb, c.part_b);
+  if (c.a_is_plane && tb.shell) {
+    plane_shell_patches(planes[c.a], *tb.shell, pb.pose, scratch, out);
+    return GeometryStatus::Touching;
+  }
   if (c.a_is_plane && !sb) return GeometryStatus::Unsupported;
   if (c.a_is_plane)
     return plane_surface_patches(planes[c.a], *sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
@@ -44,6 +68,8 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
   const PartPose pa = part_pose(ta, a, c.part_a);
+  if (ta.shell) return shell_patches(ta, pa.pose, tb, c.part_b, pb, b.position + image_shift_of(cell, c), true, scratch, out);
+  if (tb.shell) return shell_patches(tb, pb.pose, ta, c.part_a, pa, a.position, false, scratch, out);
   const std::shared_ptr<const Surface>& sa = surface_of(ta, c.part_a);
   // Hulls apart (GJK on the convex shapes that hold the surfaces): no
   // patch, and nothing to move or traverse.

@@ -235,7 +235,11 @@ std::size_t WorldBuilder::moving_count() const noexcept {
 std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, const std::string& label) {
   ShapeTemplate t;
   try {
-    if (shape.surface) {
+    if (shape.shell) {
+      if (settings_.model == ContactModel::Volume)
+        throw BuildError(label + ": a thin shell takes the Hertz and linear laws (the volume law meets solids)");
+      t = make_shell_template(shape.shell, fixed);
+    } else if (shape.surface) {
       t = make_surface_template(shape.surface, fixed);
     } else if (is_compound(shape)) {
       check_compound(shape, label);
@@ -598,8 +602,8 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
   for (const BodyShape& s : f.variants) {
     Real radius = 0;
     if (f.pieces > 0) {  // cut per assembly below: no template of the whole
-      if (is_compound(s) || s.surface)
-        throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound or a surface");
+      if (is_compound(s) || s.surface || s.shell)
+        throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound, a surface or a shell");
       radius = bounding_radius(s.shape);
     } else {
       add_template(s, f.fixed, label);
@@ -660,19 +664,25 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
         for (Real j = first.y; j <= last.y; ++j)
           for (Real i = first.x; i <= last.x; ++i) grid[key(i, j, k)].push_back(n);
     }
-    // A surface grain's hull is not its solid (a bowl's hollow is free):
-    // the spot's cube against its surface.
-    std::shared_ptr<const Surface> cube;  // made once a surface grain is near
+    // A surface grain's hull is not its solid (a bowl's hollow is free),
+    // nor is a shell's (a tray's hollow is): the spot's cube against its
+    // surface, or within the shell's margin.
+    std::shared_ptr<const Surface> cube;  // made once a surface grain or a shell is near
     SurfaceScratch scratch;
     std::vector<SurfacePatchContact> patches;
+    std::vector<MarginTriangle> near_triangles;
+    std::vector<std::uint32_t> hosts;
     const auto meets = [&](const Near& n, const Vec3& centre, const Transform& ball_pose) {
       if (!(length(centre - n.pose.translation) <= n.radius + diameter / 2 &&
             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
-      if (!t.surface_grain) return true;
+      if (!t.surface_grain && !t.shell) return true;
       if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
-      return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
+      if (t.surface_grain) return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
+      placed_shell_triangles(*t.shell, n.pose, aabb(ball, ball_pose), scratch, near_triangles);
+      margin_patches(*cube, ball_pose, centre, near_triangles, scratch, patches, hosts);
+      return !patches.empty();
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
@@ -752,7 +762,17 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
     return t.parts.empty() ? t.surface : t.parts[part].surface;
   };
   patches.clear();
-  if (margin_piece(ta) || margin_piece(tb)) {
+  if (ta.shell || tb.shell) {  // the margin model, against another body's surface
+    const bool shell_is_a = ta.shell != nullptr;
+    const ShapeTemplate& other = shell_is_a ? tb : ta;
+    const std::uint32_t part = shell_is_a ? pb : pa;
+    const PartPose& body = shell_is_a ? at_b : at_a;
+    if (other.shell || margin_piece(other) || !surface_of(other, part)) return 0;  // the run reports the pair
+    std::vector<MarginTriangle> near;
+    placed_shell_triangles(*(shell_is_a ? ta : tb).shell, (shell_is_a ? at_a : at_b).pose, aabb(*body.shape, body.pose),
+                           scratch, near);
+    margin_patches(*surface_of(other, part), body.pose, (shell_is_a ? b : a).position, near, scratch, patches, hosts);
+  } else if (margin_piece(ta) || margin_piece(tb)) {
     const bool piece_is_a = margin_piece(ta) != nullptr;
     const ShapeTemplate& other = piece_is_a ? tb : ta;
     const std::uint32_t part = piece_is_a ? pb : pa;
@@ -874,7 +894,7 @@ void WorldBuilder::prepare_surfaces() {
   for (std::size_t i = world_.bodies.size(); i-- > 0;) user[world_.bodies[i].shape] = i;
   for (std::size_t k = 0; k < templates.size(); ++k) {
     ShapeTemplate& t = templates[k];
-    if (t.surface) continue;
+    if (t.surface || t.shell) continue;  // a shell meets surfaces by its own triangles
     const std::string who = user[k] == kNoBody ? "an inflow's shape"
                             : labels_.empty()   ? std::string("a body")
                                                 : labels_[user[k]];

@@ -70,12 +70,12 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
 
 namespace {
 
-// A surface's own triangles (a surface grain's, not its hull).
-DisplayMesh surface_mesh(const Surface& s) {
+// A surface's or a shell's own triangles (not its hull).
+DisplayMesh triangles_mesh(std::span<const Vec3> vertices, std::span<const TriangleIndices> triangles) {
   DisplayMesh m;
-  m.vertices = s.vertices;
+  m.vertices.assign(vertices.begin(), vertices.end());
   m.polygon_begin.push_back(0);
-  for (const TriangleIndices& tri : s.triangles) {
+  for (const TriangleIndices& tri : triangles) {
     m.indices.insert(m.indices.end(), tri.begin(), tri.end());
     m.polygon_begin.push_back(static_cast<std::uint32_t>(m.indices.size()));
   }
@@ -85,11 +85,12 @@ DisplayMesh surface_mesh(const Surface& s) {
 }  // namespace
 
 DisplayMesh display_mesh(const dem::ShapeTemplate& t) {
-  if (t.surface_grain) return surface_mesh(*t.surface);
+  if (t.surface_grain) return triangles_mesh(t.surface->vertices, t.surface->triangles);
+  if (t.shell) return triangles_mesh(t.shell->vertices, t.shell->triangles);
   if (t.parts.empty()) return display_mesh(t.shape);
   DisplayMesh m;
   for (const dem::TemplatePart& p : t.parts) {
-    const DisplayMesh part = p.surface_grain ? surface_mesh(*p.surface) : display_mesh(p.shape);
+    const DisplayMesh part = p.surface_grain ? triangles_mesh(p.surface->vertices, p.surface->triangles) : display_mesh(p.shape);
     const std::uint32_t first = static_cast<std::uint32_t>(m.vertices.size()), at = static_cast<std::uint32_t>(m.indices.size());
     for (const Vec3& v : part.vertices) m.vertices.push_back(apply(p.pose, v));
     for (const std::uint32_t i : part.indices) m.indices.push_back(first + i);

@@ -61,16 +61,23 @@ toml::table shape_table(const Shape& s, const Transform& pose) {
   return t;
 }
 
+// Triangles as the scene gives them (a surface's or a shell's), their
+// vertices in their own frame.
+toml::table triangles_table(const char* type, std::span<const Vec3> points, std::span<const TriangleIndices> tris) {
+  toml::array vertices, triangles;
+  for (const Vec3& v : points) vertices.push_back(array_of(v));
+  for (const TriangleIndices& tri : tris)
+    triangles.push_back(toml::array{std::int64_t{tri[0]}, std::int64_t{tri[1]}, std::int64_t{tri[2]}});
+  toml::table out;
+  out.insert("type", type), out.insert("vertices", std::move(vertices));
+  out.insert("triangles", std::move(triangles));
+  return out;
+}
+
 // A surface as the scene gives it, its vertices in its own frame; placed
 // by `pose` where given (a compound's surface part).
 toml::table surface_table(const Surface& s, const Transform* pose) {
-  toml::array vertices, triangles;
-  for (const Vec3& v : s.vertices) vertices.push_back(array_of(v));
-  for (const TriangleIndices& tri : s.triangles)
-    triangles.push_back(toml::array{std::int64_t{tri[0]}, std::int64_t{tri[1]}, std::int64_t{tri[2]}});
-  toml::table out;
-  out.insert("type", "surface"), out.insert("vertices", std::move(vertices));
-  out.insert("triangles", std::move(triangles));
+  toml::table out = triangles_table("surface", s.vertices, s.triangles);
   if (pose) {
     out.insert("center", array_of(pose->translation));
     out.insert("rotation", array_of(quat_from_matrix(pose->rotation)));
@@ -81,6 +88,11 @@ toml::table surface_table(const Surface& s, const Transform* pose) {
 // A template as the scene gives it, in its own shape frame.
 toml::table template_table(const dem::ShapeTemplate& t) {
   if (t.surface_grain) return surface_table(*t.surface, nullptr);
+  if (t.shell) {
+    toml::table out = triangles_table("shell", t.shell->vertices, t.shell->triangles);
+    out.insert("thickness", 2 * t.shell->margin);
+    return out;
+  }
   if (!t.parts.empty()) {
     toml::array parts;
     for (const dem::TemplatePart& p : t.parts)

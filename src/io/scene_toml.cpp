@@ -24,6 +24,7 @@
 #include "gjkdem/shape/aabb.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
+#include "gjkdem/shape/shell.hpp"
 #include "gjkdem/shape/surface.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "container_check.hpp"
@@ -391,8 +392,19 @@ class SceneBuilder {
   // `triangles` [[i, j, k], ...] (0-based, counter-clockwise seen from
   // outside), as the query format's mesh; scaled by `scale`.
   std::shared_ptr<const Surface> inline_surface(TableReader& r, Real scale) {
+    TriangleMesh mesh = inline_triangles(r, scale, "a surface");
+    try {
+      return std::make_shared<const Surface>(make_surface(std::move(mesh.vertices), std::move(mesh.triangles)));
+    } catch (const SurfaceError& e) {
+      r.fail("triangles", std::string("not a closed surface a grain can have: ") + e.what());
+    }
+  }
+
+  // Triangles given in the scene: `vertices` [[x, y, z], ...] scaled by
+  // `scale` and `triangles` [[i, j, k], ...] (0-based indices).
+  TriangleMesh inline_triangles(TableReader& r, Real scale, const std::string& what) {
     if (!r.has("vertices") || !r.has("triangles"))
-      r.fail("type", "a surface takes a mesh 'file', or 'vertices' and 'triangles'");
+      r.fail("type", what + " takes a mesh 'file', or 'vertices' and 'triangles'");
     std::vector<Vec3> vertices;
     for (const std::vector<Real>& v : r.rows("vertices", 3, "[x, y, z]")) vertices.push_back(Vec3{v[0], v[1], v[2]} * scale);
     std::vector<TriangleIndices> triangles;
@@ -406,10 +418,35 @@ class SceneBuilder {
       }
       triangles.push_back(ids);
     }
+    TriangleMesh mesh;
+    mesh.vertices = std::move(vertices);
+    mesh.triangles = std::move(triangles);
+    return mesh;
+  }
+
+  // A thin shell: the triangles of a mesh `file` (scaled) or given in the
+  // scene, open or closed, with a `thickness` (m, not scaled), checked by
+  // make_shell.
+  std::shared_ptr<const Shell> mesh_shell(TableReader& r, Real scale) {
+    const Real thickness = r.positive("thickness");
+    TriangleMesh mesh;
+    const bool from_file = r.has("file");
+    if (from_file) {
+      if (r.has("vertices") || r.has("triangles")) r.fail("file", "give either a 'file' or 'vertices' and 'triangles'");
+      const std::filesystem::path file = file_of(r, "file");
+      try {
+        mesh = read_mesh(file);
+        scale_mesh(r, mesh, scale);
+      } catch (const MeshError& e) {
+        r.fail("file", e.what());
+      }
+    } else {
+      mesh = inline_triangles(r, scale, "a shell");
+    }
     try {
-      return std::make_shared<const Surface>(make_surface(std::move(vertices), std::move(triangles)));
-    } catch (const SurfaceError& e) {
-      r.fail("triangles", std::string("not a closed surface a grain can have: ") + e.what());
+      return std::make_shared<const Shell>(make_shell(std::move(mesh.vertices), std::move(mesh.triangles), thickness));
+    } catch (const ShellError& e) {
+      r.fail(from_file ? "file" : "triangles", std::string("not a shell: ") + e.what());
     }
   }
 
@@ -445,6 +482,7 @@ class SceneBuilder {
       if (part.get("type") && part.get("type")->value<std::string>() == std::optional<std::string>("compound"))
         throw SceneError(where + ": a part cannot itself be a compound" + line_of(part));
       const ShapeSpec p = read_shape_table(part, where);
+      if (p.shell) throw SceneError(where + ": a shell is not a compound's part (a body of its own)" + line_of(part));
       if (p.surface) s.surface_parts.push_back({p.surface, p.pose});
       else parts.push_back({p.shape, p.pose});
     }
@@ -523,6 +561,11 @@ class SceneBuilder {
     } else if (type == "surface") {
       const Real scale = r.positive("scale", 1.0);
       s.surface = mesh_surface(r, scale);
+      s.pose = Transform::from(r.vec3("center").value_or(Vec3{}), r.rotation("rotation").value_or(Quat{}));
+      r.finish();
+    } else if (type == "shell") {
+      const Real scale = r.positive("scale", 1.0);
+      s.shell = mesh_shell(r, scale);
       s.pose = Transform::from(r.vec3("center").value_or(Vec3{}), r.rotation("rotation").value_or(Quat{}));
       r.finish();
     } else if (type == "compound") {
@@ -794,6 +837,9 @@ class SceneBuilder {
           s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices));
       } else {
         m.base = read_shape_table(*part.table, part.where);
+        if (m.base.shell)
+          throw SceneError(part.where + ": a thin shell is a [[body]] of its own (generators and inflows do not make them)" +
+                           line_of(*part.table));
         m.base_size = 2 * bounding_radius(m.base.shape);
         for (const PlacedShape& p : m.base.parts)  // a compound: of the sphere about its frame holding its parts
           m.base_size = std::fmax(m.base_size, 2 * (length(p.pose.translation) + bounding_radius(p.shape)));

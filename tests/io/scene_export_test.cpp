@@ -200,6 +200,55 @@ TEST(SceneExport, AnExportedStateIsTheSameWorldReadFromAnotherFolder) {
   }
 }
 
+// A thin shell (a tray) with a grain in it, under the Hertz law: exported
+// as its triangles and thickness, read back the same body.
+TEST(SceneExport, AShellComesBackAsItWas) {
+  const std::string text = R"(
+[simulation]
+duration = 0.02
+dt = 2e-5
+[contact]
+model = "hertz"
+[[material]]
+name = "rock"
+density = 2500.0
+youngs_modulus = 1.0e6
+[[wall]]
+type = "plane"
+normal = [0, 0, 1]
+material = "rock"
+[[body]]
+shape = { type = "shell", thickness = 0.002, center = [0.0, 0.0, 0.001], rotation = [0.9238795325112867, 0.0, 0.0, 0.3826834323650898], vertices = [[-0.04, -0.04, 0], [0.04, -0.04, 0], [0.04, 0.04, 0], [-0.04, 0.04, 0], [-0.04, -0.04, 0.03], [0.04, -0.04, 0.03], [0.04, 0.04, 0.03], [-0.04, 0.04, 0.03]], triangles = [[0, 2, 1], [0, 3, 2], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]] }
+material = "rock"
+[[body]]
+shape = { type = "box", half_extents = [0.01, 0.01, 0.01] }
+material = "rock"
+position = [0.0, 0.0, 0.0122]
+)";
+  Scene scene = load_scene(text, "shell.toml", fs::temp_directory_path());
+  dem::RunState run = dem::plan_run(0.02, 2e-5, 0.02);
+  ASSERT_EQ(dem::run(scene.world, run, {}).status, dem::RunStatus::Completed);
+  const dem::World& w = scene.world;
+  ASSERT_TRUE(w.templates[w.bodies[0].shape].shell);
+  EXPECT_GT(w.stats.contacts, 1) << "the tray on the floor, the box in the tray";
+  const std::string exported = export_scene(text, fs::temp_directory_path(), w, "");
+  Scene back = load_scene(exported, "exported.toml", fs::temp_directory_path());
+  const dem::World& v = back.world;
+  ASSERT_EQ(v.bodies.size(), w.bodies.size());
+  const dem::Makeup before{w.templates, w.materials}, after{v.templates, v.materials};
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const dem::Body &a = w.bodies[i], &b = v.bodies[i];
+    EXPECT_NEAR(after.mass(b), before.mass(a), 1e-12 * before.mass(a));
+    EXPECT_LT(length(b.position - a.position), 1e-12 * 0.08);
+    const std::vector<Vec3> ra = reach(w, a), rb = reach(v, b);
+    for (std::size_t k = 0; k < ra.size(); ++k) EXPECT_LT(length(rb[k] - ra[k]), 1e-12 * 0.08) << i << " direction " << k;
+  }
+  ASSERT_TRUE(v.templates[v.bodies[0].shape].shell);
+  EXPECT_EQ(v.templates[v.bodies[0].shape].shell->margin, 0.001);
+  dem::RunState more = dem::plan_run(0.005, 2e-5, 0.005);
+  EXPECT_EQ(dem::run(back.world, more, {}).status, dem::RunStatus::Completed);
+}
+
 TEST(SceneExport, APeriodicCellTakesTheWorldsBoundsAndAShearedOneIsRefused) {
   const std::string text = R"(
 [simulation]

@@ -14,6 +14,7 @@
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
+#include "gjkdem/shape/shell.hpp"
 #include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::dem {
@@ -72,6 +73,11 @@ struct ShapeTemplate {
   /// tessellation when curved) in a world with surface grains; null otherwise.
   /// In the shape's frame.
   std::shared_ptr<const Surface> surface;
+  /// A thin shell (shape/shell.hpp): its triangles with their margin meet
+  /// surfaces by the margin model and planes by their corners; `shape` is
+  /// its hull grown by the margin, used only where a bound will do. In the
+  /// shape's frame; null for other shapes.
+  std::shared_ptr<const Shell> shell;
   /// A mesh wall piece's triangle (the middle of its thickness), in the
   /// shape's frame: a moving body whose centre crosses it during a step has
   /// gone through the wall (StepStatus::ThroughWall). Unset for other shapes.
@@ -102,6 +108,11 @@ ShapeTemplate make_compound_template(std::span<const PlacedShape> parts, bool fi
 /// mass: a bowl, a peg).
 ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool fixed);
 
+/// A thin shell, moving (mass properties of its plates) or fixed (no mass).
+/// Its Hertz radius is that of the sphere of its area (a documented
+/// approximation, as the sphere of equal volume is for polyhedra).
+ShapeTemplate make_shell_template(std::shared_ptr<const Shell> shell, bool fixed);
+
 /// Whether a body of template `t` meets others at `part` (0 for a body of
 /// one shape) by the patches of surfaces: a surface grain, or a compound's
 /// surface part.
@@ -109,8 +120,9 @@ inline bool surface_side(const ShapeTemplate& t, std::uint32_t part) noexcept {
   return t.parts.empty() ? t.surface_grain : t.parts[part].surface_grain;
 }
 
-/// Whether any part of template `t` is a surface (surface_side): worlds
-/// with one give every other shape a surface to be met by.
+/// Whether template `t` is a thin shell or any part of it a surface
+/// (surface_side): worlds with one give every other shape a surface to be
+/// met by.
 bool holds_surface(const ShapeTemplate& t) noexcept;
 
 

@@ -25,6 +25,7 @@
 #include "gjkdem/dem/body.hpp"
 #include "gjkdem/dem/contact_geometry.hpp"
 #include "gjkdem/dem/material.hpp"
+#include "gjkdem/math/union_find.hpp"
 
 namespace gjkdem::dem {
 
@@ -45,6 +46,9 @@ struct SurfaceScratch {
   std::vector<MarginTriangle> margin_pieces;     ///< a job's pieces, world
   std::vector<SurfacePatchContact> margin_found;
   std::vector<std::uint32_t> margin_hosts;
+  std::vector<std::uint32_t> shell_near;  ///< a shell's triangles near the other body
+  UnionFind shell_corners;                ///< a shell's corners against a plane
+  std::vector<Real> shell_heights;
 };
 
 
@@ -93,6 +97,19 @@ inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const T
 void margin_patches(const Surface& grain, const Transform& pose, const Vec3& centre,
                     std::span<const MarginTriangle> triangles, SurfaceScratch& scratch,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts);
+
+/// A thin shell's triangles placed at `pose`, those whose boxes meet `near`
+/// (world), in world coordinates with the shell's margin.
+void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aabb& near, SurfaceScratch& scratch,
+                            std::vector<MarginTriangle>& out);
+
+/// The contacts of a placed thin shell with a plane wall: its corners
+/// within its margin of the plane, those of one triangle one patch (as the
+/// margin model groups a grain's triangles), each with the depth rho - h of
+/// its lowest corner (h: its height above the plane) at the depth-weighted
+/// mean of the corners, midway across the margin; normals along the wall's.
+void plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& scratch,
+                         std::vector<SurfacePatchContact>& out);
 
 /// Slots for one pair's patches: `anchors` of the patches now; `last` the
 /// slots and anchors of its patches last step. Nearest pairs first, a patch

@@ -88,6 +88,10 @@ struct BodyShape {
   /// shell), parts after `parts` (part indices count them after those),
   /// each met by its patches as a surface grain is.
   std::vector<PlacedSurface> surface_parts{};
+  /// Non-null: a thin shell (shape/shell.hpp: make_shell checked it), in the
+  /// shape's frame, under the Hertz and linear laws; `shape`, `parts` and
+  /// `surface` are then ignored.
+  std::shared_ptr<const Shell> shell{};
   /// Non-null: a surface grain of this closed surface (shape/surface.hpp:
   /// make_surface checked it), in the shape's frame; `shape` and `parts` are
   /// then ignored.
