@@ -71,7 +71,7 @@ PyShape make_shape(const std::string& text, io::ShapeFrame frame = io::ShapeFram
     const Json j = Json::parse(text, nullptr, false);
     std::string type;
     if (j.is_object() && j.contains("type") && j["type"].is_string()) type = j["type"].get<std::string>();
-    return {placed.shape, placed.pose, type, {}};
+    return {placed.shape, placed.pose, type, {}, {}};
   } catch (const io::QueryFormatError& e) {
     throw py::value_error(e.what());
   } catch (const std::invalid_argument& e) {
@@ -141,7 +141,7 @@ PyShape scene_shape(const std::string& type, Json fields) {
     py::module_::import("warnings").attr("warn")("gjkdem: " + w, py::handle(PyExc_UserWarning));
   if (s.shape.surface) throw py::value_error("Shape: a surface grain is a gjkdem.Surface");
   if (dem::is_compound(s.shape)) return compound_of(std::move(s.shape.parts), std::move(s.shape.surface_parts));
-  return {s.shape.shape, s.shape.pose, type, {}};
+  return {s.shape.shape, s.shape.pose, type, {}, {}};
 }
 
 }  // namespace

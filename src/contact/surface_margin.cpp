@@ -31,7 +31,7 @@ Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 
 }  // namespace
 
-void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> triangles, const Vec3& centre,
+void surface_margin_contacts(const TriangleSet& s, std::span<const MarginTriangle> triangles, const Vec3& centre,
                              SurfaceMarginScratch& w, std::vector<MarginContact>& out) {
   out.clear();
   w.pairs.clear();
@@ -39,7 +39,7 @@ void surface_margin_contacts(const Surface& s, std::span<const MarginTriangle> t
     const MarginTriangle& t = triangles[i];
     const Vec3 grow{t.rho, t.rho, t.rho};
     w.near.clear();
-    query_box_tree(s.tree, {min(min(t.corners[0], t.corners[1]), t.corners[2]) - grow,
+    query_box_tree(*s.tree, {min(min(t.corners[0], t.corners[1]), t.corners[2]) - grow,
                             max(max(t.corners[0], t.corners[1]), t.corners[2]) + grow},
                    w.near);
     // In the surface's triangle order, not the tree's: the patches then do

@@ -88,7 +88,7 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
   return true;
 }
 
-void margin_patches(const Surface& grain, const Transform& pose, const Vec3& centre,
+void margin_patches(const TriangleSet& grain, const Transform& pose, const Vec3& centre,
                     std::span<const MarginTriangle> triangles, SurfaceScratch& s,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts) {
   out.clear(), hosts.clear();

@@ -30,17 +30,21 @@ const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::ui
 }
 
 // The contacts of a thin shell with another body (a part of it) by the
-// margin model, normals a -> b: the body's surface against the shell's
-// triangles near it; a shell, a mesh wall or a shape without volume it
-// cannot meet (the run stops naming the pair).
+// margin model, normals a -> b: the body's surface, or another shell's
+// triangles (the margins of both), against the shell's triangles near it;
+// a shape without volume it cannot meet (the run stops naming the pair).
+// (A mesh wall's pieces meet it as they meet grains: find_margin_patches.)
 GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
                              std::uint32_t part, const PartPose& other_pose, const Vec3& other_centre, bool shell_is_a,
                              SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
   const std::shared_ptr<const Surface>& surface = surface_of(other, part);
-  if (other.shell || margin_piece(other) || !surface) return GeometryStatus::Unsupported;
+  if (!other.shell && !surface) return GeometryStatus::Unsupported;
   placed_shell_triangles(*shell.shell, shell_pose, aabb(*other_pose.shape, other_pose.pose), scratch,
                          scratch.margin_pieces);
-  margin_patches(*surface, other_pose.pose, other_centre, scratch.margin_pieces, scratch, out, scratch.margin_hosts);
+  if (other.shell)
+    for (MarginTriangle& t : scratch.margin_pieces) t.rho += other.shell->margin;
+  margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose, other_centre,
+                 scratch.margin_pieces, scratch, out, scratch.margin_hosts);
   if (!shell_is_a)
     for (SurfacePatchContact& p : out) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;
   return GeometryStatus::Touching;
@@ -86,8 +90,8 @@ std::uint32_t margin_grain(std::span<const Body> bodies, std::span<const ShapeTe
                            const StepContact& c) {
   if (c.a_is_plane) return kNotMargin;
   const ShapeTemplate &ta = templates[bodies[c.a].shape], &tb = templates[bodies[c.b].shape];
-  if (margin_piece(ta) && surface_side(tb, c.part_b)) return c.b;
-  if (margin_piece(tb) && surface_side(ta, c.part_a)) return c.a;
+  if (margin_piece(ta) && (surface_side(tb, c.part_b) || tb.shell)) return c.b;
+  if (margin_piece(tb) && (surface_side(ta, c.part_a) || ta.shell)) return c.a;
   return kNotMargin;
 }
 
@@ -121,10 +125,12 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     const Vec3 image = image_shift_of(cell, c);
     at.translation += grain_is_b ? -image : image;
     scratch.margin_pieces.push_back(placed_margin_triangle(tp, at));
+    if (tg.shell) scratch.margin_pieces.back().rho += tg.shell->margin;  // the margins of both
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
-  margin_patches(*surface_of(tg, part), pose, grain.position, scratch.margin_pieces, scratch, scratch.margin_found,
+  margin_patches(tg.shell ? shell_triangles(*tg.shell) : triangles_of(*surface_of(tg, part)), pose, grain.position,
+                 scratch.margin_pieces, scratch, scratch.margin_found,
                  scratch.margin_hosts);
   for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {
     SurfacePatchContact p = scratch.margin_found[k];

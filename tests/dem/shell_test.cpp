@@ -6,8 +6,8 @@
 //   triangles and thickness (the same margin model).
 // - A shell plate falls onto a plane and rests on its margin; a cube rests
 //   on a fixed shell plate; a generator fills a fixed tray's hollow.
-// - What a shell cannot meet yet (another shell) stops the run naming the
-//   pair; the volume law refuses shells.
+// - A plate rests on a fixed shell and on a mesh floor on both margins, at
+//   the same height; the volume law refuses shells.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -175,16 +175,36 @@ TEST(Shell, AGeneratorFillsTheHollowOfATray) {
   for (const Body& b : w.bodies) EXPECT_LT(std::fmax(std::fabs(b.position.x), std::fabs(b.position.y)), h);
 }
 
-TEST(Shell, WhatAShellCannotMeetStopsTheRunAndTheVolumeLawRefusesIt) {
-  WorldBuilder builder(hertz());
-  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
-  builder.add_body({.shape = {.shell = plate(0.1, 0.002)}, .material = rock, .fixed = true});
-  builder.add_body({.shape = {.shell = plate(0.04, 0.002)}, .material = rock, .position = {0, 0, 0.0015}});
-  builder.accept_initial_overlaps();
-  World w = builder.build();
-  const StepReport r = step(w, 1e-5);
-  EXPECT_EQ(r.status, StepStatus::UnsupportedPair);
+// A plate dropped flat onto a fixed plate and onto a mesh floor of the
+// same triangles and thickness rests on both margins, at the same height
+// on both (the same margin model: the triangles with both margins).
+TEST(Shell, APlateRestsOnAShellAndOnAMeshFloorOnBothMargins) {
+  const Real t = 0.002, thin = 0.001;
+  const std::shared_ptr<const Shell> floor = plate(0.2, t);
+  Real height[2];
+  for (int mesh = 0; mesh < 2; ++mesh) {
+    WorldBuilder builder(hertz());
+    const std::uint32_t steel = builder.add_material({"steel", 7800, 1e8, 0.3, 0.3, 0.5});
+    if (mesh) {
+      const std::vector<std::array<std::uint32_t, 3>> tris(floor->triangles.begin(), floor->triangles.end());
+      builder.add_mesh_walls(floor->vertices, tris, t, steel, "floor");
+    } else {
+      builder.add_body({.shape = {.shell = floor}, .material = steel, .fixed = true});
+    }
+    builder.add_body({.shape = {.shell = plate(0.04, thin)}, .material = steel, .position = {0.003, 0.002, 0.004},
+                      .rotation = normalized(Quat{1, 0.02, 0.01, 0})});
+    World w = builder.build();
+    for (int i = 0; i < 20000; ++i) ASSERT_EQ(step(w, 2e-5).status, StepStatus::Ok) << i;
+    const Body& b = w.bodies.back();
+    EXPECT_LT(length(b.velocity), 1e-3) << mesh;
+    EXPECT_NEAR(b.position.z, (t + thin) / 2, 0.05 * thin) << mesh;
+    EXPECT_GE(w.stats.contacts, 1) << mesh;
+    height[mesh] = b.position.z;
+  }
+  EXPECT_NEAR(height[1], height[0], 1e-9);
+}
 
+TEST(Shell, TheVolumeLawRefusesAShell) {
   WorldSettings volume;
   volume.model = ContactModel::Volume;
   WorldBuilder refusing(volume);

@@ -65,6 +65,15 @@ struct SurfaceMarginScratch {
   std::vector<Real> weight;
 };
 
+/// The triangles met by margin triangles: a closed surface's (a solid), or
+/// a thin shell's (shape/shell.hpp), with a tree of their boxes.
+struct TriangleSet {
+  std::span<const Vec3> vertices;
+  std::span<const TriangleIndices> triangles;
+  const BoxTree* tree = nullptr;
+};
+inline TriangleSet triangles_of(const Surface& s) noexcept { return {s.vertices, s.triangles, &s.tree}; }
+
 /// The contacts of `surface` with `triangles`, everything in the surface's
 /// frame; `centre` (the solid's centre of mass) tells crossing pairs which
 /// side the solid lies on. One contact a patch, in the order of the patches'
@@ -73,7 +82,11 @@ struct SurfaceMarginScratch {
 /// across the margin, of its corners within a margin (each corner counted
 /// once, for its nearest triangle), or the deepest pair's where no corner
 /// is. `out` is overwritten.
-void surface_margin_contacts(const Surface& surface, std::span<const MarginTriangle> triangles, const Vec3& centre,
+void surface_margin_contacts(const TriangleSet& surface, std::span<const MarginTriangle> triangles, const Vec3& centre,
                              SurfaceMarginScratch& scratch, std::vector<MarginContact>& out);
+inline void surface_margin_contacts(const Surface& surface, std::span<const MarginTriangle> triangles,
+                                    const Vec3& centre, SurfaceMarginScratch& scratch, std::vector<MarginContact>& out) {
+  surface_margin_contacts(triangles_of(surface), triangles, centre, scratch, out);
+}
 
 }  // namespace gjkdem

@@ -87,16 +87,21 @@ inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const T
   return {{apply(pose, t.v[0]), apply(pose, t.v[1]), apply(pose, t.v[2])}, piece.shape.margin};
 }
 
-/// The contacts of a placed surface grain with the triangles of a mesh
-/// wall's pieces (world coordinates) under the Hertz and linear laws: the
-/// seed's margin model (contact/surface_margin.hpp), one a patch however
-/// many pieces it touches; `centre` is the grain's centre of mass. Each has
-/// a depth and a point midway across the margin, no volume or area; normals
-/// point from the wall to the grain. `hosts` gets, per contact, the
-/// triangle its deepest pair touches.
-void margin_patches(const Surface& grain, const Transform& pose, const Vec3& centre,
+/// The contacts of a placed surface grain (or a thin shell's triangles:
+/// shell_triangles) with the triangles of a mesh wall's pieces (world
+/// coordinates) under the Hertz and linear laws: the seed's margin model
+/// (contact/surface_margin.hpp), one a patch however many pieces it
+/// touches; `centre` is the grain's centre of mass. Each has a depth and a
+/// point midway across the margin, no volume or area; normals point from
+/// the wall to the grain. `hosts` gets, per contact, the triangle its
+/// deepest pair touches. A shell's own margin is added to the pieces' (the
+/// caller's: rho of both).
+void margin_patches(const TriangleSet& grain, const Transform& pose, const Vec3& centre,
                     std::span<const MarginTriangle> triangles, SurfaceScratch& scratch,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts);
+
+/// A thin shell's triangles as margin contacts meet them (TriangleSet).
+inline TriangleSet shell_triangles(const Shell& s) noexcept { return {s.vertices, s.triangles, &s.tree}; }
 
 /// A thin shell's triangles placed at `pose`, those whose boxes meet `near`
 /// (world), in world coordinates with the shell's margin.
