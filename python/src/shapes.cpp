@@ -166,8 +166,7 @@ Shape.from_json(dict or str) reads one SHAPE object as written in a query file.)
              if (type == "surface")
                throw py::value_error("Shape(\"surface\"): a surface grain is a gjkdem.Surface (vertices, triangles)");
              if (type == "shell")
-               throw py::value_error("Shape(\"shell\"): thin shells are made by scenes only so far (a [[body]] with "
-                                     "shape = { type = \"shell\", ... }, docs/scenes.md)");
+               throw py::value_error("Shape(\"shell\"): a thin shell is a gjkdem.Shell (vertices, triangles, thickness)");
              if (type == "platonic" || type == "random_polyhedron" || type == "compound" ||
                  (type == "mesh" && j.contains("file")))
                return scene_shape(type, std::move(j));

@@ -11,7 +11,12 @@
 namespace gjkdem::py_bind {
 namespace {
 
-std::shared_ptr<const Surface> surface_from_arrays(const py::handle& vertices, const py::handle& triangles) {
+// Vertices (N, 3) and triangles (M, 3) of indices into them, checked.
+struct Triangles {
+  std::vector<Vec3> points;
+  std::vector<TriangleIndices> corners;
+};
+Triangles triangles_from_arrays(const py::handle& vertices, const py::handle& triangles) {
   const auto v = to_matrix(vertices, 3, "vertices");
   const auto t = to_matrix(triangles, 3, "triangles");
   std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
@@ -30,9 +35,14 @@ std::shared_ptr<const Surface> surface_from_arrays(const py::handle& vertices, c
              "must hold indices of vertices (integers from 0 to " + std::to_string(points.size()) + " - 1)");
       corners[static_cast<std::size_t>(i)][k] = static_cast<std::uint32_t>(x);
     }
+  return {std::move(points), std::move(corners)};
+}
+
+std::shared_ptr<const Surface> surface_from_arrays(const py::handle& vertices, const py::handle& triangles) {
+  Triangles t = triangles_from_arrays(vertices, triangles);
   try {
     py::gil_scoped_release unlocked;  // the self-intersection check can take a while on big surfaces
-    return std::make_shared<const Surface>(make_surface(std::move(points), std::move(corners)));
+    return std::make_shared<const Surface>(make_surface(std::move(t.points), std::move(t.corners)));
   } catch (const SurfaceError& e) {
     throw py::value_error(std::string("not a closed surface: ") + e.what());
   }
@@ -65,6 +75,30 @@ void bind_surfaces(py::module_& m) {
       .def("__repr__", [](const Surface& s) {
         return "<gjkdem.Surface " + std::to_string(s.vertices.size()) + " vertices, " +
                std::to_string(s.triangles.size()) + " triangles>";
+      });
+
+  py::class_<Shell, std::shared_ptr<Shell>>(m, "Shell",
+                                            "A thin shell: triangles, open or closed (vertices (N, 3), triangles "
+                                            "(M, 3)), with a thickness (m): a body of its own under the Hertz and "
+                                            "linear laws (docs/scenes.md, type = \"shell\").")
+      .def(py::init([](const py::handle& vertices, const py::handle& triangles, double thickness) {
+             Triangles t = triangles_from_arrays(vertices, triangles);
+             try {
+               return std::make_shared<Shell>(make_shell(std::move(t.points), std::move(t.corners), thickness));
+             } catch (const ShellError& e) {
+               throw py::value_error(std::string("not a shell: ") + e.what());
+             }
+           }),
+           py::arg("vertices"), py::arg("triangles"), py::arg("thickness"))
+      .def_property_readonly("volume", [](const Shell& s) { return mass_properties(s).volume; })
+      .def_property_readonly("centroid", [](const Shell& s) { return from_vec3(mass_properties(s).centroid); })
+      .def_property_readonly("thickness", [](const Shell& s) { return 2 * s.margin; })
+      .def_property_readonly("area", [](const Shell& s) { return s.area; })
+      .def_property_readonly("triangle_count", [](const Shell& s) { return s.triangles.size(); })
+      .def_property_readonly("vertex_count", [](const Shell& s) { return s.vertices.size(); })
+      .def("__repr__", [](const Shell& s) {
+        return "<gjkdem.Shell " + std::to_string(s.vertices.size()) + " vertices, " +
+               std::to_string(s.triangles.size()) + " triangles, " + std::to_string(2 * s.margin) + " m thick>";
       });
 
   py::class_<SurfaceOverlap>(m, "SurfaceOverlap", "surface_overlap(): A ∩ B of two surfaces and its pieces.")

@@ -29,29 +29,38 @@
 namespace gjkdem::py_bind {
 namespace {
 
-// A gjkdem.Shape, or a gjkdem.Surface (a surface grain), as a body's shape.
+// A gjkdem.Shape, a gjkdem.Surface (a surface grain) or a gjkdem.Shell (a
+// thin shell) as a body's shape.
 bool is_body_shape(const py::handle& shape) {
-  return py::isinstance<PyShape>(shape) || py::isinstance<Surface>(shape);
+  return py::isinstance<PyShape>(shape) || py::isinstance<Surface>(shape) || py::isinstance<Shell>(shape);
 }
 dem::BodyShape body_shape(const py::handle& shape, const char* what) {
+  dem::BodyShape s;
   if (py::isinstance<Surface>(shape)) {
-    dem::BodyShape s;
     s.surface = shape.cast<std::shared_ptr<Surface>>();
     return s;
   }
-  if (!py::isinstance<PyShape>(shape)) fail(what, "expected a gjkdem.Shape or a gjkdem.Surface");
-  const PyShape& s = shape.cast<const PyShape&>();
-  return {s.shape, s.offset, s.parts, s.surface_parts};
+  if (py::isinstance<Shell>(shape)) {
+    s.shell = shape.cast<std::shared_ptr<Shell>>();
+    return s;
+  }
+  if (!py::isinstance<PyShape>(shape)) fail(what, "expected a gjkdem.Shape, a gjkdem.Surface or a gjkdem.Shell");
+  const PyShape& p = shape.cast<const PyShape&>();
+  return {p.shape, p.offset, p.parts, p.surface_parts};
 }
 
-// A shape or a sequence of them, as the builder's variants.
+// A shape or a sequence of them, as the builder's variants (a shell is a
+// body of its own: add_body, as a scene's generators and inflows refuse it).
 std::vector<dem::BodyShape> body_shapes(const py::object& shapes) {
-  if (is_body_shape(shapes)) return {body_shape(shapes, "shapes")};
-  std::vector<dem::BodyShape> out;
-  for (const auto& item : shapes.cast<py::sequence>()) {
+  const auto variant = [](const py::handle& item) {
+    if (py::isinstance<Shell>(item))
+      fail("shapes", "a gjkdem.Shell is a body of its own (add_body): fill_region and inflows do not make shells");
     if (!is_body_shape(item)) fail("shapes", "expected a gjkdem.Shape or gjkdem.Surface, or a list of them");
-    out.push_back(body_shape(item, "shapes"));
-  }
+    return body_shape(item, "shapes");
+  };
+  if (is_body_shape(shapes)) return {variant(shapes)};
+  std::vector<dem::BodyShape> out;
+  for (const auto& item : shapes.cast<py::sequence>()) out.push_back(variant(item));
   return out;
 }
 

@@ -64,7 +64,17 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       Transform other_pose = shape_pose(o, other);
       other_pose.translation += s;
       if (!intersect(t.shape, pose, o.shape, other_pose)) continue;
-      // A surface grain's hull is not its solid (a bowl's hollow is free).
+      // A surface grain's hull is not its solid (a bowl's hollow is free),
+      // nor is a shell's (a tray's): the body's surface against its
+      // triangles within their margin.
+      if (o.shell && t.surface) {
+        if (!scratch) scratch.emplace();
+        placed_shell_triangles(*o.shell, other_pose, aabb(t.shape, pose), *scratch, scratch->margin_pieces);
+        margin_patches(triangles_of(*t.surface), pose, body.position, scratch->margin_pieces, *scratch, patches,
+                       scratch->margin_hosts);
+        if (!patches.empty()) return false;
+        continue;
+      }
       if (!(t.surface_grain || o.surface_grain) || !t.surface || !o.surface) return false;
       if (!scratch) scratch.emplace();  // made once a surface grain is in the way: most steps insert nothing
       if (surfaces_meet(t.surface, pose, o.surface, other_pose, *scratch, patches)) return false;

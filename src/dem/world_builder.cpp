@@ -1007,9 +1007,9 @@ void WorldBuilder::check_inflow_regions() const {
       const Body& b = world_.bodies[i];
       // (A compound's given shape is its hull: a hopper of parts holds room
       // inside. A surface grain's solid is its surface's: a bowl's hollow is
-      // free.)
+      // free. A shell has no inside.)
       const ShapeTemplate& t = world_.templates[b.shape];
-      if (!b.fixed || b.motion != 0 || !t.parts.empty()) continue;
+      if (!b.fixed || b.motion != 0 || !t.parts.empty() || t.shell) continue;
       const Shape& shape = given_shapes_[b.shape];
       const Transform pose = shape_pose(t, b);
       bool inside = true;

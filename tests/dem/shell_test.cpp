@@ -5,7 +5,7 @@
 // - A surface grain pushes on a fixed shell as on a mesh wall of the same
 //   triangles and thickness (the same margin model).
 // - A shell plate falls onto a plane and rests on its margin; a cube rests
-//   on a fixed shell plate; a generator fills a fixed tray's hollow.
+//   on a fixed shell plate; a generator and an inflow fill a tray's hollow.
 // - A plate rests on a fixed shell and on a mesh floor on both margins, at
 //   the same height; the volume law refuses shells.
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
 #include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/shape/shape_factories.hpp"
 #include "shape/surface_shapes.hpp"
 
 namespace gjkdem::dem {
@@ -151,8 +152,9 @@ TEST(Shell, APlateRestsOnAPlaneAndACubeOnAPlate) {
 }
 
 // A generator fills the hollow of a fixed tray (its hull is not its
-// solid), clear of its margin: the grains start touching nothing.
-TEST(Shell, AGeneratorFillsTheHollowOfATray) {
+// solid), clear of its margin: the grains start touching nothing; an
+// inflow inserts there.
+TEST(Shell, AGeneratorAndAnInflowFillTheHollowOfATray) {
   const Real h = 0.04, t = 0.002;
   const std::vector<Vec3> v{{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}, {-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}};
   const std::vector<TriangleIndices> tris{{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
@@ -173,6 +175,21 @@ TEST(Shell, AGeneratorFillsTheHollowOfATray) {
   ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok);
   EXPECT_EQ(w.stats.contacts, 0);
   for (const Body& b : w.bodies) EXPECT_LT(std::fmax(std::fabs(b.position.x), std::fabs(b.position.y)), h);
+
+  // An inflow inserts into the hollow too (its hull would hold it back).
+  WorldBuilder flowing(hertz());
+  const std::uint32_t glass = flowing.add_material({"glass", 2500, 1e7, 0.25, 0.3, 0.5});
+  flowing.add_body({.shape = {.shell = std::make_shared<const Shell>(make_shell(v, tris, t))}, .material = glass,
+                    .fixed = true});
+  InflowDef inflow;
+  inflow.variants = {{make_sphere(0.004), {}}};
+  inflow.lo = {-0.03, -0.03, 0.02}, inflow.hi = {0.03, 0.03, 0.02};
+  inflow.material = glass;
+  inflow.rate = 1000, inflow.count = 5, inflow.seed = 3;
+  flowing.add_inflow(inflow);
+  World f = flowing.build();
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(step(f, 1e-5).status, StepStatus::Ok) << i;
+  EXPECT_EQ(f.bodies.size(), 6u);
 }
 
 // A plate dropped flat onto a fixed plate and onto a mesh floor of the

@@ -183,5 +183,39 @@ def test_a_compound_takes_surfaces_as_parts():
 def test_surfaces_are_refused_where_they_cannot_go():
     b = gjkdem.WorldBuilder()
     b.add_material("rock", density=2500, youngs_modulus=1e7)
-    with pytest.raises(ValueError, match="gjkdem.Shape or a gjkdem.Surface"):
+    with pytest.raises(ValueError, match="gjkdem.Shape, a gjkdem.Surface or a gjkdem.Shell"):
         b.add_body("not a shape", "rock")
+
+
+def test_a_thin_shell_from_python():
+    """A plate of two triangles, 2 mm thick: its volume, and it rests on a
+    floor on its margin; bad shells and the places shells cannot go are
+    refused with ValueError."""
+    v = np.array([[-0.02, -0.02, 0], [0.02, -0.02, 0], [0.02, 0.02, 0], [-0.02, 0.02, 0]], float)
+    t = np.array([[0, 1, 2], [0, 2, 3]])
+    plate = gjkdem.Shell(v, t, 0.002)
+    assert plate.volume == pytest.approx(0.04 * 0.04 * 0.002, rel=1e-12)
+    assert plate.thickness == 0.002 and plate.triangle_count == 2
+    with pytest.raises(ValueError, match="triangle 0 has no area"):
+        gjkdem.Shell(np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], float), np.array([[0, 1, 2]]), 0.002)
+    with pytest.raises(ValueError, match="thickness must be > 0"):
+        gjkdem.Shell(v, t, 0.0)
+    s = gjkdem.Settings()
+    s.model = "hertz"
+    b = gjkdem.WorldBuilder(s)
+    b.add_material("steel", density=7800, youngs_modulus=1e8, restitution=0.3, friction=0.3)
+    b.add_plane([0, 0, 0], [0, 0, 1], "steel")
+    b.add_body(plate, "steel", position=[0, 0, 0.004])
+    with pytest.raises(ValueError, match="a body of its own"):
+        b.fill_region([plate], 3, lo=[0, 0, 0.1], hi=[0.1, 0.1, 0.2], material="steel")
+    w = b.build()
+    assert w.masses()[0] == pytest.approx(7800 * 0.04 * 0.04 * 0.002, rel=1e-12)
+    w.run(0.3, dt=2e-5)
+    assert np.linalg.norm(w.velocities[0]) < 1e-3
+    assert w.positions[0][2] == pytest.approx(0.001, abs=1e-4)  # on its margin
+    volume = gjkdem.Settings()
+    volume.model = "volume"
+    v_builder = gjkdem.WorldBuilder(volume)
+    v_builder.add_material("steel", density=7800, youngs_modulus=1e8)
+    with pytest.raises(ValueError, match="thin shell takes the Hertz and linear laws"):
+        v_builder.add_body(plate, "steel")
