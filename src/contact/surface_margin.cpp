@@ -31,8 +31,9 @@ Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 
 }  // namespace
 
-void surface_margin_contacts(const TriangleSet& s, std::span<const MarginTriangle> triangles, const Vec3& centre,
+void surface_margin_contacts(const TriangleSet& s, std::span<const MarginTriangle> triangles,
                              SurfaceMarginScratch& w, std::vector<MarginContact>& out) {
+  const Vec3& centre = s.inside;
   out.clear();
   w.pairs.clear();
   for (std::uint32_t i = 0; i < triangles.size(); ++i) {

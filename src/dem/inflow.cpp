@@ -70,7 +70,7 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       if (o.shell && t.surface) {
         if (!scratch) scratch.emplace();
         placed_shell_triangles(*o.shell, other_pose, aabb(t.shape, pose), *scratch, scratch->margin_pieces);
-        margin_patches(triangles_of(*t.surface), pose, body.position, scratch->margin_pieces, *scratch, patches,
+        margin_patches(triangles_of(*t.surface), pose, scratch->margin_pieces, *scratch, patches,
                        scratch->margin_hosts);
         if (!patches.empty()) return false;
         continue;

@@ -88,8 +88,8 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
   return true;
 }
 
-void margin_patches(const TriangleSet& grain, const Transform& pose, const Vec3& centre,
-                    std::span<const MarginTriangle> triangles, SurfaceScratch& s,
+void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<const MarginTriangle> triangles,
+                    SurfaceScratch& s,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts) {
   out.clear(), hosts.clear();
   // In the grain's frame: the triangles' corners move instead of its vertices.
@@ -98,7 +98,7 @@ void margin_patches(const TriangleSet& grain, const Transform& pose, const Vec3&
     s.margin_triangles.push_back({{apply_inverse(pose, t.corners[0]), apply_inverse(pose, t.corners[1]),
                                    apply_inverse(pose, t.corners[2])},
                                   t.rho});
-  surface_margin_contacts(grain, s.margin_triangles, apply_inverse(pose, centre), s.margin, s.margin_contacts);
+  surface_margin_contacts(grain, s.margin_triangles, s.margin, s.margin_contacts);
   for (const MarginContact& c : s.margin_contacts) {
     ContactGeometry g;
     g.status = GeometryStatus::Touching;
@@ -132,13 +132,18 @@ void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aab
   }
 }
 
-void plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& s,
+bool plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& s,
                          std::vector<SurfacePatchContact>& out) {
   out.clear();
   const Real rho = shell.margin;
   std::vector<Real>& h = s.shell_heights;
   h.resize(shell.vertices.size());
-  for (std::size_t i = 0; i < h.size(); ++i) h[i] = dot(apply(pose, shell.vertices[i]) - wall.point, wall.normal);
+  bool through = true;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    h[i] = dot(apply(pose, shell.vertices[i]) - wall.point, wall.normal);
+    through = through && h[i] < -rho;
+  }
+  if (through) return false;
   UnionFind& patch = s.shell_corners;
   patch.reset(shell.vertices.size());
   for (const TriangleIndices& t : shell.triangles) {  // the close corners of one triangle: one patch
@@ -172,6 +177,7 @@ void plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transf
     g.moment = cross(g.point, g.normal);
     out.push_back({g, g.point});
   }
+  return true;
 }
 
 void match_patch_slots(std::span<const Vec3> anchors, std::span<const PatchAnchor> last, Real reach,

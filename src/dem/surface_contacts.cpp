@@ -35,7 +35,7 @@ const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::ui
 // a shape without volume it cannot meet (the run stops naming the pair).
 // (A mesh wall's pieces meet it as they meet grains: find_margin_patches.)
 GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
-                             std::uint32_t part, const PartPose& other_pose, const Vec3& other_centre, bool shell_is_a,
+                             std::uint32_t part, const PartPose& other_pose, bool shell_is_a,
                              SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
   const std::shared_ptr<const Surface>& surface = surface_of(other, part);
   if (!other.shell && !surface) return GeometryStatus::Unsupported;
@@ -43,7 +43,7 @@ GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_
                          scratch.margin_pieces);
   if (other.shell)
     for (MarginTriangle& t : scratch.margin_pieces) t.rho += other.shell->margin;
-  margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose, other_centre,
+  margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose,
                  scratch.margin_pieces, scratch, out, scratch.margin_hosts);
   if (!shell_is_a)
     for (SurfacePatchContact& p : out) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;
@@ -61,10 +61,9 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   PartPose pb = part_pose(tb, b, c.part_b);
   pb.pose.translation += image_shift_of(cell, c);
   const std::shared_ptr<const Surface>& sb = surface_of(tb, c.part_b);
-  if (c.a_is_plane && tb.shell) {
-    plane_shell_patches(planes[c.a], *tb.shell, pb.pose, scratch, out);
-    return GeometryStatus::Touching;
-  }
+  if (c.a_is_plane && tb.shell)
+    return plane_shell_patches(planes[c.a], *tb.shell, pb.pose, scratch, out) ? GeometryStatus::Touching
+                                                                               : GeometryStatus::Through;
   if (c.a_is_plane && !sb) return GeometryStatus::Unsupported;
   if (c.a_is_plane)
     return plane_surface_patches(planes[c.a], *sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
@@ -72,8 +71,8 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
   const PartPose pa = part_pose(ta, a, c.part_a);
-  if (ta.shell) return shell_patches(ta, pa.pose, tb, c.part_b, pb, b.position + image_shift_of(cell, c), true, scratch, out);
-  if (tb.shell) return shell_patches(tb, pb.pose, ta, c.part_a, pa, a.position, false, scratch, out);
+  if (ta.shell) return shell_patches(ta, pa.pose, tb, c.part_b, pb, true, scratch, out);
+  if (tb.shell) return shell_patches(tb, pb.pose, ta, c.part_a, pa, false, scratch, out);
   const std::shared_ptr<const Surface>& sa = surface_of(ta, c.part_a);
   // Hulls apart (GJK on the convex shapes that hold the surfaces): no
   // patch, and nothing to move or traverse.
@@ -129,7 +128,7 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
-  margin_patches(tg.shell ? shell_triangles(*tg.shell) : triangles_of(*surface_of(tg, part)), pose, grain.position,
+  margin_patches(tg.shell ? shell_triangles(*tg.shell) : triangles_of(*surface_of(tg, part)), pose,
                  scratch.margin_pieces, scratch, scratch.margin_found,
                  scratch.margin_hosts);
   for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {

@@ -548,7 +548,10 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   if (d.count == 0 && !std::isfinite(d.stop)) throw BuildError(label + ": give a count or a stop time");
   Inflow f;
   f.cumulative = cumulative_weights(d.weights, d.variants.size(), label);
-  for (const BodyShape& v : d.variants) f.templates.push_back(add_template(v, false, label));
+  for (const BodyShape& v : d.variants) {
+    if (v.shell) throw BuildError(label + ": a thin shell is a body of its own (add_body): inflows do not insert shells");
+    f.templates.push_back(add_template(v, false, label));
+  }
   if (d.round) {
     const Aabb box = round_box(*d.round);
     f.lo = box.lo, f.hi = box.hi, f.round = d.round;
@@ -606,6 +609,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
         throw BuildError(label + ": a bonded assembly is cut from one convex shape, not a compound, a surface or a shell");
       radius = bounding_radius(s.shape);
     } else {
+      if (s.shell) throw BuildError(label + ": a thin shell is a body of its own (add_body): generators do not make shells");
       add_template(s, f.fixed, label);
       radius = bounding_radius(given_shapes_.back());
     }
@@ -681,7 +685,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
       if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
       if (t.surface_grain) return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
       placed_shell_triangles(*t.shell, n.pose, aabb(ball, ball_pose), scratch, near_triangles);
-      margin_patches(triangles_of(*cube), ball_pose, centre, near_triangles, scratch, patches, hosts);
+      margin_patches(triangles_of(*cube), ball_pose, near_triangles, scratch, patches, hosts);
       return !patches.empty();
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
@@ -768,20 +772,18 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
     const std::uint32_t part = shell_is_a ? pb : pa;
     const PartPose& body = shell_is_a ? at_b : at_a;
     const Shell& shell = *(shell_is_a ? ta : tb).shell;
-    const Vec3& centre = (shell_is_a ? b : a).position;
     std::vector<MarginTriangle> near;
     if (margin_piece(other)) {  // the shell's triangles against the piece, with both margins
       near.push_back(placed_margin_triangle(other, body.pose));
       near.back().rho += shell.margin;
-      margin_patches(shell_triangles(shell), (shell_is_a ? at_a : at_b).pose, (shell_is_a ? a : b).position, near,
-                     scratch, patches, hosts);
+      margin_patches(shell_triangles(shell), (shell_is_a ? at_a : at_b).pose, near, scratch, patches, hosts);
     } else {
       if (!other.shell && !surface_of(other, part)) return 0;  // the run reports the pair
       placed_shell_triangles(shell, (shell_is_a ? at_a : at_b).pose, aabb(*body.shape, body.pose), scratch, near);
       if (other.shell)
         for (MarginTriangle& t : near) t.rho += other.shell->margin;
       margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface_of(other, part)), body.pose,
-                     centre, near, scratch, patches, hosts);
+                     near, scratch, patches, hosts);
     }
   } else if (margin_piece(ta) || margin_piece(tb)) {
     const bool piece_is_a = margin_piece(ta) != nullptr;
@@ -794,7 +796,7 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
       return pr.intersect ? pr.depth : 0;
     }
     const MarginTriangle t = placed_margin_triangle(piece_is_a ? ta : tb, piece.pose);
-    margin_patches(triangles_of(*surface_of(other, part)), body.pose, (piece_is_a ? b : a).position, {&t, 1}, scratch, patches,
+    margin_patches(triangles_of(*surface_of(other, part)), body.pose, {&t, 1}, scratch, patches,
                    hosts);
   } else {
     const std::shared_ptr<const Surface>&sa = surface_of(ta, pa), &sb = surface_of(tb, pb);

@@ -182,7 +182,14 @@ std::uint64_t digest(const dem::ShapeTemplate& t) {
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
         if ((x != 0) + (y != 0) + (z != 0) != 2 && (x | y | z) != 0) o.vec(support(t.shape, Vec3{Real(x), Real(y), Real(z)}));
-  for (const dem::TemplatePart& p : t.parts) o.vec(p.pose.translation), o.real(p.volume), o.real(p.radius);
+  for (const dem::TemplatePart& p : t.parts) {
+    o.vec(p.pose.translation), o.real(p.volume), o.real(p.radius);
+    if (p.surface_grain) o.u8(1), o.u64(p.surface->triangles.size());  // (nothing for a convex part: digests as before)
+  }
+  if (t.shell) {  // its triangles, not only its hull
+    o.u8(2), o.real(t.shell->margin), o.u64(t.shell->triangles.size());
+    for (const TriangleIndices& tri : t.shell->triangles) o.u32(tri[0]), o.u32(tri[1]), o.u32(tri[2]);
+  }
   if (t.wall_face)
     for (const Vec3& v : t.wall_face->v) o.vec(v);
   return fnv1a64(o.bytes());

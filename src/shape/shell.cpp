@@ -27,8 +27,17 @@ Shell make_shell(std::vector<Vec3> vertices, std::vector<TriangleIndices> triang
   std::vector<std::uint32_t> ids(triangles.size());
   for (std::uint32_t t = 0; t < ids.size(); ++t) ids[t] = t;
   build_box_tree(s.triangle_boxes, ids, s.tree);
-  s.vertices = std::move(vertices);
+  // Only the vertices of triangles: a stray one would touch what no triangle does.
+  constexpr std::uint32_t kUnused = ~0u;
+  std::vector<std::uint32_t> index(vertices.size(), kUnused);
+  for (const TriangleIndices& t : triangles)
+    for (const std::uint32_t v : t) index[v] = 0;
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    if (index[v] != kUnused) index[v] = static_cast<std::uint32_t>(s.vertices.size()), s.vertices.push_back(vertices[v]);
+  for (TriangleIndices& t : triangles)
+    for (std::uint32_t& v : t) v = index[v];
   s.triangles = std::move(triangles);
+  s.centroid = mass_properties(s).centroid;
   return s;
 }
 

@@ -258,7 +258,8 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
                          " intersect: the surface crosses itself");
   });
-  s.volume = mass_properties(s).volume;
+  const MassProperties m = mass_properties(s);
+  s.volume = m.volume, s.centroid = m.centroid;
   if (!(s.volume > 0))
     throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
                        "the other way round");
@@ -278,6 +279,7 @@ void move_into(const Surface& surface, const Transform& pose, Surface& s) {
 
 void repose(const Surface& surface, const Transform& pose, Surface& s) {
   for (std::size_t v = 0; v < s.vertices.size(); ++v) s.vertices[v] = apply(pose, surface.vertices[v]);
+  s.centroid = apply(pose, surface.centroid);
   fit_boxes(s);
   refit_box_tree(s.tree, s.triangle_boxes);
   s.box = s.tree.nodes[0].box;

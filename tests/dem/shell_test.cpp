@@ -221,6 +221,41 @@ TEST(Shell, APlateRestsOnAShellAndOnAMeshFloorOnBothMargins) {
   EXPECT_NEAR(height[1], height[0], 1e-9);
 }
 
+// A plate crossing the top face of a fixed surface slab deeper than the
+// margin is pushed out of the slab, wherever the slab's frame has its
+// origin (here 5 cm above it: the side is the solid's centroid's, not the
+// body's position); a plate wholly through a plane stops the run.
+TEST(Shell, ACrossingPlateIsPushedOutOfTheSolidAndThroughAPlaneStops) {
+  for (const Real origin : {0.0, 0.05}) {
+    WorldBuilder builder(hertz());
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+    // The slab x, y in [-5, 5] cm, z in [-2, 0] cm, its vertices given from a frame `origin` above.
+    builder.add_body({.shape = {.surface = std::make_shared<const Surface>(test::surface_of(
+                                    test::box_surface({-0.05, -0.05, -0.02 - origin}, {0.05, 0.05, -origin})))},
+                      .material = rock, .position = {0, 0, origin}, .fixed = true});
+    builder.add_body({.shape = {.shell = plate(0.02, 0.001)}, .material = rock, .position = {0, 0, 0.01}});
+    World w = builder.build();
+    Body& b = w.bodies.back();  // tilted 0.2 rad about x, its middle 0.5 mm below the slab's top: crossing it
+    b.orientation = normalized(Quat{std::cos(0.1), std::sin(0.1), 0, 0} * w.templates[b.shape].principal.rotation);
+    b.position = {0, 0, -0.0005};
+    ASSERT_EQ(compute_forces_now(w).status, StepStatus::Ok) << origin;
+    EXPECT_GT(b.force.z, 1.0) << "origin " << origin;
+  }
+  // A stray vertex no triangle uses is dropped (it would touch the floor alone).
+  const Shell stray = make_shell({{-0.01, -0.01, 0}, {0.01, -0.01, 0}, {0.5, 0.5, -0.5}, {0.01, 0.01, 0}, {-0.01, 0.01, 0}},
+                                 {{0, 1, 3}, {0, 3, 4}}, 0.002);
+  EXPECT_EQ(stray.vertices.size(), 4u);
+  EXPECT_EQ(stray.triangles[1][1], 2u);
+
+  WorldBuilder builder(hertz());
+  const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+  builder.add_plane({0, 0, 0}, {0, 0, 1}, rock, "floor");
+  builder.add_body({.shape = {.shell = plate(0.02, 0.002)}, .material = rock, .position = {0, 0, 0.01}});
+  World w = builder.build();
+  w.bodies.back().position.z = -0.0015;  // every corner more than the margin below the floor
+  EXPECT_EQ(compute_forces_now(w).status, StepStatus::ThroughWall);
+}
+
 TEST(Shell, TheVolumeLawRefusesAShell) {
   WorldSettings volume;
   volume.model = ContactModel::Volume;

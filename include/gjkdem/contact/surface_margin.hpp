@@ -12,7 +12,8 @@
 // A pair at distance d > 0 gives the margin model's exact depth rho - d
 // along its witnesses. A pair that crosses (d = 0: the surface has gone
 // more than rho into the margin) has no witness direction; it pushes along
-// the triangle's normal, to the side of `centre` (the solid's), by rho plus
+// the triangle's normal, to the side of the solid's point `inside` (its
+// centroid; TriangleSet), by rho plus
 // how far the surface triangle's lowest corner lies behind the triangle's
 // plane.
 #include <array>
@@ -71,22 +72,25 @@ struct TriangleSet {
   std::span<const Vec3> vertices;
   std::span<const TriangleIndices> triangles;
   const BoxTree* tree = nullptr;
+  Vec3 inside;  ///< a point of the solid (its centroid): the side crossing pairs push it to
 };
-inline TriangleSet triangles_of(const Surface& s) noexcept { return {s.vertices, s.triangles, &s.tree}; }
+inline TriangleSet triangles_of(const Surface& s) noexcept { return {s.vertices, s.triangles, &s.tree, s.centroid}; }
 
 /// The contacts of `surface` with `triangles`, everything in the surface's
-/// frame; `centre` (the solid's centre of mass) tells crossing pairs which
-/// side the solid lies on. One contact a patch, in the order of the patches'
+/// frame; its point `inside` (or `centre`: the solid's centre of mass)
+/// tells crossing pairs which side the solid lies on. One contact a patch, in the order of the patches'
 /// first pairs (by triangle, then the surface's triangle): the depth and
 /// normal of its deepest pair, its point the depth-weighted mean, midway
 /// across the margin, of its corners within a margin (each corner counted
 /// once, for its nearest triangle), or the deepest pair's where no corner
 /// is. `out` is overwritten.
-void surface_margin_contacts(const TriangleSet& surface, std::span<const MarginTriangle> triangles, const Vec3& centre,
+void surface_margin_contacts(const TriangleSet& surface, std::span<const MarginTriangle> triangles,
                              SurfaceMarginScratch& scratch, std::vector<MarginContact>& out);
 inline void surface_margin_contacts(const Surface& surface, std::span<const MarginTriangle> triangles,
                                     const Vec3& centre, SurfaceMarginScratch& scratch, std::vector<MarginContact>& out) {
-  surface_margin_contacts(triangles_of(surface), triangles, centre, scratch, out);
+  TriangleSet set = triangles_of(surface);
+  set.inside = centre;
+  surface_margin_contacts(set, triangles, scratch, out);
 }
 
 }  // namespace gjkdem

@@ -91,17 +91,18 @@ inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const T
 /// shell_triangles) with the triangles of a mesh wall's pieces (world
 /// coordinates) under the Hertz and linear laws: the seed's margin model
 /// (contact/surface_margin.hpp), one a patch however many pieces it
-/// touches; `centre` is the grain's centre of mass. Each has a depth and a
+/// touches; crossing pairs push to the side of the grain's point inside
+/// (TriangleSet::inside: its solid's centroid). Each has a depth and a
 /// point midway across the margin, no volume or area; normals point from
 /// the wall to the grain. `hosts` gets, per contact, the triangle its
 /// deepest pair touches. A shell's own margin is added to the pieces' (the
 /// caller's: rho of both).
-void margin_patches(const TriangleSet& grain, const Transform& pose, const Vec3& centre,
-                    std::span<const MarginTriangle> triangles, SurfaceScratch& scratch,
+void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<const MarginTriangle> triangles,
+                    SurfaceScratch& scratch,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts);
 
 /// A thin shell's triangles as margin contacts meet them (TriangleSet).
-inline TriangleSet shell_triangles(const Shell& s) noexcept { return {s.vertices, s.triangles, &s.tree}; }
+inline TriangleSet shell_triangles(const Shell& s) noexcept { return {s.vertices, s.triangles, &s.tree, s.centroid}; }
 
 /// A thin shell's triangles placed at `pose`, those whose boxes meet `near`
 /// (world), in world coordinates with the shell's margin.
@@ -113,7 +114,9 @@ void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aab
 /// margin model groups a grain's triangles), each with the depth rho - h of
 /// its lowest corner (h: its height above the plane) at the depth-weighted
 /// mean of the corners, midway across the margin; normals along the wall's.
-void plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& scratch,
+/// Returns false when every corner lies more than the margin beyond the
+/// plane (the shell went through: nothing can push it back).
+bool plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& scratch,
                          std::vector<SurfacePatchContact>& out);
 
 /// Slots for one pair's patches: `anchors` of the patches now; `last` the

@@ -21,6 +21,7 @@ struct Shell {
   BoxTree tree;                      ///< of triangle_boxes, ids the triangles
   Real margin = 0;                   ///< rho: half the thickness
   Real area = 0;                     ///< of the triangles (one side)
+  Vec3 centroid;                     ///< of its plates (mass_properties)
 };
 
 /// A shell that breaks a rule: the message names the triangle or vertex.
@@ -30,7 +31,8 @@ struct ShellError : std::invalid_argument {
 
 /// Checks the shell (finite vertices, at least one triangle, indices in
 /// range, no triangle without area, a finite thickness > 0) and builds its
-/// tree. Throws ShellError.
+/// tree; vertices no triangle uses are dropped (the others keep their
+/// order). Throws ShellError.
 Shell make_shell(std::vector<Vec3> vertices, std::vector<TriangleIndices> triangles, Real thickness);
 
 /// Volume, centroid and inertia (per unit density) of the shell as its

@@ -40,6 +40,7 @@ struct Surface {
   BoxTree tree;  ///< of triangle_boxes, ids the triangles
   Aabb box;
   Real volume = 0;  ///< of the solid (mass_properties)
+  Vec3 centroid;    ///< of the solid, in the surface's frame (moved with it)
 };
 
 /// A surface that breaks a rule: the message names the edge, vertex or
