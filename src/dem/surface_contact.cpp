@@ -137,10 +137,12 @@ bool plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transf
   out.clear();
   const Real rho = shell.margin;
   std::vector<Real>& h = s.shell_heights;
-  h.resize(shell.vertices.size());
+  std::vector<Vec3>& at = s.shell_at;
+  h.resize(shell.vertices.size()), at.resize(shell.vertices.size());
   bool through = true;
   for (std::size_t i = 0; i < h.size(); ++i) {
-    h[i] = dot(apply(pose, shell.vertices[i]) - wall.point, wall.normal);
+    at[i] = apply(pose, shell.vertices[i]);
+    h[i] = dot(at[i] - wall.point, wall.normal);
     through = through && h[i] < -rho;
   }
   if (through) return false;
@@ -154,21 +156,18 @@ bool plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transf
       else patch.join(static_cast<std::uint32_t>(first), v);
     }
   }
-  struct Sum {
-    Real weight = 0, depth = 0;
-    Vec3 point;
-  };
-  std::vector<std::pair<std::uint32_t, Sum>> sums;  // by root, in corner order
+  std::vector<SurfaceScratch::PlanePatch>& sums = s.shell_plane;  // by root, in corner order
+  sums.clear();
   for (std::uint32_t i = 0; i < h.size(); ++i) {
     if (!(h[i] < rho)) continue;
     const std::uint32_t root = patch.find(i);
-    auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& x) { return x.first == root; });
-    if (it == sums.end()) sums.push_back({root, {}}), it = sums.end() - 1;
+    auto it = std::find_if(sums.begin(), sums.end(), [&](const SurfaceScratch::PlanePatch& x) { return x.root == root; });
+    if (it == sums.end()) sums.push_back({root, 0, 0, {}}), it = sums.end() - 1;
     const Real w = rho - h[i];
-    const Vec3 at = apply(pose, shell.vertices[i]) + wall.normal * ((rho - h[i]) / 2 - rho);  // midway across the margin
-    it->second.weight += w, it->second.point += w * at, it->second.depth = std::fmax(it->second.depth, w);
+    const Vec3 point = at[i] + wall.normal * ((rho - h[i]) / 2 - rho);  // midway across the margin
+    it->weight += w, it->point += w * point, it->depth = std::fmax(it->depth, w);
   }
-  for (const auto& [root, sum] : sums) {
+  for (const SurfaceScratch::PlanePatch& sum : sums) {
     ContactGeometry g;
     g.status = GeometryStatus::Touching;
     g.normal = wall.normal;

@@ -24,10 +24,6 @@ bool of_surface(std::span<const Body> bodies, std::span<const ShapeTemplate> tem
   return surface_side(ta, c.part_a) || ta.shell;
 }
 
-// The surface a side of a contact meets by (a compound's: its part's).
-const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::uint32_t part) {
-  return t.parts.empty() ? t.surface : t.parts[part].surface;
-}
 
 // The contacts of a thin shell with another body (a part of it) by the
 // margin model, normals a -> b: the body's surface, or another shell's

@@ -289,7 +289,9 @@ void WorldBuilder::check_compound(const BodyShape& shape, const std::string& lab
   }
   for (const PlacedSurface& p : surfaces) {
     solids.push_back(p.surface);
-    radii.push_back(bounding_radius(Shape{make_polytope(p.surface->vertices)}));
+    Real radius = 0;  // of the sphere about its frame's origin holding its vertices
+    for (const Vec3& v : p.surface->vertices) radius = std::fmax(radius, length(v));
+    radii.push_back(radius);
   }
   const auto pose_of = [&](std::size_t k) { return k < parts.size() ? parts[k].pose : surfaces[k - parts.size()].pose; };
   SurfaceScratch scratch;
@@ -762,9 +764,6 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
                    std::vector<std::uint32_t>& hosts) {
   const ShapeTemplate &ta = templates[a.shape], &tb = templates[b.shape];
   const PartPose at_a = part_pose(ta, a, pa), at_b = part_pose(tb, b, pb);
-  const auto surface_of = [](const ShapeTemplate& t, std::uint32_t part) -> const std::shared_ptr<const Surface>& {
-    return t.parts.empty() ? t.surface : t.parts[part].surface;
-  };
   patches.clear();
   if (ta.shell || tb.shell) {  // the margin model, against another body's surface
     const bool shell_is_a = ta.shell != nullptr;

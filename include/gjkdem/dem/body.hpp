@@ -120,6 +120,13 @@ inline bool surface_side(const ShapeTemplate& t, std::uint32_t part) noexcept {
   return t.parts.empty() ? t.surface_grain : t.parts[part].surface_grain;
 }
 
+/// The closed surface a body of template `t` meets others by at `part` (a
+/// compound's: its part's); null where it has none (no volume, a shell, a
+/// mesh wall's piece, a world without surfaces).
+inline const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, std::uint32_t part) noexcept {
+  return t.parts.empty() ? t.surface : t.parts[part].surface;
+}
+
 /// Whether template `t` is a thin shell or any part of it a surface
 /// (surface_side): worlds with one give every other shape a surface to be
 /// met by.

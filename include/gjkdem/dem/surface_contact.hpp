@@ -49,6 +49,13 @@ struct SurfaceScratch {
   std::vector<std::uint32_t> shell_near;  ///< a shell's triangles near the other body
   UnionFind shell_corners;                ///< a shell's corners against a plane
   std::vector<Real> shell_heights;
+  std::vector<Vec3> shell_at;  ///< a shell's corners, world
+  struct PlanePatch {
+    std::uint32_t root;
+    Real weight, depth;
+    Vec3 point;  ///< weighted sum
+  };
+  std::vector<PlanePatch> shell_plane;  ///< a shell's patches against a plane
 };
 
 
