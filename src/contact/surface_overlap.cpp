@@ -128,7 +128,9 @@ struct SurfaceOverlapWorkspace::Scratch {
   UnionFind joined;
   std::vector<std::uint32_t> near, order, loop_members, loop_begin, loop_segment;
   std::vector<Real> loop_area;
-  std::vector<std::uint8_t> seen;
+  std::vector<std::uint8_t> seen, cut;
+  std::vector<std::uint32_t> whole;       // per triangle: its number when wholly inside, else kNoNode
+  std::vector<std::uint32_t> whole_list;  // the whole triangles inside, by number
   std::vector<Sums> pieces;
 };
 
@@ -222,6 +224,31 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
       crossing_ends.push_back({key(c.triangle, t), {base_cb + k, !exits}});
     }
 
+  // Triangles that need a cycle ("cut"): an edge of theirs crosses the other
+  // surface, an edge of the other's crosses them, or they touch the other's
+  // plane exactly. Any other triangle lies wholly inside or wholly outside
+  // (its corners' status says which) and counts whole, with no segments: in
+  // a deep overlap most triangles are whole.
+  std::vector<std::uint8_t>& cut = w.cut;
+  cut.assign(triangles_a + b.triangles.size(), 0);
+  for (const Crossing& c : va.crossings) cut[a.edge_triangles[c.edge][0]] = cut[a.edge_triangles[c.edge][1]] = cut[triangles_a + c.triangle] = 1;
+  for (const Crossing& c : vb.crossings)
+    cut[triangles_a + b.edge_triangles[c.edge][0]] = cut[triangles_a + b.edge_triangles[c.edge][1]] = cut[c.triangle] = 1;
+  for (const std::uint32_t e : va.in_plane) cut[a.edge_triangles[e][0]] = cut[a.edge_triangles[e][1]] = 1;
+  for (const std::uint32_t e : vb.in_plane) cut[triangles_a + b.edge_triangles[e][0]] = cut[triangles_a + b.edge_triangles[e][1]] = 1;
+  for (const auto& [s, t] : coplanar) cut[s] = cut[triangles_a + t] = 1;
+  // Whole triangles inside the other solid, numbered.
+  constexpr std::uint32_t kNoNode = ~std::uint32_t{0};
+  std::vector<std::uint32_t>& whole = w.whole;
+  std::vector<std::uint32_t>& whole_list = w.whole_list;  // by number
+  whole.assign(cut.size(), kNoNode);
+  whole_list.clear();
+  for (const std::uint32_t t : va.near)
+    if (!cut[t] && va.inside[a.triangles[t][0]]) whole[t] = static_cast<std::uint32_t>(whole_list.size()), whole_list.push_back(t);
+  for (const std::uint32_t t : vb.near)
+    if (!cut[triangles_a + t] && vb.inside[b.triangles[t][0]])
+      whole[triangles_a + t] = static_cast<std::uint32_t>(whole_list.size()), whole_list.push_back(triangles_a + t);
+
   std::vector<CycleSegment>& segments = w.segments;
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& links = w.links;  // one boundary segment of two faces
   UnionFind& joined = w.joined;
@@ -246,29 +273,47 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
   // An edge's pieces inside the other solid bound both its triangles' faces.
   // Where the edge lies along an edge of the other surface and the two
   // solids' wedges there pinch (two pieces touching along the line), its
-  // pieces do not join its faces.
-  std::vector<std::uint32_t>& near = w.near;
+  // pieces do not join its faces. A whole triangle takes no segment: the
+  // edge (then wholly inside) joins it to its neighbour's face. Links to a
+  // whole triangle's node are tagged (kWholeTag | its number) until the
+  // nodes exist.
+  constexpr std::uint32_t kWholeTag = std::uint32_t{1} << 31;
+  std::vector<std::uint32_t>& pinch_near = w.near;  // pinched's scratch
   const auto edge_pieces = [&](const View& v, const Surface& solid, std::uint32_t base_v, std::uint32_t base_c,
                                std::uint32_t base_t) {
     const Surface& s = *v.s;
-    for (std::uint32_t e = 0; e < s.edges.size(); ++e) {
-      const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
-      bool in = v.inside[s.edges[e][0]];
-      std::uint32_t from = base_v + s.edges[e][0];
-      int join = -1;  // decided at the first piece
-      const auto piece = [&](std::uint32_t to) {
-        const std::uint32_t g = add(forward, from, to), h = add(backward, to, from);
-        if (join < 0)
-          join = !std::binary_search(v.in_plane.begin(), v.in_plane.end(), e) || !pinched(s, e, solid, near);
-        if (join) links.emplace_back(g, h);
-      };
-      for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
-        if (in) piece(base_c + c);
-        in = !in;
-        from = base_c + c;
+    // An edge inside or crossed has both its triangles near: each such edge
+    // is met once, from the triangle that runs it forward.
+    for (const std::uint32_t near_triangle : v.near)
+      for (const std::uint32_t e : s.triangle_edges[near_triangle]) {
+        if (s.edge_triangles[e][0] != near_triangle) continue;
+        const std::uint32_t forward = base_t + s.edge_triangles[e][0], backward = base_t + s.edge_triangles[e][1];
+        bool in = v.inside[s.edges[e][0]];
+        if (!cut[forward] || !cut[backward]) {  // no crossings along e: wholly inside or outside
+          if (in != static_cast<bool>(v.inside[s.edges[e][1]]))
+            throw std::logic_error("surface_overlap: an edge without crossings has ends inside and outside");
+          if (!in) continue;
+          const std::uint32_t from = base_v + s.edges[e][0], to = base_v + s.edges[e][1];
+          const std::uint32_t g = cut[forward] ? add(forward, from, to) : kWholeTag | whole[forward];
+          const std::uint32_t h = cut[backward] ? add(backward, to, from) : kWholeTag | whole[backward];
+          links.emplace_back(g, h);
+          continue;
+        }
+        std::uint32_t from = base_v + s.edges[e][0];
+        int join = -1;  // decided at the first piece
+        const auto piece = [&](std::uint32_t to) {
+          const std::uint32_t g = add(forward, from, to), h = add(backward, to, from);
+          if (join < 0)
+            join = !std::binary_search(v.in_plane.begin(), v.in_plane.end(), e) || !pinched(s, e, solid, pinch_near);
+          if (join) links.emplace_back(g, h);
+        };
+        for (std::uint32_t c = v.edge_crossings[e][0]; c < v.edge_crossings[e][1]; ++c) {
+          if (in) piece(base_c + c);
+          in = !in;
+          from = base_c + c;
+        }
+        if (in) piece(base_v + s.edges[e][1]);
       }
-      if (in) piece(base_v + s.edges[e][1]);
-    }
   };
   edge_pieces(va, b, 0, base_ca, 0);
   edge_pieces(vb, a, base_b, base_cb, triangles_a);
@@ -343,29 +388,40 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     }
     begin = end;
   }
-  // A segment of no length (its ends the same point) joins nothing: faces
-  // that meet at a point only are not one piece.
+  // Whole triangles' nodes follow the segments'. A segment of no length (its
+  // ends the same point) joins nothing: faces that meet at a point only are
+  // not one piece.
+  const std::uint32_t base_whole = static_cast<std::uint32_t>(segments.size());
+  for (std::size_t k = 0; k < whole_list.size(); ++k) joined.add();
+  const auto node = [&](std::uint32_t x) { return x & kWholeTag ? base_whole + (x & ~kWholeTag) : x; };
   for (const auto& [g, h] : links)
-    if (!(segments[g].p == segments[g].q)) joined.join(g, h);
+    if ((g & kWholeTag) || !(segments[g].p == segments[g].q)) joined.join(node(g), node(h));
 
-  // Sums per piece, with the triangle's first corner as the fans' apex.
-  std::vector<Sums>& pieces = w.pieces;  // by the piece's root segment
-  pieces.assign(segments.size(), Sums{});
-  for (const CycleSegment& g : segments) {
-    const std::uint32_t t = g.triangle;
+  // Sums per piece, with the triangle's first corner as the fans' apex (a
+  // whole triangle: one fan, over its far side).
+  std::vector<Sums>& pieces = w.pieces;  // by the piece's root node
+  pieces.assign(joined.parent.size(), Sums{});
+  const auto add_fan = [&](std::uint32_t t, std::uint32_t at, const Vec3& p, const Vec3& q) {
     const Surface& s = t < triangles_a ? a : b;
     const Vec3 apex = s.vertices[s.triangles[t < triangles_a ? t : t - triangles_a][0]] - origin;
-    Sums& sum = pieces[joined.find(static_cast<std::uint32_t>(&g - segments.data()))];
-    const Real v6 = dot(apex, cross(g.p, g.q));
+    Sums& sum = pieces[joined.find(at)];
+    const Real v6 = dot(apex, cross(p, q));
     sum.volume6 += v6;
-    sum.moment24 += v6 * (apex + g.p + g.q);
-    const Vec3 fan = 0.5 * cross(g.p - apex, g.q - apex);
+    sum.moment24 += v6 * (apex + p + q);
+    const Vec3 fan = 0.5 * cross(p - apex, q - apex);
     if (t < triangles_a) {
       sum.area_a += fan;
-      sum.area_moment_a += cross((apex + g.p + g.q) / 3, fan);
+      sum.area_moment_a += cross((apex + p + q) / 3, fan);
     } else {
       sum.area_b += fan;
     }
+  };
+  for (std::uint32_t k = 0; k < segments.size(); ++k) add_fan(segments[k].triangle, k, segments[k].p, segments[k].q);
+  for (std::uint32_t k = 0; k < whole_list.size(); ++k) {
+    const std::uint32_t t = whole_list[k];
+    const Surface& s = t < triangles_a ? a : b;
+    const TriangleIndices& corners = s.triangles[t < triangles_a ? t : t - triangles_a];
+    add_fan(t, base_whole + k, s.vertices[corners[1]] - origin, s.vertices[corners[2]] - origin);
   }
 
   // Coplanar faces: the perturbation put one or both of them inside the

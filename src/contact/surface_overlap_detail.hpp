@@ -4,6 +4,7 @@
 // in the perturbation (shape/predicates.hpp), and the status of its
 // vertices (surface_status.cpp); edges where the two solids pinch
 // (surface_pinch.cpp). Private to src/contact.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,15 +22,21 @@ struct Crossing {
 };
 
 // One surface seen against the other solid: its side in the perturbation,
-// the crossings of its edges, the status of its vertices.
+// the crossings of its edges, the status of its vertices. Only the
+// triangles whose boxes meet the solid's box ("near") can be cut or lie
+// inside: the passes over the surface visit those alone, so that a shallow
+// overlap of big surfaces costs what the overlap does.
 struct View {
   const Surface* s = nullptr;
   Side side = Side::A;
-  std::vector<Crossing> crossings;           // sorted by edge, then t
-  std::vector<std::uint32_t> first_crossing;  // per edge, into crossings (size edges + 1)
-  std::vector<std::int8_t> inside;           // per vertex: 1 inside the other solid, 0 outside
-  std::vector<std::uint32_t> in_plane;       // edges lying in the plane of a triangle of the other surface
-  std::vector<std::uint32_t> queue, hits;    // find_status's
+  std::vector<Crossing> crossings;  // sorted by edge, then t
+  // Per edge, its crossings: crossings[edge_crossings[e][0] .. edge_crossings[e][1]).
+  std::vector<std::array<std::uint32_t, 2>> edge_crossings;
+  std::vector<std::int8_t> inside;             // per vertex: 1 inside the other solid, 0 outside
+  std::vector<std::uint32_t> in_plane;         // edges lying in the plane of a triangle of the other surface
+  std::vector<std::uint32_t> near;             // triangles whose boxes meet the solid's box
+  std::vector<std::uint32_t> near_vertices;    // their corners within the solid's box
+  std::vector<std::uint32_t> queue, hits;      // find_status's
 
   void reset(const Surface& surface, Side which) {
     s = &surface;
@@ -37,6 +44,7 @@ struct View {
     crossings.clear();
     in_plane.clear();
   }
+  std::uint32_t crossings_along(std::uint32_t e) const { return edge_crossings[e][1] - edge_crossings[e][0]; }
 };
 
 inline Side other(Side s) { return s == Side::A ? Side::B : Side::A; }
@@ -55,10 +63,11 @@ inline bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, 
          passes_through(p, q, a, b, c, pq_side);
 }
 
-// The crossings sorted along each edge, and where each edge's begin.
+// The crossings sorted along each edge, and each edge's.
 void index_crossings(View& v);
 
-// Every vertex's status, inside or outside `solid`.
+// The near triangles and every vertex's status, inside or outside `solid`
+// (the vertices beyond the solid's box outside, without a look).
 void find_status(View& v, const Surface& solid);
 
 // Crossings at one point along an edge put in the order the statuses imply.

@@ -27,37 +27,48 @@ bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
 
 }  // namespace
 
-// The crossings sorted along each edge, and where each edge's begin.
+// The crossings sorted along each edge, and each edge's (the edges without
+// any: an empty span, written by the fill alone).
 void index_crossings(View& v) {
   std::sort(v.crossings.begin(), v.crossings.end(),
             [](const Crossing& x, const Crossing& y) { return x.edge < y.edge || (x.edge == y.edge && x.t < y.t); });
-  v.first_crossing.assign(v.s->edges.size() + 1, 0);
-  for (const Crossing& c : v.crossings) ++v.first_crossing[c.edge + 1];
-  for (std::size_t e = 0; e < v.s->edges.size(); ++e) v.first_crossing[e + 1] += v.first_crossing[e];
+  v.edge_crossings.assign(v.s->edges.size(), {0, 0});
+  for (std::uint32_t c = 0; c < v.crossings.size();) {
+    const std::uint32_t e = v.crossings[c].edge, begin = c;
+    while (c < v.crossings.size() && v.crossings[c].edge == e) ++c;
+    v.edge_crossings[e] = {begin, c};
+  }
 }
 
-// Every vertex's status: outside where it lies beyond the solid's box,
-// carried along the edges (a crossing flips it) from there into the box, a
-// ray where nothing reaches. The walk starts at the box's edge, so its cost
-// follows the vertices inside the box, not the whole surface.
+// Every vertex's status: outside where it lies beyond the solid's box (the
+// corners of triangles far from it are, without a look), carried along the
+// edges (a crossing flips it) from there into the box, a ray where nothing
+// reaches. The walk starts at the box's edge, so its cost follows the
+// vertices inside the box, not the whole surface.
 void find_status(View& v, const Surface& solid) {
   const Surface& s = *v.s;
-  v.inside.assign(s.vertices.size(), -1);
+  v.near.clear();
+  query_box_tree(s.tree, solid.box, v.near);
+  v.inside.assign(s.vertices.size(), 0);
+  v.near_vertices.clear();
+  for (const std::uint32_t t : v.near)
+    for (const std::uint32_t i : s.triangles[t]) {
+      const Vec3& p = s.vertices[i];
+      if (v.inside[i] == 0 && p.x >= solid.box.lo.x && p.y >= solid.box.lo.y && p.z >= solid.box.lo.z &&
+          p.x <= solid.box.hi.x && p.y <= solid.box.hi.y && p.z <= solid.box.hi.z) {
+        v.inside[i] = -1;  // not known yet
+        v.near_vertices.push_back(i);
+      }
+    }
   std::vector<std::uint32_t>& queue = v.queue;
   queue.clear();
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {
-    const Vec3& p = s.vertices[i];
-    if (p.x < solid.box.lo.x || p.y < solid.box.lo.y || p.z < solid.box.lo.z || p.x > solid.box.hi.x ||
-        p.y > solid.box.hi.y || p.z > solid.box.hi.z)
-      v.inside[i] = 0;
-  }
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i) {  // the box's edge: where the walk starts
+  for (const std::uint32_t i : v.near_vertices) {  // the box's edge: where the walk starts
     if (v.inside[i] >= 0) continue;
     for (std::uint32_t k = s.vertex_edge_begin[i]; k < s.vertex_edge_begin[i + 1]; ++k) {
       const std::uint32_t e = s.vertex_edges[k];
       const std::uint32_t j = s.edges[e][0] == i ? s.edges[e][1] : s.edges[e][0];
       if (v.inside[j] < 0) continue;
-      v.inside[i] = static_cast<std::int8_t>(v.inside[j] ^ ((v.first_crossing[e + 1] - v.first_crossing[e]) & 1));
+      v.inside[i] = static_cast<std::int8_t>(v.inside[j] ^ (v.crossings_along(e) & 1));
       queue.push_back(i);
       break;
     }
@@ -70,14 +81,13 @@ void find_status(View& v, const Surface& solid) {
         const std::uint32_t e = s.vertex_edges[k];
         const std::uint32_t j = s.edges[e][0] == i ? s.edges[e][1] : s.edges[e][0];
         if (v.inside[j] >= 0) continue;
-        const std::uint32_t flips = v.first_crossing[e + 1] - v.first_crossing[e];
-        v.inside[j] = static_cast<std::int8_t>(v.inside[i] ^ (flips & 1));
+        v.inside[j] = static_cast<std::int8_t>(v.inside[i] ^ (v.crossings_along(e) & 1));
         queue.push_back(j);
       }
     }
   };
   spread();
-  for (std::uint32_t i = 0; i < s.vertices.size(); ++i)
+  for (const std::uint32_t i : v.near_vertices)
     if (v.inside[i] < 0) {
       v.inside[i] = inside_by_ray(v, i, solid);
       queue.push_back(i);
@@ -90,19 +100,21 @@ void find_status(View& v, const Surface& solid) {
 // positions: put each run of them in the order the exact statuses imply,
 // an entry where the edge is outside, an exit where it is inside.
 void order_crossings(View& v) {
-  for (std::size_t e = 0; e < v.s->edges.size(); ++e) {
+  for (std::uint32_t first = 0; first < v.crossings.size();) {
+    const std::uint32_t e = v.crossings[first].edge, end = v.edge_crossings[e][1];
     bool in = v.inside[v.s->edges[e][0]];
-    for (std::uint32_t c = v.first_crossing[e]; c < v.first_crossing[e + 1]; ++c) {
+    for (std::uint32_t c = first; c < end; ++c) {
       if (v.crossings[c].exits != in) {
         std::uint32_t d = c + 1;  // the next crossing that fits
-        while (d < v.first_crossing[e + 1] && v.crossings[d].exits != in) ++d;
-        if (d == v.first_crossing[e + 1]) throw std::logic_error("surface_overlap: crossings out of step along an edge");
+        while (d < end && v.crossings[d].exits != in) ++d;
+        if (d == end) throw std::logic_error("surface_overlap: crossings out of step along an edge");
         std::swap(v.crossings[c], v.crossings[d]);
       }
       in = !in;
     }
     if (in != static_cast<bool>(v.inside[v.s->edges[e][1]]))
       throw std::logic_error("surface_overlap: an edge's crossings disagree with its ends");
+    first = end;
   }
 }
 
