@@ -233,6 +233,8 @@ std::size_t WorldBuilder::moving_count() const noexcept {
 }
 
 std::uint32_t WorldBuilder::add_template(const BodyShape& shape, bool fixed, const std::string& label) {
+  if (int(shape.shell != nullptr) + int(shape.surface != nullptr) + int(is_compound(shape)) > 1)
+    throw BuildError(label + ": a shape is one of a thin shell, a surface and a compound's parts; it gives more than one");
   ShapeTemplate t;
   try {
     if (shape.shell) {

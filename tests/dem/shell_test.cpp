@@ -256,6 +256,21 @@ TEST(Shell, ACrossingPlateIsPushedOutOfTheSolidAndThroughAPlaneStops) {
   EXPECT_EQ(compute_forces_now(w).status, StepStatus::ThroughWall);
 }
 
+TEST(Shell, AShellGivenPartsTooIsRefused) {
+  WorldBuilder builder{WorldSettings{}};
+  const std::uint32_t m = builder.add_material({"rock", 2500, 1e7, 0.25, 0.3, 0.5});
+  try {
+    builder.add_body({.shape = {.parts = {{Shape{Box{{0.01, 0.01, 0.01}}}, Transform{}}}, .shell = plate(0.1, 0.002)},
+                      .material = m,
+                      .label = "scoop"});
+    ADD_FAILURE() << "accepted";
+  } catch (const BuildError& e) {
+    EXPECT_NE(std::string(e.what()).find("scoop: a shape is one of a thin shell, a surface and a compound's parts"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Shell, TheVolumeLawRefusesAShell) {
   WorldSettings volume;
   volume.model = ContactModel::Volume;

@@ -7,7 +7,8 @@
 //   makes: the same mass properties, the same push on a plane (three
 //   contacts, one per foot and one for the box), and it stands on them.
 // - Parts that overlap are refused, naming them; a part in the hollow of a
-//   surface is not an overlap; a surface part is one shell.
+//   surface is not an overlap; a surface part is one shell; a surface grain
+//   given parts too is refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -237,6 +238,9 @@ TEST(SurfaceCompound, OverlappingPartsAreRefusedNamingThem) {
   test::append(two, test::box_surface({0.06, 0, 0}, {0.07, 0.01, 0.01}));
   refused({.surface_parts = {{u, {}}, {shared(two), {}}}},
           "grain: cannot be a moving body: surface part 1 of a compound is one closed shell; this surface has 2");
+  // A surface grain given surface parts too: neither wins silently.
+  refused({.surface_parts = {{u, {}}}, .surface = u}, "grain: a shape is one of a thin shell, a surface and a compound's parts");
+  refused({.parts = {kHollowBox}, .surface = u}, "grain: a shape is one of");
 }
 
 }  // namespace

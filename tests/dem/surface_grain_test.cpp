@@ -378,7 +378,9 @@ TEST(SurfaceGrain, ACornerOnAMeshFloorPushesAsOnAPlaneAtItsMargin) {
       // (The plane pushes at its cut face's middle, so only the force compares.)
       const Vec3 corner = apply(shape_pose(t, b), hull.data->vertices[low]);
       for (const StepContact& c : w.work.contacts) {
-        if (c.active) EXPECT_LT(length(c.geometry.point - Vec3{corner.x, corner.y, (corner.z + rho) / 2}), 1e-12);
+        if (c.active) {
+          EXPECT_LT(length(c.geometry.point - Vec3{corner.x, corner.y, (corner.z + rho) / 2}), 1e-12);
+        }
       }
     }
     EXPECT_LT(length(force[1] - force[0]), 1e-9 * length(force[0])) << trial;

@@ -89,12 +89,12 @@ struct BodyShape {
   /// each met by its patches as a surface grain is.
   std::vector<PlacedSurface> surface_parts{};
   /// Non-null: a thin shell (shape/shell.hpp: make_shell checked it), in the
-  /// shape's frame, under the Hertz and linear laws; `shape`, `parts` and
-  /// `surface` are then ignored.
+  /// shape's frame, under the Hertz and linear laws; `shape` is then
+  /// ignored. A shell, a surface and a compound's parts exclude each other
+  /// (a shape giving two is refused).
   std::shared_ptr<const Shell> shell{};
   /// Non-null: a surface grain of this closed surface (shape/surface.hpp:
-  /// make_surface checked it), in the shape's frame; `shape` and `parts` are
-  /// then ignored.
+  /// make_surface checked it), in the shape's frame; `shape` is then ignored.
   std::shared_ptr<const Surface> surface{};
 };
 
