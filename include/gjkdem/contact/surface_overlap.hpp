@@ -13,7 +13,8 @@
 // centroid and the vector areas S_A and S_B (the seed's area-weighted
 // normal, query-format-mesh.md). Only triangle pairs whose boxes meet are
 // looked at, besides a walk over the vertices near the overlap that carries
-// the inside/outside status along the edges.
+// the inside/outside status along the edges; a triangle that nothing
+// crosses counts whole (one fan) when inside, with no cycle.
 #include <memory>
 #include <vector>
 
