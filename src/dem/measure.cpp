@@ -84,6 +84,18 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   Real volume = 0;
   for (std::uint32_t k = 0; k < parts; ++k) {
     const PartPose part = part_pose(t, b, k);
+    if (surface_side(t, k)) {  // its own surface, not its hull: A ∩ region exactly
+      const bool same = work.surface_region && work.surface_region->lo == region.lo &&
+                        work.surface_region->hi == region.hi && work.surface_region->round == region.round;
+      if (!same) {
+        const Surface local = region.round ? polytope_surface(std::get<Polytope>(clip.core)) : box_surface(Box{half});
+        work.region_surface = moved(local, clip_pose);
+        work.surface_region = region;
+      }
+      move_into(*surface_of(t, k), part.pose, work.placed);
+      volume += surface_overlap(work.region_surface, work.placed, work.surface_overlap).volume;
+      continue;
+    }
     const Real part_volume = t.parts.empty() ? t.unit_mass.volume : t.parts[k].volume;
     // The part as clipped: its shape, or a tessellation when it is curved
     // (clipping has no closed form for it), and that solid's own volume.

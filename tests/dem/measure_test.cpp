@@ -16,6 +16,7 @@
 #include <random>
 
 #include "dem/beds.hpp"
+#include "shape/surface_shapes.hpp"
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
@@ -54,6 +55,54 @@ TEST(Measure, CubesOnALatticeFillExactlyTheirShare) {
   EXPECT_EQ(cut.grains, 32u) << "the grains whose centres are inside, faces included";
   // One cube cut at 0.1 from its centre on x, and at its centre on y.
   EXPECT_NEAR(measure(w, {}, {{0.6, 0.5, 0.2}, {1.0, 1.0, 0.8}}, work).solid_volume, 0.2 * 0.3 * 0.6, 1e-12);
+}
+
+// A U-shaped surface grain (u_prism, in cm) is clipped as its own surface: a
+// region over its left arm and its hollow holds the arm alone (its hull
+// would hold 1.25 arms), and in any pose and region it holds what the U
+// made of its three boxes holds (a compound of convex parts, clipped
+// exactly), the workspace kept from region to region.
+TEST(Measure, ASurfaceGrainIsClippedAsItsOwnSurface) {
+  gjkdem::test::Mesh u = gjkdem::test::u_prism(1);
+  for (Vec3& v : u.vertices) v = v * 0.01;
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder builder(settings);
+  const std::uint32_t m = builder.add_material(rock());
+  builder.accept_initial_overlaps();
+  builder.add_body({.shape = {.surface = std::make_shared<const Surface>(gjkdem::test::surface_of(u))}, .material = m});
+  const auto box = [](const Vec3& lo, const Vec3& hi) {  // cm
+    return PlacedShape{Shape{Box{(hi - lo) * 0.005}}, Transform::from((lo + hi) * 0.005, Quat{})};
+  };
+  builder.add_body({.shape = {.parts = {box({0, 0, 0}, {3, 1, 1}), box({0, 1, 0}, {1, 2, 1}), box({2, 1, 0}, {3, 2, 1})}},
+                    .material = m,
+                    .position = {0.1, 0, 0}});
+  World w = builder.build();
+  const auto place = [&](Body& body, const Quat& turn, const Vec3& at) {  // its shape frame at `at`, turned
+    const ShapeTemplate& t = w.templates[body.shape];
+    body.orientation = normalized(turn * t.principal.rotation);
+    body.position = at + rotate(turn, t.unit_mass.centroid);
+  };
+  MeasureWorkspace work;
+  for (Body& body : w.bodies) place(body, Quat{}, {0, 0, 0});
+  const MeasureRegion arm_and_hollow{{-0.01, 0.01, -0.01}, {0.015, 0.03, 0.02}};
+  EXPECT_NEAR(volume_inside(w, w.bodies[0], arm_and_hollow, work), 1e-6, 1e-18);
+  EXPECT_NEAR(volume_inside(w, w.bodies[1], arm_and_hollow, work), 1e-6, 1e-18);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<Real> unit(-1, 1);
+  int cut = 0;  // regions holding part of the U
+  for (int trial = 0; trial < 20; ++trial) {
+    const Quat turn = normalized(Quat{unit(rng), unit(rng), unit(rng), unit(rng)});
+    const Vec3 at{0.01 * unit(rng), 0.01 * unit(rng), 0.01 * unit(rng)};
+    for (Body& body : w.bodies) place(body, turn, at);
+    const Vec3 centre = w.bodies[0].position + 0.01 * Vec3{unit(rng), unit(rng), unit(rng)};
+    const Vec3 half = 0.01 * Vec3{1.2 + unit(rng), 1.2 + unit(rng), 1.2 + unit(rng)};
+    const MeasureRegion region{centre - half, centre + half};
+    const Real surface = volume_inside(w, w.bodies[0], region, work), boxes = volume_inside(w, w.bodies[1], region, work);
+    EXPECT_NEAR(surface, boxes, 1e-12 * 5e-6) << trial;
+    cut += boxes > 0 && boxes < 5e-6 * (1 - 1e-9);
+  }
+  EXPECT_GE(cut, 10);
 }
 
 TEST(Measure, SpheresCutByTheRegionKeepTheirPartInside) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gjkdem/contact/overlap.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
 #include "gjkdem/dem/round_region.hpp"
 #include "gjkdem/dem/world.hpp"
 
@@ -63,6 +64,11 @@ struct MeasureWorkspace {
   /// A round region's tessellation (kMeasureTessellation directions), the one it was made for.
   std::optional<RoundRegion> tessellated_region;
   Shape region_solid;
+  /// The region as a closed surface in the world frame, which clips surface
+  /// grains exactly, and the region it was made for; a surface placed.
+  std::optional<MeasureRegion> surface_region;
+  Surface region_surface, placed;
+  SurfaceOverlapWorkspace surface_overlap;
 };
 
 /// Directions of the tessellation of curved grains clipped by the region.
@@ -81,7 +87,9 @@ std::optional<MeasureRegion> moving_bodies_box(const World& world);
 /// directions), and so is a round region's curved side. The
 /// clipped volume is scaled by the body's volume over the clipped solid's, so
 /// that a body wholly inside counts whole (the volume law's contact shapes
-/// are inscribed tessellations of the bodies' shapes).
+/// are inscribed tessellations of the bodies' shapes). A surface grain (or a
+/// compound's surface part) is clipped as its own surface, convex or not
+/// (surface_overlap), exactly; a thin shell's volume is spread over its hull.
 Real volume_inside(const World& world, const Body& body, const MeasureRegion& region, MeasureWorkspace& work);
 
 /// Throws std::invalid_argument for a region that is empty or not finite.
