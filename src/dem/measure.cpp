@@ -1,7 +1,10 @@
 #include "gjkdem/dem/measure.hpp"
 
 #include <cmath>
+#include <span>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/shape/tessellate.hpp"
@@ -35,6 +38,48 @@ Real depth_in(const MeasureRegion& r, const Vec3& p) noexcept {
 bool clipped_exactly(const Shape& s) noexcept {
   return s.margin == 0 && (std::holds_alternative<Polytope>(s.core) || std::holds_alternative<Box>(s.core) ||
                            std::holds_alternative<Triangle>(s.core));
+}
+
+// The region's bounding planes in the world frame, n . x <= d inside: a
+// box's six, or the faces of a round region's tessellation (`clip`, placed
+// by `pose`).
+void region_planes(const MeasureRegion& region, const Shape& clip, const Transform& pose,
+                   std::vector<std::pair<Vec3, Real>>& planes) {
+  planes.clear();
+  if (!region.round) {
+    for (int axis = 0; axis < 3; ++axis) {
+      Vec3 n;
+      n[axis] = 1;
+      planes.push_back({n, region.hi[axis]});
+      planes.push_back({-n, -region.lo[axis]});
+    }
+    return;
+  }
+  const PolytopeData& d = *std::get<Polytope>(clip.core).data;
+  for (std::size_t f = 0; f + 1 < d.facet_begin.size(); ++f) {
+    const Vec3 n = apply_rotation(pose, d.facet_normals[f]);
+    planes.push_back({n, dot(n, apply(pose, d.vertices[d.facet_vertices[d.facet_begin[f]]]))});
+  }
+}
+
+// The area of triangle abc inside the planes (Sutherland-Hodgman).
+Real area_inside(const Vec3& a, const Vec3& b, const Vec3& c, std::span<const std::pair<Vec3, Real>> planes,
+                 std::vector<Vec3>& poly, std::vector<Vec3>& next) {
+  poly.assign({a, b, c});
+  for (const auto& [n, d] : planes) {
+    next.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+      const Real dp = dot(n, p) - d, dq = dot(n, q) - d;
+      if (dp <= 0) next.push_back(p);
+      if ((dp <= 0) != (dq <= 0)) next.push_back(p + (dp / (dp - dq)) * (q - p));
+    }
+    poly.swap(next);
+    if (poly.empty()) return 0;
+  }
+  Vec3 twice;
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) twice += cross(poly[i] - poly[0], poly[i + 1] - poly[0]);
+  return 0.5 * length(twice);
 }
 
 void add_outer(Mat3& m, const Vec3& a, const Vec3& b) noexcept {
@@ -79,6 +124,16 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
     }
     clip = work.region_solid;
     clip_pose = round_pose(g);
+  }
+  if (t.shell) {  // its plates: each triangle's area inside, times the thickness
+    region_planes(region, clip, clip_pose, work.planes);
+    const Transform pose = shape_pose(t, b);
+    const Shell& s = *t.shell;
+    Real area = 0;
+    for (const TriangleIndices& tri : s.triangles)
+      area += area_inside(apply(pose, s.vertices[tri[0]]), apply(pose, s.vertices[tri[1]]), apply(pose, s.vertices[tri[2]]),
+                          work.planes, work.polygon, work.clipped_polygon);
+    return area * 2 * s.margin;
   }
   const std::uint32_t parts = t.parts.empty() ? 1 : static_cast<std::uint32_t>(t.parts.size());
   Real volume = 0;

@@ -105,6 +105,36 @@ TEST(Measure, ASurfaceGrainIsClippedAsItsOwnSurface) {
   EXPECT_GE(cut, 10);
 }
 
+// A thin shell counts as its plates: a square plate 10 cm wide, 2 mm thick,
+// tilted, with 0.3 of its width inside a box region holds 0.3 of its volume,
+// and flat across a cylinder of radius 3 cm the disc's area times its
+// thickness (the cylinder's tessellation inscribed: 2e-3).
+TEST(Measure, AShellCountsTheAreaOfItsPlatesInsideTimesItsThickness) {
+  WorldSettings settings;
+  settings.model = ContactModel::Hertz;
+  WorldBuilder builder(settings);
+  const std::uint32_t m = builder.add_material(rock());
+  const Real h = 0.05, thickness = 0.002;
+  builder.add_body({.shape = {.shell = std::make_shared<const Shell>(make_shell(
+                                  {{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}}, thickness))},
+                    .material = m});
+  World w = builder.build();
+  Body& plate = w.bodies[0];
+  const ShapeTemplate& t = w.templates[plate.shape];
+  const Real full = 2 * h * 2 * h * thickness;
+  EXPECT_NEAR(t.unit_mass.volume, full, 1e-18);
+  MeasureWorkspace work;
+  plate.orientation = normalized(quat_from_axis_angle({1, 0, 0}, 0.5) * t.principal.rotation);
+  plate.position = rotate(quat_from_axis_angle({1, 0, 0}, 0.5), t.unit_mass.centroid);
+  EXPECT_NEAR(volume_inside(w, plate, {{0.02, -1, -1}, {1, 1, 1}}, work), 0.3 * full, 1e-15);
+  EXPECT_EQ(volume_inside(w, plate, {{0.06, -1, -1}, {1, 1, 1}}, work), 0);
+  plate.orientation = t.principal.rotation;
+  plate.position = t.unit_mass.centroid;
+  MeasureRegion disc;
+  disc.round = RoundRegion{.base = {0, 0, -0.01}, .axis = {0, 0, 1}, .radius = 0.03, .height = 0.02};
+  EXPECT_NEAR(volume_inside(w, plate, disc, work) / (kPi * 0.03 * 0.03 * thickness), 1, 2e-3);
+}
+
 TEST(Measure, SpheresCutByTheRegionKeepTheirPartInside) {
   const Real r = 0.5, full = 4.0 / 3.0 * kPi * r * r * r;
   const World w = with_bodies({{Shape{Point{}, r}, Vec3{0, 0, 0}}});

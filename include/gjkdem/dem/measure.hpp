@@ -9,6 +9,7 @@
 #include <optional>
 #include <unordered_map>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "gjkdem/contact/overlap.hpp"
@@ -69,6 +70,9 @@ struct MeasureWorkspace {
   std::optional<MeasureRegion> surface_region;
   Surface region_surface, placed;
   SurfaceOverlapWorkspace surface_overlap;
+  /// The region's planes and a triangle being clipped by them (thin shells).
+  std::vector<std::pair<Vec3, Real>> planes;
+  std::vector<Vec3> polygon, clipped_polygon;
 };
 
 /// Directions of the tessellation of curved grains clipped by the region.
@@ -89,7 +93,8 @@ std::optional<MeasureRegion> moving_bodies_box(const World& world);
 /// that a body wholly inside counts whole (the volume law's contact shapes
 /// are inscribed tessellations of the bodies' shapes). A surface grain (or a
 /// compound's surface part) is clipped as its own surface, convex or not
-/// (surface_overlap), exactly; a thin shell's volume is spread over its hull.
+/// (surface_overlap), exactly; a thin shell as its plates: the area of its
+/// triangles inside times its thickness.
 Real volume_inside(const World& world, const Body& body, const MeasureRegion& region, MeasureWorkspace& work);
 
 /// Throws std::invalid_argument for a region that is empty or not finite.
