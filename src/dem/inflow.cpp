@@ -66,7 +66,20 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       if (!intersect(t.shape, pose, o.shape, other_pose)) continue;
       // A surface grain's hull is not its solid (a bowl's hollow is free),
       // nor is a shell's (a tray's): the body's surface against its
-      // triangles within their margin.
+      // triangles within their margin. Nor is a compound's (an L's notch):
+      // the body against it part by part.
+      if (!o.parts.empty() && t.parts.empty()) {
+        for (const TemplatePart& part : o.parts) {
+          const Transform part_pose = compose(other_pose, part.pose);
+          if ((t.surface_grain || part.surface_grain) && t.surface && part.surface) {
+            if (!scratch) scratch.emplace();
+            if (surfaces_meet(t.surface, pose, part.surface, part_pose, *scratch, patches)) return false;
+          } else if (intersect(t.shape, pose, part.given ? *part.given : part.shape, part_pose)) {
+            return false;
+          }
+        }
+        continue;
+      }
       if (o.shell && t.surface) {
         if (!scratch) scratch.emplace();
         placed_shell_triangles(*o.shell, other_pose, aabb(t.shape, pose), *scratch, scratch->margin_pieces);

@@ -673,8 +673,9 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
           for (Real i = first.x; i <= last.x; ++i) grid[key(i, j, k)].push_back(n);
     }
     // A surface grain's hull is not its solid (a bowl's hollow is free),
-    // nor is a shell's (a tray's hollow is): the spot's cube against its
-    // surface, or within the shell's margin.
+    // nor is a shell's (a tray's hollow is), nor a compound's (an L's notch
+    // is): the spot's cube against its surface, or within the shell's
+    // margin; a compound part by part.
     std::shared_ptr<const Surface> cube;  // made once a surface grain or a shell is near
     SurfaceScratch scratch;
     std::vector<SurfacePatchContact> patches;
@@ -685,8 +686,15 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
-      if (!t.surface_grain && !t.shell) return true;
+      if (!t.surface_grain && !t.shell && t.parts.empty()) return true;
       if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+      for (const TemplatePart& part : t.parts) {
+        const Transform part_pose = compose(n.pose, part.pose);
+        if (part.surface_grain ? surfaces_meet(cube, ball_pose, part.surface, part_pose, scratch, patches)
+                               : intersect(part.given ? *part.given : part.shape, part_pose, ball, ball_pose))
+          return true;
+      }
+      if (!t.parts.empty()) return false;
       if (t.surface_grain) return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
       placed_shell_triangles(*t.shell, n.pose, aabb(ball, ball_pose), scratch, near_triangles);
       margin_patches(triangles_of(*cube), ball_pose, near_triangles, scratch, patches, hosts);
@@ -756,11 +764,12 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
 
 namespace {
 
-// How deep a part of body a and a part of body b overlap at the start, in a
-// world with surfaces: a surface and a mesh wall's piece by the margin
-// model, a convex part and a piece by their penetration, two parts by their
-// surfaces' patches (infinite: one wholly inside the other); 0 where a part
-// has no surface to meet the other by (no volume: the run reports the pair).
+// How deep a part of body a and a part of body b overlap at the start: a
+// surface and a mesh wall's piece by the margin model, a convex part and a
+// piece by their penetration, two parts by their surfaces' patches
+// (infinite: one wholly inside the other), or by their penetration in a
+// world without surfaces; 0 where one part has no surface to meet the
+// other's by (no volume: the run reports the pair).
 Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std::uint32_t pa, const Body& b,
                    std::uint32_t pb, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches,
                    std::vector<std::uint32_t>& hosts) {
@@ -801,6 +810,10 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
                    hosts);
   } else {
     const std::shared_ptr<const Surface>&sa = surface_of(ta, pa), &sb = surface_of(tb, pb);
+    if (!sa && !sb) {  // convex parts (a world without surfaces): their penetration
+      const PenetrationResult pr = penetration(*at_a.shape, at_a.pose, *at_b.shape, at_b.pose);
+      return pr.intersect ? pr.depth : 0;
+    }
     if (!sa || !sb) return 0;
     if (!surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches))
       return std::numeric_limits<Real>::infinity();
@@ -853,7 +866,9 @@ void WorldBuilder::check_explicit_bodies() const {
     const Real tol = kStartOverlapRelTol * bounding_radius(is_explicit[i] ? sa : sb);
     const ShapeTemplate &ta = w.templates[a.shape], &tb = w.templates[b.shape];
     Real depth = 0;
-    if (holds_surface(ta) || holds_surface(tb)) {  // part by part, surfaces by their patches (hooked rings' hulls overlap)
+    // Part by part (a compound's hull is not its solid), surfaces by their
+    // patches (hooked rings' hulls overlap).
+    if (holds_surface(ta) || holds_surface(tb) || !ta.parts.empty() || !tb.parts.empty()) {
       const std::size_t a_parts = std::max<std::size_t>(ta.parts.size(), 1), b_parts = std::max<std::size_t>(tb.parts.size(), 1);
       for (std::uint32_t pa = 0; pa < a_parts; ++pa)
         for (std::uint32_t pb = 0; pb < b_parts; ++pb)

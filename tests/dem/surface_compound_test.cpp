@@ -15,8 +15,11 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <random>
 
+#include "gjkdem/collide/query.hpp"
 #include "gjkdem/dem/run.hpp"
+#include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/dem/world.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/run_output.hpp"
@@ -206,6 +209,74 @@ TEST(SurfaceCompound, FramesDrawTheSurfacePartsOwnTriangles) {
   for (const Vec3& v : m.vertices) drawn.lo = min(drawn.lo, v), drawn.hi = max(drawn.hi, v);
   EXPECT_LT(length(drawn.hi - Vec3{0.13, 0.01, 0}), 1e-12);  // the U moved 10 cm along x
   EXPECT_LT(length(drawn.lo - Vec3{0.01, 0, -0.02}), 1e-12);  // the box
+}
+
+// A fixed U, as a compound of its three boxes or of its one surface, leaves
+// its notch free: a generator fills it and an inflow inserts into it (the
+// U's hull, which fills the notch, held both back), every sphere clear of
+// the U's parts.
+TEST(SurfaceCompound, AGeneratorAndAnInflowFillTheNotchOfACompound) {
+  gjkdem::test::Mesh mesh = gjkdem::test::u_prism(1);  // notch x, y in [1, 2]
+  for (Vec3& v : mesh.vertices) v = v * 0.1;
+  const auto box = [](const Vec3& lo, const Vec3& hi) {  // dm
+    return PlacedShape{Shape{Box{(hi - lo) * 0.05}}, Transform::from((lo + hi) * 0.05, Quat{})};
+  };
+  const BodyShape boxes{.parts = {box({0, 0, 0}, {3, 1, 1}), box({0, 1, 0}, {1, 2, 1}), box({2, 1, 0}, {3, 2, 1})}};
+  const BodyShape surface{.surface_parts = {{shared(mesh), {}}}};
+  for (const BodyShape& u : {boxes, surface}) {
+    SCOPED_TRACE(u.parts.empty() ? "a surface part" : "three boxes");
+    WorldSettings settings;
+    settings.model = ContactModel::Hertz;
+    settings.gravity = {0, -9.81, 0};  // into the notch
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    builder.add_body({.shape = u, .material = rock, .position = {0, 0, 0}, .fixed = true});  // its frame (a wall: no centroid)
+    std::mt19937_64 rng(5);
+    RegionFill fill;
+    fill.variants = {{make_sphere(0.01), {}}};
+    fill.count = 20;
+    fill.lo = {0.101, 0.101, 0.001}, fill.hi = {0.199, 0.199, 0.099};
+    fill.material = rock;
+    fill.label = "fill";
+    ASSERT_EQ(builder.fill_region(fill, rng).size(), 20u);
+    InflowDef inflow;
+    inflow.variants = {{make_sphere(0.008), {}}};
+    inflow.lo = {0.12, 0.185, 0.02}, inflow.hi = {0.18, 0.19, 0.08};
+    inflow.material = rock;
+    inflow.rate = 200, inflow.count = 3, inflow.seed = 3;
+    builder.add_inflow(inflow);
+    World w = builder.build();
+    const Body& fixed_u = w.bodies[0];
+    const ShapeTemplate& t = w.templates[fixed_u.shape];
+    const auto check = [&](Real allowed) {  // each sphere in the notch, clear of the parts but for `allowed`
+      for (std::size_t i = 1; i < w.bodies.size(); ++i) {
+        const Body& b = w.bodies[i];
+        const ShapeTemplate& ball = w.templates[b.shape];
+        for (std::uint32_t k = 0; k < t.parts.size(); ++k) {
+          const PartPose part = part_pose(t, fixed_u, k);
+          if (t.parts[k].surface_grain) {  // its shape is its hull: the surfaces' overlap
+            SurfaceScratch scratch;
+            std::vector<SurfacePatchContact> patches;
+            if (allowed == 0) {
+              EXPECT_FALSE(surfaces_meet(ball.surface, shape_pose(ball, b), t.parts[k].surface, part.pose, scratch, patches))
+                  << "sphere " << i;
+            }
+            continue;
+          }
+          const PenetrationResult p = penetration(*part.shape, part.pose, ball.shape, shape_pose(ball, b));
+          EXPECT_FALSE(p.intersect && p.depth > allowed) << "sphere " << i << " in part " << k << " by " << p.depth;
+        }
+        EXPECT_GT(b.position.x, 0.1);
+        EXPECT_LT(b.position.x, 0.2);
+        EXPECT_GT(b.position.y, 0.1);
+      }
+    };
+    check(0);  // as placed
+    for (int i = 0; i < 300; ++i) ASSERT_EQ(step(w, 5e-5).status, StepStatus::Ok) << i;
+    EXPECT_EQ(w.inflow_states[0].inserted, 3u);
+    ASSERT_EQ(w.bodies.size(), 24u);
+    check(1e-3);  // fallen onto the notch's floor and onto each other (Hertz overlaps)
+  }
 }
 
 TEST(SurfaceCompound, OverlappingPartsAreRefusedNamingThem) {
