@@ -676,7 +676,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     // nor is a shell's (a tray's hollow is), nor a compound's (an L's notch
     // is): the spot's cube against its surface, or within the shell's
     // margin; a compound part by part.
-    std::shared_ptr<const Surface> cube;  // made once a surface grain or a shell is near
+    std::shared_ptr<const Surface> cube;  // made once a surface grain, a surface part or a shell is near
     SurfaceScratch scratch;
     std::vector<SurfacePatchContact> patches;
     std::vector<MarginTriangle> near_triangles;
@@ -687,17 +687,20 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
       if (!t.surface_grain && !t.shell && t.parts.empty()) return true;
-      if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+      const auto spot = [&] {
+        if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+        return cube;
+      };
       for (const TemplatePart& part : t.parts) {
         const Transform part_pose = compose(n.pose, part.pose);
-        if (part.surface_grain ? surfaces_meet(cube, ball_pose, part.surface, part_pose, scratch, patches)
+        if (part.surface_grain ? surfaces_meet(spot(), ball_pose, part.surface, part_pose, scratch, patches)
                                : intersect(part.given ? *part.given : part.shape, part_pose, ball, ball_pose))
           return true;
       }
       if (!t.parts.empty()) return false;
-      if (t.surface_grain) return surfaces_meet(cube, ball_pose, t.surface, n.pose, scratch, patches);
+      if (t.surface_grain) return surfaces_meet(spot(), ball_pose, t.surface, n.pose, scratch, patches);
       placed_shell_triangles(*t.shell, n.pose, aabb(ball, ball_pose), scratch, near_triangles);
-      margin_patches(triangles_of(*cube), ball_pose, near_triangles, scratch, patches, hosts);
+      margin_patches(triangles_of(*spot()), ball_pose, near_triangles, scratch, patches, hosts);
       return !patches.empty();
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
