@@ -495,6 +495,11 @@ void finish_normal(OverlapResult& r, Real total_area, Real summed_a, Real summed
 
 }  // namespace
 
+bool face_planes_near(const Shape& shape, const Transform& to, const Vec3& centre, Real radius,
+                      std::vector<OverlapWorkspace::Plane>& planes) {
+  return planes_near(shape, to, centre, radius, planes);
+}
+
 OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, const Transform& pose_b,
                       OverlapWorkspace& w, GjkCache* cache) {
   OverlapResult r;

@@ -68,7 +68,7 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       // nor is a shell's (a tray's): the body's surface against its
       // triangles within their margin. Nor is a compound's (an L's notch):
       // the body against it part by part.
-      if (!o.parts.empty() && t.parts.empty()) {
+      if (!o.parts.empty()) {  // (an inserted compound by its hull: a bound)
         for (const TemplatePart& part : o.parts) {
           const Transform part_pose = compose(other_pose, part.pose);
           if ((t.surface_grain || part.surface_grain) && t.surface && part.surface) {

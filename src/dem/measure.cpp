@@ -40,30 +40,8 @@ bool clipped_exactly(const Shape& s) noexcept {
                            std::holds_alternative<Triangle>(s.core));
 }
 
-// The region's bounding planes in the world frame, n . x <= d inside: a
-// box's six, or the faces of a round region's tessellation (`clip`, placed
-// by `pose`).
-void region_planes(const MeasureRegion& region, const Shape& clip, const Transform& pose,
-                   std::vector<std::pair<Vec3, Real>>& planes) {
-  planes.clear();
-  if (!region.round) {
-    for (int axis = 0; axis < 3; ++axis) {
-      Vec3 n;
-      n[axis] = 1;
-      planes.push_back({n, region.hi[axis]});
-      planes.push_back({-n, -region.lo[axis]});
-    }
-    return;
-  }
-  const PolytopeData& d = *std::get<Polytope>(clip.core).data;
-  for (std::size_t f = 0; f + 1 < d.facet_begin.size(); ++f) {
-    const Vec3 n = apply_rotation(pose, d.facet_normals[f]);
-    planes.push_back({n, dot(n, apply(pose, d.vertices[d.facet_vertices[d.facet_begin[f]]]))});
-  }
-}
-
 // The area of triangle abc inside the planes (Sutherland-Hodgman).
-Real area_inside(const Vec3& a, const Vec3& b, const Vec3& c, std::span<const std::pair<Vec3, Real>> planes,
+Real area_inside(const Vec3& a, const Vec3& b, const Vec3& c, std::span<const OverlapWorkspace::Plane> planes,
                  std::vector<Vec3>& poly, std::vector<Vec3>& next) {
   poly.assign({a, b, c});
   for (const auto& [n, d] : planes) {
@@ -126,7 +104,7 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
     clip_pose = round_pose(g);
   }
   if (t.shell) {  // its plates: each triangle's area inside, times the thickness
-    region_planes(region, clip, clip_pose, work.planes);
+    if (!face_planes_near(clip, clip_pose, b.position, t.reach, work.planes)) return 0;
     const Transform pose = shape_pose(t, b);
     const Shell& s = *t.shell;
     Real area = 0;
@@ -139,16 +117,16 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   Real volume = 0;
   for (std::uint32_t k = 0; k < parts; ++k) {
     const PartPose part = part_pose(t, b, k);
-    if (surface_side(t, k)) {  // its own surface, not its hull: A ∩ region exactly
+    if (surface_side(t, k)) {  // its own surface, not its hull: A ∩ region exactly, in the part's frame
       const bool same = work.surface_region && work.surface_region->lo == region.lo &&
                         work.surface_region->hi == region.hi && work.surface_region->round == region.round;
       if (!same) {
-        const Surface local = region.round ? polytope_surface(std::get<Polytope>(clip.core)) : box_surface(Box{half});
-        work.region_surface = moved(local, clip_pose);
+        work.region_surface = region.round ? polytope_surface(std::get<Polytope>(clip.core)) : box_surface(Box{half});
+        work.placed = work.region_surface;
         work.surface_region = region;
       }
-      move_into(*surface_of(t, k), part.pose, work.placed);
-      volume += surface_overlap(work.region_surface, work.placed, work.surface_overlap).volume;
+      repose(work.region_surface, relative(part.pose, clip_pose), work.placed);
+      volume += surface_overlap(work.placed, *surface_of(t, k), work.surface_overlap).volume;
       continue;
     }
     const Real part_volume = t.parts.empty() ? t.unit_mass.volume : t.parts[k].volume;

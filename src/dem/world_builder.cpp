@@ -785,7 +785,8 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
     const std::uint32_t part = shell_is_a ? pb : pa;
     const PartPose& body = shell_is_a ? at_b : at_a;
     const Shell& shell = *(shell_is_a ? ta : tb).shell;
-    std::vector<MarginTriangle> near;
+    std::vector<MarginTriangle>& near = scratch.margin_pieces;
+    near.clear();
     if (margin_piece(other)) {  // the shell's triangles against the piece, with both margins
       near.push_back(placed_margin_triangle(other, body.pose));
       near.back().rho += shell.margin;

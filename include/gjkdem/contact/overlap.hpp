@@ -92,6 +92,13 @@ std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
 /// along A's face. They form closed loops; `tol` matches end points (length).
 std::vector<std::pair<Vec3, Vec3>> intersection_line(const OverlapWorkspace& work, Real tol);
 
+/// The face planes (world frame, outward) of a polytope or box without
+/// margin placed by `to` that pass within `radius` of `centre`: what clips a
+/// solid inside that ball. False when the ball lies wholly beyond one of
+/// them (nothing of it is inside the shape).
+bool face_planes_near(const Shape& shape, const Transform& to, const Vec3& centre, Real radius,
+                      std::vector<OverlapWorkspace::Plane>& planes);
+
 /// `cache` (optional) warm-starts the GJK test that decides whether two
 /// clippable shapes meet at all, as for intersect(): the DEM engine passes
 /// the pair's. Other pairs are tested cold (classify_depth).

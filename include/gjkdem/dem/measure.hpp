@@ -65,13 +65,14 @@ struct MeasureWorkspace {
   /// A round region's tessellation (kMeasureTessellation directions), the one it was made for.
   std::optional<RoundRegion> tessellated_region;
   Shape region_solid;
-  /// The region as a closed surface in the world frame, which clips surface
-  /// grains exactly, and the region it was made for; a surface placed.
+  /// The region as a closed surface in its own frame, which clips surface
+  /// grains exactly, and the region it was made for; that surface placed in
+  /// a grain's frame.
   std::optional<MeasureRegion> surface_region;
   Surface region_surface, placed;
   SurfaceOverlapWorkspace surface_overlap;
-  /// The region's planes and a triangle being clipped by them (thin shells).
-  std::vector<std::pair<Vec3, Real>> planes;
+  /// The region's planes near a shell and a triangle being clipped by them.
+  std::vector<OverlapWorkspace::Plane> planes;
   std::vector<Vec3> polygon, clipped_polygon;
 };
 
