@@ -128,7 +128,8 @@ struct SurfaceOverlapWorkspace::Scratch {
   UnionFind joined;
   std::vector<std::uint32_t> near, order, loop_members, loop_begin, loop_segment;
   std::vector<Real> loop_area;
-  std::vector<std::uint8_t> seen, cut;
+  std::vector<std::uint8_t> seen, cut;  // cut: per triangle (A's, then B's), set for those in cut_list
+  std::vector<std::uint32_t> cut_list;
   std::vector<std::uint32_t> whole;       // per triangle: its number when wholly inside, else kNoNode
   std::vector<std::uint32_t> whole_list;  // the whole triangles inside, by number
   std::vector<Sums> pieces;
@@ -229,20 +230,31 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
   // plane exactly. Any other triangle lies wholly inside or wholly outside
   // (its corners' status says which) and counts whole, with no segments: in
   // a deep overlap most triangles are whole.
+  // The per-triangle marks are kept all clear between calls, cleared where
+  // the last call set them: a shallow overlap of big surfaces touches few.
   std::vector<std::uint8_t>& cut = w.cut;
-  cut.assign(triangles_a + b.triangles.size(), 0);
-  for (const Crossing& c : va.crossings) cut[a.edge_triangles[c.edge][0]] = cut[a.edge_triangles[c.edge][1]] = cut[triangles_a + c.triangle] = 1;
+  std::vector<std::uint32_t>& cut_list = w.cut_list;
+  for (const std::uint32_t t : cut_list) cut[t] = 0;
+  cut_list.clear();
+  const std::size_t triangles = triangles_a + b.triangles.size();
+  if (cut.size() < triangles) cut.resize(triangles, 0);
+  const auto mark = [&](std::uint32_t t) {
+    if (!cut[t]) cut[t] = 1, cut_list.push_back(t);
+  };
+  for (const Crossing& c : va.crossings)
+    mark(a.edge_triangles[c.edge][0]), mark(a.edge_triangles[c.edge][1]), mark(triangles_a + c.triangle);
   for (const Crossing& c : vb.crossings)
-    cut[triangles_a + b.edge_triangles[c.edge][0]] = cut[triangles_a + b.edge_triangles[c.edge][1]] = cut[c.triangle] = 1;
-  for (const std::uint32_t e : va.in_plane) cut[a.edge_triangles[e][0]] = cut[a.edge_triangles[e][1]] = 1;
-  for (const std::uint32_t e : vb.in_plane) cut[triangles_a + b.edge_triangles[e][0]] = cut[triangles_a + b.edge_triangles[e][1]] = 1;
-  for (const auto& [s, t] : coplanar) cut[s] = cut[triangles_a + t] = 1;
+    mark(triangles_a + b.edge_triangles[c.edge][0]), mark(triangles_a + b.edge_triangles[c.edge][1]), mark(c.triangle);
+  for (const std::uint32_t e : va.in_plane) mark(a.edge_triangles[e][0]), mark(a.edge_triangles[e][1]);
+  for (const std::uint32_t e : vb.in_plane) mark(triangles_a + b.edge_triangles[e][0]), mark(triangles_a + b.edge_triangles[e][1]);
+  for (const auto& [s, t] : coplanar) mark(s), mark(triangles_a + t);
   // Whole triangles inside the other solid, numbered.
   constexpr std::uint32_t kNoNode = ~std::uint32_t{0};
   std::vector<std::uint32_t>& whole = w.whole;
   std::vector<std::uint32_t>& whole_list = w.whole_list;  // by number
-  whole.assign(cut.size(), kNoNode);
+  for (const std::uint32_t t : whole_list) whole[t] = kNoNode;
   whole_list.clear();
+  if (whole.size() < triangles) whole.resize(triangles, kNoNode);
   for (const std::uint32_t t : va.near)
     if (!cut[t] && va.inside[a.triangles[t][0]]) whole[t] = static_cast<std::uint32_t>(whole_list.size()), whole_list.push_back(t);
   for (const std::uint32_t t : vb.near)

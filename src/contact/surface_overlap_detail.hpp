@@ -38,11 +38,19 @@ struct View {
   std::vector<std::uint32_t> near_vertices;    // their corners within the solid's box
   std::vector<std::uint32_t> queue, hits;      // find_status's
 
+  // The per-edge and per-vertex arrays are kept all clear between calls,
+  // cleared where the last call wrote them (its crossings' edges, its
+  // vertices in the box): a shallow overlap of big surfaces touches few.
   void reset(const Surface& surface, Side which) {
+    for (const Crossing& c : crossings) edge_crossings[c.edge] = {0, 0};
+    for (const std::uint32_t i : near_vertices) inside[i] = 0;
+    crossings.clear();
+    near_vertices.clear();
+    in_plane.clear();
     s = &surface;
     side = which;
-    crossings.clear();
-    in_plane.clear();
+    if (edge_crossings.size() < surface.edges.size()) edge_crossings.resize(surface.edges.size(), {0, 0});
+    if (inside.size() < surface.vertices.size()) inside.resize(surface.vertices.size(), 0);
   }
   std::uint32_t crossings_along(std::uint32_t e) const { return edge_crossings[e][1] - edge_crossings[e][0]; }
 };

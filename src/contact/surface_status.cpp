@@ -28,11 +28,10 @@ bool inside_by_ray(View& v, std::uint32_t x, const Surface& solid) {
 }  // namespace
 
 // The crossings sorted along each edge, and each edge's (the edges without
-// any: an empty span, written by the fill alone).
+// any keep their empty span: View::reset).
 void index_crossings(View& v) {
   std::sort(v.crossings.begin(), v.crossings.end(),
             [](const Crossing& x, const Crossing& y) { return x.edge < y.edge || (x.edge == y.edge && x.t < y.t); });
-  v.edge_crossings.assign(v.s->edges.size(), {0, 0});
   for (std::uint32_t c = 0; c < v.crossings.size();) {
     const std::uint32_t e = v.crossings[c].edge, begin = c;
     while (c < v.crossings.size() && v.crossings[c].edge == e) ++c;
@@ -49,8 +48,6 @@ void find_status(View& v, const Surface& solid) {
   const Surface& s = *v.s;
   v.near.clear();
   query_box_tree(s.tree, solid.box, v.near);
-  v.inside.assign(s.vertices.size(), 0);
-  v.near_vertices.clear();
   for (const std::uint32_t t : v.near)
     for (const std::uint32_t i : s.triangles[t]) {
       const Vec3& p = s.vertices[i];
