@@ -64,33 +64,11 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
       Transform other_pose = shape_pose(o, other);
       other_pose.translation += s;
       if (!intersect(t.shape, pose, o.shape, other_pose)) continue;
-      // A surface grain's hull is not its solid (a bowl's hollow is free),
-      // nor is a shell's (a tray's): the body's surface against its
-      // triangles within their margin. Nor is a compound's (an L's notch):
-      // the body against it part by part.
-      if (!o.parts.empty()) {  // (an inserted compound by its hull: a bound)
-        for (const TemplatePart& part : o.parts) {
-          const Transform part_pose = compose(other_pose, part.pose);
-          if ((t.surface_grain || part.surface_grain) && t.surface && part.surface) {
-            if (!scratch) scratch.emplace();
-            if (surfaces_meet(t.surface, pose, part.surface, part_pose, *scratch, patches)) return false;
-          } else if (intersect(t.shape, pose, part.given ? *part.given : part.shape, part_pose)) {
-            return false;
-          }
-        }
-        continue;
-      }
-      if (o.shell && t.surface) {
-        if (!scratch) scratch.emplace();
-        placed_shell_triangles(*o.shell, other_pose, aabb(t.shape, pose), *scratch, scratch->margin_pieces);
-        margin_patches(triangles_of(*t.surface), pose, scratch->margin_pieces, *scratch, patches,
-                       scratch->margin_hosts);
-        if (!patches.empty()) return false;
-        continue;
-      }
-      if (!(t.surface_grain || o.surface_grain) || !t.surface || !o.surface) return false;
-      if (!scratch) scratch.emplace();  // made once a surface grain is in the way: most steps insert nothing
-      if (surfaces_meet(t.surface, pose, o.surface, other_pose, *scratch, patches)) return false;
+      // By other's solid, not its hull (an inserted compound by its hull: a
+      // bound). The scratch is made once a hull is in the way: most steps
+      // insert nothing.
+      if (!scratch) scratch.emplace();
+      if (placed_body_meets(t.shape, pose, t.surface, t.surface_grain, o, other_pose, *scratch, patches)) return false;
     }
   }
   return true;

@@ -63,6 +63,29 @@ bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pos
   return !surface_patches(a, pose_a, b, pose_b, ContactModel::Volume, scratch, patches) || !patches.empty();
 }
 
+bool placed_body_meets(const Shape& shape, const Transform& pose, const std::shared_ptr<const Surface>& surface,
+                       bool surface_grain, const ShapeTemplate& other, const Transform& other_pose,
+                       SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches) {
+  if (!other.parts.empty()) {
+    for (const TemplatePart& part : other.parts) {
+      const Transform part_pose = compose(other_pose, part.pose);
+      if ((surface_grain || part.surface_grain) && surface && part.surface) {
+        if (surfaces_meet(surface, pose, part.surface, part_pose, scratch, patches)) return true;
+      } else if (intersect(shape, pose, part.given ? *part.given : part.shape, part_pose)) {
+        return true;
+      }
+    }
+    return false;
+  }
+  if (other.shell && surface) {
+    placed_shell_triangles(*other.shell, other_pose, aabb(shape, pose), scratch, scratch.margin_pieces);
+    margin_patches(triangles_of(*surface), pose, scratch.margin_pieces, scratch, patches, scratch.margin_hosts);
+    return !patches.empty();
+  }
+  if (!(surface_grain || other.surface_grain) || !surface || !other.surface) return true;  // the hulls are the solids
+  return surfaces_meet(surface, pose, other.surface, other_pose, scratch, patches);
+}
+
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
                            SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
@@ -130,6 +153,22 @@ void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aab
     out.push_back({{apply(pose, shell.vertices[tri[0]]), apply(pose, shell.vertices[tri[1]]), apply(pose, shell.vertices[tri[2]])},
                    shell.margin});
   }
+}
+
+GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
+                             std::uint32_t part, const PartPose& other_pose, bool shell_is_a,
+                             SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
+  const std::shared_ptr<const Surface>& surface = surface_of(other, part);
+  if (!other.shell && !surface) return GeometryStatus::Unsupported;
+  placed_shell_triangles(*shell.shell, shell_pose, aabb(*other_pose.shape, other_pose.pose), scratch,
+                         scratch.margin_pieces);
+  if (other.shell)
+    for (MarginTriangle& t : scratch.margin_pieces) t.rho += other.shell->margin;
+  margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose,
+                 scratch.margin_pieces, scratch, out, scratch.margin_hosts);
+  if (!shell_is_a)
+    for (SurfacePatchContact& p : out) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;
+  return GeometryStatus::Touching;
 }
 
 bool plane_shell_patches(const PlaneWall& wall, const Shell& shell, const Transform& pose, SurfaceScratch& s,

@@ -25,27 +25,6 @@ bool of_surface(std::span<const Body> bodies, std::span<const ShapeTemplate> tem
 }
 
 
-// The contacts of a thin shell with another body (a part of it) by the
-// margin model, normals a -> b: the body's surface, or another shell's
-// triangles (the margins of both), against the shell's triangles near it;
-// a shape without volume it cannot meet (the run stops naming the pair).
-// (A mesh wall's pieces meet it as they meet grains: find_margin_patches.)
-GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
-                             std::uint32_t part, const PartPose& other_pose, bool shell_is_a,
-                             SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
-  const std::shared_ptr<const Surface>& surface = surface_of(other, part);
-  if (!other.shell && !surface) return GeometryStatus::Unsupported;
-  placed_shell_triangles(*shell.shell, shell_pose, aabb(*other_pose.shape, other_pose.pose), scratch,
-                         scratch.margin_pieces);
-  if (other.shell)
-    for (MarginTriangle& t : scratch.margin_pieces) t.rho += other.shell->margin;
-  margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose,
-                 scratch.margin_pieces, scratch, out, scratch.margin_hosts);
-  if (!shell_is_a)
-    for (SurfacePatchContact& p : out) p.geometry.normal = -p.geometry.normal, p.geometry.moment = -p.geometry.moment;
-  return GeometryStatus::Touching;
-}
-
 // The patches of one listed contact, or why there are none to find.
 GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,

@@ -674,34 +674,20 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
     }
     // A surface grain's hull is not its solid (a bowl's hollow is free),
     // nor is a shell's (a tray's hollow is), nor a compound's (an L's notch
-    // is): the spot's cube against its surface, or within the shell's
-    // margin; a compound part by part.
+    // is): the ball against its solid (placed_body_meets), by the spot's
+    // cube where a surface or a shell decides.
     std::shared_ptr<const Surface> cube;  // made once a surface grain, a surface part or a shell is near
     SurfaceScratch scratch;
     std::vector<SurfacePatchContact> patches;
-    std::vector<MarginTriangle> near_triangles;
-    std::vector<std::uint32_t> hosts;
     const auto meets = [&](const Near& n, const Vec3& centre, const Transform& ball_pose) {
       if (!(length(centre - n.pose.translation) <= n.radius + diameter / 2 &&
             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
-      if (!t.surface_grain && !t.shell && t.parts.empty()) return true;
-      const auto spot = [&] {
-        if (!cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
-        return cube;
-      };
-      for (const TemplatePart& part : t.parts) {
-        const Transform part_pose = compose(n.pose, part.pose);
-        if (part.surface_grain ? surfaces_meet(spot(), ball_pose, part.surface, part_pose, scratch, patches)
-                               : intersect(part.given ? *part.given : part.shape, part_pose, ball, ball_pose))
-          return true;
-      }
-      if (!t.parts.empty()) return false;
-      if (t.surface_grain) return surfaces_meet(spot(), ball_pose, t.surface, n.pose, scratch, patches);
-      placed_shell_triangles(*t.shell, n.pose, aabb(ball, ball_pose), scratch, near_triangles);
-      margin_patches(triangles_of(*spot()), ball_pose, near_triangles, scratch, patches, hosts);
-      return !patches.empty();
+      const bool by_surface = t.surface_grain || t.shell ||
+                              std::any_of(t.parts.begin(), t.parts.end(), [](const TemplatePart& p) { return p.surface_grain; });
+      if (by_surface && !cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
+      return placed_body_meets(ball, ball_pose, by_surface ? cube : nullptr, false, t, n.pose, scratch, patches);
     };
     for (Real k = 0; k < nz && spots.size() < f.count; ++k)
       for (Real j = 0; j < ny && spots.size() < f.count; ++j)
@@ -781,23 +767,15 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
   patches.clear();
   if (ta.shell || tb.shell) {  // the margin model, against another body's surface
     const bool shell_is_a = ta.shell != nullptr;
-    const ShapeTemplate& other = shell_is_a ? tb : ta;
-    const std::uint32_t part = shell_is_a ? pb : pa;
-    const PartPose& body = shell_is_a ? at_b : at_a;
-    const Shell& shell = *(shell_is_a ? ta : tb).shell;
-    std::vector<MarginTriangle>& near = scratch.margin_pieces;
-    near.clear();
+    const ShapeTemplate &shell = shell_is_a ? ta : tb, &other = shell_is_a ? tb : ta;
+    const PartPose &at_shell = shell_is_a ? at_a : at_b, &body = shell_is_a ? at_b : at_a;
     if (margin_piece(other)) {  // the shell's triangles against the piece, with both margins
-      near.push_back(placed_margin_triangle(other, body.pose));
-      near.back().rho += shell.margin;
-      margin_patches(shell_triangles(shell), (shell_is_a ? at_a : at_b).pose, near, scratch, patches, hosts);
-    } else {
-      if (!other.shell && !surface_of(other, part)) return 0;  // the run reports the pair
-      placed_shell_triangles(shell, (shell_is_a ? at_a : at_b).pose, aabb(*body.shape, body.pose), scratch, near);
-      if (other.shell)
-        for (MarginTriangle& t : near) t.rho += other.shell->margin;
-      margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface_of(other, part)), body.pose,
-                     near, scratch, patches, hosts);
+      MarginTriangle piece = placed_margin_triangle(other, body.pose);
+      piece.rho += shell.shell->margin;
+      margin_patches(shell_triangles(*shell.shell), at_shell.pose, {&piece, 1}, scratch, patches, hosts);
+    } else if (shell_patches(shell, at_shell.pose, other, shell_is_a ? pb : pa, body, shell_is_a, scratch, patches) ==
+               GeometryStatus::Unsupported) {
+      return 0;  // the run reports the pair
     }
   } else if (margin_piece(ta) || margin_piece(tb)) {
     const bool piece_is_a = margin_piece(ta) != nullptr;

@@ -74,6 +74,17 @@ bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pos
                    const std::shared_ptr<const Surface>& b, const Transform& pose_b, SurfaceScratch& scratch,
                    std::vector<SurfacePatchContact>& patches);
 
+/// Where the hulls of a body about to be placed and of `other` (a template
+/// at `other_pose`) meet: whether the body meets other's solid, a compound
+/// part by part, a surface grain by its surface, a thin shell by its
+/// triangles within their margin, any other by its hull. The body is its
+/// shape at `pose`, and `surface` (null: none) the closed surface it meets
+/// surfaces and shells by (`surface_grain`: that surface is its solid, not
+/// a bound of it). Generators and inflows find room by it: a bowl's hollow,
+/// a tray's and an L's notch are free.
+bool placed_body_meets(const Shape& shape, const Transform& pose, const std::shared_ptr<const Surface>& surface,
+                       bool surface_grain, const ShapeTemplate& other, const Transform& other_pose,
+                       SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches);
 /// The patches of a placed surface (b) beyond a plane wall (a), largest
 /// first. Returns false when the whole surface lies beyond the plane (the
 /// body went through: no cut face can push it back).
@@ -116,6 +127,15 @@ inline TriangleSet shell_triangles(const Shell& s) noexcept { return {s.vertices
 void placed_shell_triangles(const Shell& shell, const Transform& pose, const Aabb& near, SurfaceScratch& scratch,
                             std::vector<MarginTriangle>& out);
 
+/// The contacts of a thin shell (its template `shell`, placed at
+/// `shell_pose`) with another body's part by the margin model, normals
+/// a -> b (`shell_is_a`): the part's surface, or another shell's triangles
+/// (the margins of both), against the shell's triangles near it. A shape
+/// without volume it cannot meet: Unsupported (the run stops naming the
+/// pair). (A mesh wall's pieces meet shells as they meet grains.)
+GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_pose, const ShapeTemplate& other,
+                             std::uint32_t part, const PartPose& other_pose, bool shell_is_a,
+                             SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 /// The contacts of a placed thin shell with a plane wall: its corners
 /// within its margin of the plane, those of one triangle one patch (as the
 /// margin model groups a grain's triangles), each with the depth rho - h of
