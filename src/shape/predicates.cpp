@@ -16,6 +16,10 @@ constexpr Real kTinyPermanent = 1e-250;
 int sign_of(Real v) { return (v > 0) - (v < 0); }
 int sign_of(const mpq_class& v) { return sgn(v); }
 
+// Whether one of the factors of x y z is zero (so the product is zero
+// exactly, not by underflow).
+bool has_zero(Real x, Real y, Real z) { return x == 0 || y == 0 || z == 0; }
+
 mpq_class exact(Real v) { return mpq_class(v); }
 
 int orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -51,16 +55,21 @@ int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Real permanent = std::fabs(u.x) * (std::fabs(m1) + std::fabs(m2)) + std::fabs(u.y) * (std::fabs(m3) + std::fabs(m4)) +
                          std::fabs(u.z) * (std::fabs(m5) + std::fabs(m6));
   if (std::fabs(det) > kFilterRelBound * permanent && permanent > kTinyPermanent) return sign_of(det);
-  if (permanent == 0) return 0;  // two of the differences are zero exactly
+  // A permanent of 0 is a determinant of 0 where each of its six products
+  // has a zero factor, not where products of tiny numbers underflowed.
+  if (permanent == 0 && has_zero(u.x, v.y, w.z) && has_zero(u.x, v.z, w.y) && has_zero(u.y, v.x, w.z) &&
+      has_zero(u.y, v.z, w.x) && has_zero(u.z, v.x, w.y) && has_zero(u.z, v.y, w.x))
+    return 0;
   return orient3d_exact(a, b, c, d);
 }
 
 int cross_sign(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s, int axis) {
   const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-  const Real a = (q[i] - p[i]) * (s[j] - r[j]), b = (q[j] - p[j]) * (s[i] - r[i]);
+  const Real ui = q[i] - p[i], uj = q[j] - p[j], vi = s[i] - r[i], vj = s[j] - r[j];
+  const Real a = ui * vj, b = uj * vi;
   const Real permanent = std::fabs(a) + std::fabs(b);
   if (std::fabs(a - b) > kFilterRelBound * permanent && permanent > kTinyPermanent) return sign_of(a - b);
-  if (permanent == 0) return 0;
+  if (permanent == 0 && (ui == 0 || vj == 0) && (uj == 0 || vi == 0)) return 0;  // (as in orient3d)
   return cross_sign_exact(p, q, r, s, axis);
 }
 

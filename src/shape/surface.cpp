@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 
 #include "gjkdem/shape/predicates.hpp"
@@ -260,9 +262,26 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
   });
   const MassProperties m = mass_properties(s);
   s.volume = m.volume, s.centroid = m.centroid;
-  if (!(s.volume > 0))
+  if (!(s.volume > 0 && s.volume < std::numeric_limits<Real>::infinity())) {
+    // Inward, or beyond double's range: the sign of the volume of the
+    // surface scaled (by a power of two: exactly) to about unit size.
+    const Real extent = std::fmax(max_abs(s.box.lo), max_abs(s.box.hi));
+    int exponent = 0;
+    std::frexp(extent, &exponent);
+    Real scaled = 0;
+    for (const TriangleIndices& t : s.triangles) {
+      const auto at = [&](std::uint32_t i) { return std::ldexp(Real(1), -exponent) * s.vertices[i]; };
+      scaled += dot(at(t[0]), cross(at(t[1]), at(t[2])));
+    }
+    if (scaled > 0) {
+      char size[32];
+      std::snprintf(size, sizeof size, "%.3g", extent);
+      throw SurfaceError(std::string("its volume is beyond the range of double precision (coordinates up to ") + size +
+                         "): give the surface in other units");
+    }
     throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
                        "the other way round");
+  }
   return s;
 }
 

@@ -59,6 +59,17 @@ TEST(Surface, RefusalsNameTheFault) {
   for (auto& t : inward.triangles) std::swap(t[0], t[1]);
   EXPECT_NE(refusal(inward).find("face inward"), std::string::npos) << refusal(inward);
 
+  // A box of side 1e300 (volume 1e900) or 1e-300: beyond double's range,
+  // said so, not taken for one facing inward or flat.
+  for (const Real scale : {1e300, 1e-300}) {
+    Mesh extreme = box_surface({0, 0, 0}, {1, 1, 1});
+    for (Vec3& v : extreme.vertices) v = scale * v;
+    EXPECT_NE(refusal(extreme).find("beyond the range of double precision"), std::string::npos) << refusal(extreme);
+  }
+  Mesh large_inward = box_surface({0, 0, 0}, {1e300, 1e300, 1e300});
+  for (auto& t : large_inward.triangles) std::swap(t[0], t[1]);
+  EXPECT_NE(refusal(large_inward).find("face inward"), std::string::npos) << refusal(large_inward);
+
   Mesh unused = box_surface({0, 0, 0}, {1, 1, 1});
   unused.vertices.push_back({5, 5, 5});
   EXPECT_EQ(refusal(unused), "vertex 8 is in no triangle");
