@@ -68,8 +68,8 @@ void bind_surfaces(py::module_& m) {
              return std::const_pointer_cast<Surface>(surface_from_arrays(vertices, triangles));
            }),
            py::arg("vertices"), py::arg("triangles"))
-      .def_property_readonly("volume", [](const Surface& s) { return mass_properties(s).volume; })
-      .def_property_readonly("centroid", [](const Surface& s) { return from_vec3(mass_properties(s).centroid); })
+      .def_property_readonly("volume", [](const Surface& s) { return s.volume; })
+      .def_property_readonly("centroid", [](const Surface& s) { return from_vec3(s.centroid); })
       .def_property_readonly("triangle_count", [](const Surface& s) { return s.triangles.size(); })
       .def_property_readonly("vertex_count", [](const Surface& s) { return s.vertices.size(); })
       .def("__repr__", [](const Surface& s) {
@@ -90,8 +90,8 @@ void bind_surfaces(py::module_& m) {
              }
            }),
            py::arg("vertices"), py::arg("triangles"), py::arg("thickness"))
-      .def_property_readonly("volume", [](const Shell& s) { return mass_properties(s).volume; })
-      .def_property_readonly("centroid", [](const Shell& s) { return from_vec3(mass_properties(s).centroid); })
+      .def_property_readonly("volume", [](const Shell& s) { return s.volume; })
+      .def_property_readonly("centroid", [](const Shell& s) { return from_vec3(s.centroid); })
       .def_property_readonly("thickness", [](const Shell& s) { return 2 * s.margin; })
       .def_property_readonly("area", [](const Shell& s) { return s.area; })
       .def_property_readonly("triangle_count", [](const Shell& s) { return s.triangles.size(); })

@@ -37,7 +37,8 @@ Shell make_shell(std::vector<Vec3> vertices, std::vector<TriangleIndices> triang
   for (TriangleIndices& t : triangles)
     for (std::uint32_t& v : t) v = index[v];
   s.triangles = std::move(triangles);
-  s.centroid = mass_properties(s).centroid;
+  const MassProperties m = mass_properties(s);
+  s.volume = m.volume, s.centroid = m.centroid;
   return s;
 }
 
