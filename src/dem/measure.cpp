@@ -91,18 +91,20 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   const ShapeTemplate& t = w.templates[b.shape];
   if (distance_to(region, b.position) >= t.reach) return 0;
   if (inside(region, b.position) && depth_in(region, b.position) >= t.reach) return t.unit_mass.volume;
-  const Vec3 half = (region.hi - region.lo) * 0.5;
-  Shape clip{Box{half}};  // the region as a solid
-  Transform clip_pose = Transform::from(region.lo + half, Quat{});
-  if (region.round) {
-    const RoundRegion& g = *region.round;
-    if (work.tessellated_region != g) {
-      work.region_solid = Shape{tessellate(round_shape(g), kMeasureTessellation).polytope};
-      work.tessellated_region = g;
+  if (work.region_for != region) {
+    if (region.round) {
+      work.region_solid = Shape{tessellate(round_shape(*region.round), kMeasureTessellation).polytope};
+      work.region_pose = round_pose(*region.round);
+    } else {
+      const Vec3 half = (region.hi - region.lo) * 0.5;
+      work.region_solid = Shape{Box{half}};
+      work.region_pose = Transform::from(region.lo + half, Quat{});
     }
-    clip = work.region_solid;
-    clip_pose = round_pose(g);
+    work.region_surface.reset();
+    work.region_for = region;
   }
+  const Shape& clip = work.region_solid;
+  const Transform& clip_pose = work.region_pose;
   if (t.shell) {  // its plates: each triangle's area inside, times the thickness
     if (!face_planes_near(clip, clip_pose, b.position, t.reach, work.planes)) return 0;
     const Transform pose = shape_pose(t, b);
@@ -118,14 +120,12 @@ Real volume_inside(const World& w, const Body& b, const MeasureRegion& region, M
   for (std::uint32_t k = 0; k < parts; ++k) {
     const PartPose part = part_pose(t, b, k);
     if (surface_side(t, k)) {  // its own surface, not its hull: A ∩ region exactly, in the part's frame
-      const bool same = work.surface_region && work.surface_region->lo == region.lo &&
-                        work.surface_region->hi == region.hi && work.surface_region->round == region.round;
-      if (!same) {
-        work.region_surface = region.round ? polytope_surface(std::get<Polytope>(clip.core)) : box_surface(Box{half});
-        work.placed = work.region_surface;
-        work.surface_region = region;
+      if (!work.region_surface) {
+        work.region_surface = region.round ? polytope_surface(std::get<Polytope>(clip.core))
+                                           : box_surface(std::get<Box>(clip.core));
+        work.placed = *work.region_surface;
       }
-      repose(work.region_surface, relative(part.pose, clip_pose), work.placed);
+      repose(*work.region_surface, relative(part.pose, clip_pose), work.placed);
       volume += surface_overlap(work.placed, *surface_of(t, k), work.surface_overlap).volume;
       continue;
     }

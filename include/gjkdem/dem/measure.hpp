@@ -27,6 +27,7 @@ struct MeasureRegion {
   Real volume() const noexcept {
     return round ? round_volume(*round) : (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
   }
+  friend bool operator==(const MeasureRegion&, const MeasureRegion&) = default;
 };
 
 /// A touching contact: the force acts on `second`, its opposite on `first`.
@@ -62,14 +63,16 @@ struct MeasureWorkspace {
   };
   OverlapWorkspace overlap;
   std::unordered_map<std::uint64_t, ClippedShape> clipped;  ///< key: template << 32 | part
-  /// A round region's tessellation (kMeasureTessellation directions), the one it was made for.
-  std::optional<RoundRegion> tessellated_region;
+  /// The region as a solid at its pose (a box, or a round region's
+  /// tessellation of kMeasureTessellation directions), made for
+  /// `region_for`; as a closed surface in its own frame, made once a surface
+  /// grain is met (it clips them exactly); that surface placed in a grain's
+  /// frame.
+  std::optional<MeasureRegion> region_for;
   Shape region_solid;
-  /// The region as a closed surface in its own frame, which clips surface
-  /// grains exactly, and the region it was made for; that surface placed in
-  /// a grain's frame.
-  std::optional<MeasureRegion> surface_region;
-  Surface region_surface, placed;
+  Transform region_pose;
+  std::optional<Surface> region_surface;
+  Surface placed;
   SurfaceOverlapWorkspace surface_overlap;
   /// The region's planes near a shell and a triangle being clipped by them.
   std::vector<OverlapWorkspace::Plane> planes;
