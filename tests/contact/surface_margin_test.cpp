@@ -22,6 +22,14 @@ namespace {
 
 using test::Mesh;
 
+// The contacts of a surface whose solid holds `centre` with the triangles.
+void surface_margin_contacts(const Surface& surface, std::span<const MarginTriangle> triangles, const Vec3& centre,
+                             SurfaceMarginScratch& scratch, std::vector<MarginContact>& out) {
+  TriangleSet set = triangles_of(surface);
+  set.inside = centre;
+  gjkdem::surface_margin_contacts(set, triangles, scratch, out);
+}
+
 // The least distance of any triangle of the surface to the triangle.
 Real brute_distance(const Surface& s, const std::array<Vec3, 3>& t) {
   Real least = INFINITY;

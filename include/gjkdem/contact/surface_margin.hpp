@@ -86,11 +86,5 @@ inline TriangleSet triangles_of(const Surface& s) noexcept { return {s.vertices,
 /// is. `out` is overwritten.
 void surface_margin_contacts(const TriangleSet& surface, std::span<const MarginTriangle> triangles,
                              SurfaceMarginScratch& scratch, std::vector<MarginContact>& out);
-inline void surface_margin_contacts(const Surface& surface, std::span<const MarginTriangle> triangles,
-                                    const Vec3& centre, SurfaceMarginScratch& scratch, std::vector<MarginContact>& out) {
-  TriangleSet set = triangles_of(surface);
-  set.inside = centre;
-  surface_margin_contacts(set, triangles, scratch, out);
-}
 
 }  // namespace gjkdem
