@@ -120,7 +120,7 @@ void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<c
   for (const MarginTriangle& t : triangles)
     s.margin_triangles.push_back({{apply_inverse(pose, t.corners[0]), apply_inverse(pose, t.corners[1]),
                                    apply_inverse(pose, t.corners[2])},
-                                  t.rho});
+                                  t.rho + grain.margin});
   surface_margin_contacts(grain, s.margin_triangles, s.margin, s.margin_contacts);
   for (const MarginContact& c : s.margin_contacts) {
     ContactGeometry g;
@@ -162,8 +162,6 @@ GeometryStatus shell_patches(const ShapeTemplate& shell, const Transform& shell_
   if (!other.shell && !surface) return GeometryStatus::Unsupported;
   placed_shell_triangles(*shell.shell, shell_pose, aabb(*other_pose.shape, other_pose.pose), scratch,
                          scratch.margin_pieces);
-  if (other.shell)
-    for (MarginTriangle& t : scratch.margin_pieces) t.rho += other.shell->margin;
   margin_patches(other.shell ? shell_triangles(*other.shell) : triangles_of(*surface), other_pose.pose,
                  scratch.margin_pieces, scratch, out, scratch.margin_hosts);
   if (!shell_is_a)

@@ -99,7 +99,6 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     const Vec3 image = image_shift_of(cell, c);
     at.translation += grain_is_b ? -image : image;
     scratch.margin_pieces.push_back(placed_margin_triangle(tp, at));
-    if (tg.shell) scratch.margin_pieces.back().rho += tg.shell->margin;  // the margins of both
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }

@@ -770,8 +770,7 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
     const ShapeTemplate &shell = shell_is_a ? ta : tb, &other = shell_is_a ? tb : ta;
     const PartPose &at_shell = shell_is_a ? at_a : at_b, &body = shell_is_a ? at_b : at_a;
     if (margin_piece(other)) {  // the shell's triangles against the piece, with both margins
-      MarginTriangle piece = placed_margin_triangle(other, body.pose);
-      piece.rho += shell.shell->margin;
+      const MarginTriangle piece = placed_margin_triangle(other, body.pose);
       margin_patches(shell_triangles(*shell.shell), at_shell.pose, {&piece, 1}, scratch, patches, hosts);
     } else if (shell_patches(shell, at_shell.pose, other, shell_is_a ? pb : pa, body, shell_is_a, scratch, patches) ==
                GeometryStatus::Unsupported) {

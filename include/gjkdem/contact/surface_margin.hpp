@@ -73,6 +73,7 @@ struct TriangleSet {
   std::span<const TriangleIndices> triangles;
   const BoxTree* tree = nullptr;
   Vec3 inside;  ///< a point of the solid (its centroid): the side crossing pairs push it to
+  Real margin = 0;  ///< its own (a thin shell's half thickness), added to each margin triangle's
 };
 inline TriangleSet triangles_of(const Surface& s) noexcept { return {s.vertices, s.triangles, &s.tree, s.centroid}; }
 

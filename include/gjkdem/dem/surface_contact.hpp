@@ -113,14 +113,16 @@ inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const T
 /// (TriangleSet::inside: its solid's centroid). Each has a depth and a
 /// point midway across the margin, no volume or area; normals point from
 /// the wall to the grain. `hosts` gets, per contact, the triangle its
-/// deepest pair touches. A shell's own margin is added to the pieces' (the
-/// caller's: rho of both).
+/// deepest pair touches. The grain's own margin (a shell's: TriangleSet::
+/// margin) is added to each triangle's: they meet within both.
 void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<const MarginTriangle> triangles,
                     SurfaceScratch& scratch,
                     std::vector<SurfacePatchContact>& out, std::vector<std::uint32_t>& hosts);
 
 /// A thin shell's triangles as margin contacts meet them (TriangleSet).
-inline TriangleSet shell_triangles(const Shell& s) noexcept { return {s.vertices, s.triangles, &s.tree, s.centroid}; }
+inline TriangleSet shell_triangles(const Shell& s) noexcept {
+  return {s.vertices, s.triangles, &s.tree, s.centroid, s.margin};
+}
 
 /// A thin shell's triangles placed at `pose`, those whose boxes meet `near`
 /// (world), in world coordinates with the shell's margin.
