@@ -90,8 +90,8 @@ void bind_surfaces(py::module_& m) {
              }
            }),
            py::arg("vertices"), py::arg("triangles"), py::arg("thickness"))
-      .def_property_readonly("volume", [](const Shell& s) { return s.volume; })
-      .def_property_readonly("centroid", [](const Shell& s) { return from_vec3(s.centroid); })
+      .def_property_readonly("volume", [](const Shell& s) { return s.mass.volume; })
+      .def_property_readonly("centroid", [](const Shell& s) { return from_vec3(s.mass.centroid); })
       .def_property_readonly("thickness", [](const Shell& s) { return 2 * s.margin; })
       .def_property_readonly("area", [](const Shell& s) { return s.area; })
       .def_property_readonly("triangle_count", [](const Shell& s) { return s.triangles.size(); })

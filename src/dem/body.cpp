@@ -129,7 +129,7 @@ ShapeTemplate make_shell_template(std::shared_ptr<const Shell> shell, bool fixed
   const Shape hull{make_polytope(shell->vertices), shell->margin};
   ShapeTemplate t = make_wall_template(hull);
   if (!fixed) {
-    t.unit_mass = mass_properties(*shell);
+    t.unit_mass = shell->mass;
     t.principal = principal_axes(t.unit_mass.inertia);
     t.curvature_radius = std::sqrt(shell->area / (4 * kPi));
     t.reach = 0;

@@ -37,8 +37,7 @@ Shell make_shell(std::vector<Vec3> vertices, std::vector<TriangleIndices> triang
   for (TriangleIndices& t : triangles)
     for (std::uint32_t& v : t) v = index[v];
   s.triangles = std::move(triangles);
-  const MassProperties m = mass_properties(s);
-  s.volume = m.volume, s.centroid = m.centroid;
+  s.mass = mass_properties(s);
   return s;
 }
 

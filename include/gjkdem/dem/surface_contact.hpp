@@ -121,7 +121,7 @@ void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<c
 
 /// A thin shell's triangles as margin contacts meet them (TriangleSet).
 inline TriangleSet shell_triangles(const Shell& s) noexcept {
-  return {s.vertices, s.triangles, &s.tree, s.centroid, s.margin};
+  return {s.vertices, s.triangles, &s.tree, s.mass.centroid, s.margin};
 }
 
 /// A thin shell's triangles placed at `pose`, those whose boxes meet `near`

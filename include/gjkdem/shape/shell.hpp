@@ -21,8 +21,7 @@ struct Shell {
   BoxTree tree;                      ///< of triangle_boxes, ids the triangles
   Real margin = 0;                   ///< rho: half the thickness
   Real area = 0;                     ///< of the triangles (one side)
-  Real volume = 0;                   ///< of its plates (mass_properties)
-  Vec3 centroid;                     ///< of its plates (mass_properties)
+  MassProperties mass;               ///< of its plates, per unit density (mass_properties)
 };
 
 /// A shell that breaks a rule: the message names the triangle or vertex.
