@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gjkdem/math/polygon_clip.hpp"
 #include "gjkdem/shape/predicates.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "surface_overlap_detail.hpp"
@@ -88,13 +89,7 @@ Real coplanar_overlap_area(const Vec3 (&abc)[3], const Vec3 (&def)[3], const Vec
   const Vec3 m = cross(def[1] - def[0], def[2] - def[0]);  // def's own normal: its corners run ccw about it
   for (int k = 0; k < 3 && !poly.empty(); ++k) {
     const Vec3 inward = cross(m, def[(k + 1) % 3] - def[k]);
-    next.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const Vec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
-      const Real dp = dot(inward, p - def[k]), dq = dot(inward, q - def[k]);
-      if (dp >= 0) next.push_back(p);
-      if ((dp >= 0) != (dq >= 0)) next.push_back(p + (dp / (dp - dq)) * (q - p));
-    }
+    clip_polygon(poly, [&](const Vec3& p) { return -dot(inward, p - def[k]); }, next);  // (negated exactly)
     poly.swap(next);
   }
   Vec3 area, weighted;

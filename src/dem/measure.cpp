@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gjkdem/dem/periodic.hpp"
+#include "gjkdem/math/polygon_clip.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 
 namespace gjkdem::dem {
@@ -45,13 +46,7 @@ Real area_inside(const Vec3& a, const Vec3& b, const Vec3& c, std::span<const Ov
                  std::vector<Vec3>& poly, std::vector<Vec3>& next) {
   poly.assign({a, b, c});
   for (const auto& [n, d] : planes) {
-    next.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const Vec3 &p = poly[i], &q = poly[(i + 1) % poly.size()];
-      const Real dp = dot(n, p) - d, dq = dot(n, q) - d;
-      if (dp <= 0) next.push_back(p);
-      if ((dp <= 0) != (dq <= 0)) next.push_back(p + (dp / (dp - dq)) * (q - p));
-    }
+    clip_polygon(poly, [&](const Vec3& p) { return dot(n, p) - d; }, next);
     poly.swap(next);
     if (poly.empty()) return 0;
   }
