@@ -354,6 +354,12 @@ async function runAddress(url, errors) {
     .waitForFunction((k) => window.gjkdemViewer.currentFrame === k, middle, { timeout: 10_000 })
     .then(() => true, () => false);
   check(atMiddle, `?time=${times[middle]} opens frame ${middle + 1}`);
+  // The message is written once every value of the address is applied,
+  // after the frame is shown: wait for it (a loaded machine was seen to
+  // read the line between the two).
+  await byTime
+    .waitForFunction(() => document.getElementById('message').textContent.includes('address:'), null, { timeout: 10_000 })
+    .catch(() => {});
   const message = await byTime.evaluate(() => document.getElementById('message').textContent);
   check(message.includes('address: frame=zz'), `a bad address value is said (${message})`);
   await byTime.close();
