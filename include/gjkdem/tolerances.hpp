@@ -209,6 +209,18 @@ inline constexpr Real kStepCountRelTol = 1e-9;
 /// adjacency; smaller ones scan every vertex (faster below this size).
 inline constexpr int kHillClimbMinVertices = 64;
 
+/// Solid polytopes with at least this many hull triangles keep a slot for
+/// their boundary surface (hull_surface, surface.hpp), made on first use:
+/// their overlaps may then be found as surfaces' (below).
+inline constexpr int kSurfaceRouteMinTriangles = 256;
+
+/// Overlap of two such polytopes: when the planes of B that reach A's faces
+/// times the corners of those faces exceed this, the clip (whose work that
+/// product measures: every cutting plane rewrites every kept face) gives way
+/// to the overlap of their surfaces (surface_overlap), whose work follows the
+/// triangles that cross. Measured on poly-many (docs/benchmarks.md).
+inline constexpr long kClipWorkBeyondSurfaces = 150000;
+
 /// Polytopes with at least this many (padded) vertices scan 4 at a time where
 /// the processor has AVX2 (chosen at run time; the 2-wide SSE2 scan
 /// elsewhere, and inlined below this size, where a call costs more than the

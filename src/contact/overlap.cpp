@@ -11,9 +11,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/shape/convex_hull.hpp"
+#include "gjkdem/shape/surface.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
@@ -493,6 +495,39 @@ void finish_normal(OverlapResult& r, Real total_area, Real summed_a, Real summed
   r.contact_normal = r.has_normal ? normalized(s) : Vec3{};
 }
 
+// A big solid polytope's boundary surface (hull_surface), else null.
+std::shared_ptr<const Surface> big_hull_surface(const Shape& s) {
+  const auto* p = std::get_if<Polytope>(&s.core);
+  return p ? hull_surface(*p) : nullptr;
+}
+
+// The overlap of two big hulls as the overlap of their surfaces: the same
+// region, found exactly, in the clip's terms. Its normal is S_A - S_B, and
+// it has one unless one hull lies within the other: a contact area below
+// kEngulfedAreaRel V^(2/3), the surface grains' rule.
+OverlapResult overlap_of_surfaces(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                                  const std::shared_ptr<const Surface>& b, const Transform& pose_b,
+                                  OverlapWorkspace& w) {
+  OverlapResult r;
+  Transform frame;
+  const SurfaceOverlap o = posed_surface_overlap(a, pose_a, b, pose_b, w.surfaces, frame);
+  if (!(o.volume > 0)) return r;
+  r.status = OverlapStatus::Overlapping;
+  r.volume = o.volume;
+  r.centroid = apply(frame, o.centroid);
+  r.area_a = apply_rotation(frame, o.area_a);
+  r.area_b = apply_rotation(frame, o.area_b);
+  r.contact_area = length(r.area_a);
+  r.moment_a = apply_rotation(frame, o.area_moment_a) + cross(frame.translation, r.area_a);
+  r.has_normal = r.contact_area > kEngulfedAreaRel * std::cbrt(r.volume * r.volume);
+  if (r.has_normal) {
+    r.contact_normal = normalized(r.area_a - r.area_b);
+    r.application_point = cross(r.area_a, r.moment_a) / dot(r.area_a, r.area_a);
+    r.has_application_point = true;
+  }
+  return r;
+}
+
 }  // namespace
 
 bool face_planes_near(const Shape& shape, const Transform& to, const Vec3& centre, Real radius,
@@ -556,6 +591,13 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     }
     const Real radius = std::sqrt(radius_sq);
     if (!planes_near(b, b_in_a, centre, radius + tol, w.planes, a_ends)) return r;
+    // Big hulls deep in each other: each plane that cuts rewrites every kept
+    // face, work that outgrows the surfaces' overlap, which follows the
+    // triangles that cross.
+    if (static_cast<long>(w.planes.size()) * static_cast<long>(w.points[0].size()) > kClipWorkBeyondSurfaces)
+      if (const std::shared_ptr<const Surface> sa = big_hull_surface(a))
+        if (const std::shared_ptr<const Surface> sb = big_hull_surface(b))
+          return overlap_of_surfaces(sa, pose_a, sb, pose_b, w);
     // Planes that merely touch A (a face of A lies in them) cut nothing but mark
     // the faces on both boundaries (aligned, stacked bodies).
     w.touching.clear();

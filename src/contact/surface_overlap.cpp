@@ -138,6 +138,22 @@ SurfaceOverlapWorkspace& SurfaceOverlapWorkspace::operator=(const SurfaceOverlap
 SurfaceOverlapWorkspace::SurfaceOverlapWorkspace(SurfaceOverlapWorkspace&&) noexcept = default;
 SurfaceOverlapWorkspace& SurfaceOverlapWorkspace::operator=(SurfaceOverlapWorkspace&&) noexcept = default;
 
+SurfaceOverlap posed_surface_overlap(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                                     const std::shared_ptr<const Surface>& b, const Transform& pose_b,
+                                     PosedSurfaceScratch& s, Transform& frame) {
+  const bool move_a = a->vertices.size() < b->vertices.size();
+  frame = move_a ? pose_b : pose_a;
+  const std::shared_ptr<const Surface>& mover = move_a ? a : b;
+  const Transform pose = move_a ? relative(pose_b, pose_a) : relative(pose_a, pose_b);
+  if (s.moved_from == mover) {
+    repose(*mover, pose, s.moved);  // the same surface as last time: its topology is there
+  } else {
+    move_into(*mover, pose, s.moved);
+    s.moved_from = mover;
+  }
+  return move_a ? surface_overlap(s.moved, *b, s.overlap) : surface_overlap(*a, s.moved, s.overlap);
+}
+
 SurfaceOverlap surface_overlap(const Surface& a, const Surface& b) {
   SurfaceOverlapWorkspace work;
   return surface_overlap(a, b, work);

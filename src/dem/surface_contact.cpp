@@ -15,20 +15,8 @@ bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
                      const std::shared_ptr<const Surface>& shared_b, const Transform& pose_b, ContactModel model,
                      SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
-  const Surface &a = *shared_a, &b = *shared_b;
-  // The surface of fewer vertices moves into the other's frame: fewer to move,
-  // and coordinates stay near that frame's origin, far from the world's.
-  const bool move_a = a.vertices.size() < b.vertices.size();
-  const Transform& frame = move_a ? pose_b : pose_a;
-  const std::shared_ptr<const Surface>& mover = move_a ? shared_a : shared_b;
-  const Transform pose = move_a ? relative(pose_b, pose_a) : relative(pose_a, pose_b);
-  if (s.moved_from == mover) {
-    repose(*mover, pose, s.moved);  // the same grain's shape as last time: its topology is there
-  } else {
-    move_into(*mover, pose, s.moved);
-    s.moved_from = mover;
-  }
-  const SurfaceOverlap o = move_a ? surface_overlap(s.moved, b, s.overlap) : surface_overlap(a, s.moved, s.overlap);
+  Transform frame;
+  const SurfaceOverlap o = posed_surface_overlap(shared_a, pose_a, shared_b, pose_b, s.posed, frame);
   for (const SurfacePatch& p : o.patches) {
     const Vec3 area_a = apply_rotation(frame, p.area_a);
     ContactGeometry g;

@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "gjkdem/shape/convex_hull.hpp"
+#include "gjkdem/shape/hull_surface_slot.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
@@ -33,7 +34,8 @@ constexpr std::size_t kBlockAlign = 64;  // a cache line
 std::size_t align_up(std::size_t n, std::size_t a) { return (n + a - 1) / a * a; }
 
 // Copies the header and every array into one block (header first, arrays in
-// the order of Arrays), owned by the returned pointer.
+// the order of Arrays), owned by the returned pointer, with an empty surface
+// slot for a big solid hull.
 std::shared_ptr<const PolytopeData> pack(const PolytopeData& header, const Arrays& a) {
   std::size_t size = align_up(sizeof(PolytopeData), kBlockAlign);
   const auto place = [&](const auto& v) {
@@ -64,7 +66,13 @@ std::shared_ptr<const PolytopeData> pack(const PolytopeData& header, const Array
   d->facet_vertices = copy(a.facet_vertices, at[7]);
   d->facet_normals = copy(a.facet_normals, at[8]);
   static_assert(std::is_trivially_destructible_v<PolytopeData>);
-  return {d, [](const PolytopeData* p) { ::operator delete(const_cast<PolytopeData*>(p), std::align_val_t{kBlockAlign}); }};
+  const auto release = [](const PolytopeData* p) {
+    delete p->surface_slot;
+    ::operator delete(const_cast<PolytopeData*>(p), std::align_val_t{kBlockAlign});
+  };
+  std::shared_ptr<const PolytopeData> owned(d, release);
+  if (a.triangles.size() >= static_cast<std::size_t>(kSurfaceRouteMinTriangles)) d->surface_slot = new HullSurfaceSlot;
+  return owned;
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <string>
 
+#include "gjkdem/shape/hull_surface_slot.hpp"
 #include "gjkdem/shape/predicates.hpp"
 
 namespace gjkdem {
@@ -316,6 +318,19 @@ Surface polytope_surface(const Polytope& polytope) {
   if (d.triangles.empty()) throw SurfaceError("a flat polytope bounds no solid");
   return make_surface(std::vector<Vec3>(d.vertices.begin(), d.vertices.end()),
                       std::vector<TriangleIndices>(d.triangles.begin(), d.triangles.end()));
+}
+
+std::shared_ptr<const Surface> hull_surface(const Polytope& polytope) {
+  HullSurfaceSlot* slot = polytope.data->surface_slot;
+  if (!slot) return nullptr;
+  std::call_once(slot->made, [&] {
+    try {
+      slot->surface = std::make_shared<const Surface>(polytope_surface(polytope));
+    } catch (const SurfaceError&) {
+      // (left null: its overlaps are clipped)
+    }
+  });
+  return slot->surface;
 }
 
 Real winding_number(std::span<const Vec3> vertices, std::span<const TriangleIndices> triangles, const Vec3& p) {

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "gjkdem/tolerances.hpp"
 #include "oracle/overlap_oracle.hpp"
 #include "shape/float_sphere.hpp"
 
@@ -248,6 +249,21 @@ TEST(Overlap, CornersOfManyFacesMatchClosedFormsAndBruteForce) {
 
 // The contact normal is minus the gradient of the overlap volume with respect
 // to B's position (the volume shrinks fastest when B moves along it).
+// The gradient of the overlap volume with respect to B's position, by
+// central differences.
+Vec3 volume_gradient(const Body& a, const Body& b, OverlapWorkspace& work) {
+  Vec3 grad;
+  const double h = 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    Vec3 e;
+    e[k] = h;
+    const Transform plus{b.pose.rotation, b.pose.translation + e}, minus{b.pose.rotation, b.pose.translation - e};
+    grad[k] = (overlap(a.shape, a.pose, b.shape, plus, work).volume -
+               overlap(a.shape, a.pose, b.shape, minus, work).volume) / (2 * h);
+  }
+  return grad;
+}
+
 TEST(Overlap, NormalIsMinusVolumeGradient) {
   std::mt19937_64 rng(73);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -258,21 +274,73 @@ TEST(Overlap, NormalIsMinusVolumeGradient) {
     const Body b = random_body(rng, Vec3{u(rng), u(rng), u(rng)} * 0.9, 12);
     const OverlapResult r = overlap(a.shape, a.pose, b.shape, b.pose, work);
     if (r.status != OverlapStatus::Overlapping || !r.has_normal || r.volume < 1e-3) continue;
-    Vec3 grad;
-    const double h = 1e-6;
-    for (int k = 0; k < 3; ++k) {
-      Vec3 e;
-      e[k] = h;
-      const Transform plus{b.pose.rotation, b.pose.translation + e}, minus{b.pose.rotation, b.pose.translation - e};
-      grad[k] = (overlap(a.shape, a.pose, b.shape, plus, work).volume -
-                 overlap(a.shape, a.pose, b.shape, minus, work).volume) / (2 * h);
-    }
+    const Vec3 grad = volume_gradient(a, b, work);
     EXPECT_GT(dot(normalized(-grad), r.contact_normal), 1 - 1e-6) << "case " << c;
     // And |grad V| = |S_A| (the projected area of the overlap).
     EXPECT_NEAR(length(grad), length(r.area_a), 1e-5 * length(r.area_a)) << "case " << c;
     ++checked;
   }
   EXPECT_GT(checked, 20);
+}
+
+// A hull of n random points on the unit sphere (2n - 4 triangles).
+Body sphere_hull(std::mt19937_64& rng, int n, const Transform& pose) {
+  std::normal_distribution<double> g(0, 1);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < n; ++i) pts.push_back(normalized(Vec3{g(rng), g(rng), g(rng)}));
+  return placed_body(pts, pose);
+}
+
+// Big hulls deep in each other, or one inside the other, are met as
+// surfaces (kClipWorkBeyondSurfaces, overlap.hpp; no clipped polyhedron is
+// left in the workspace), a shallow pair is clipped: either way the volume
+// and centroid of the brute-force oracle, a closed surface (S_A = -S_B), a
+// normal that is minus the volume's gradient, |grad V| = |S_A|, and the same
+// volume with A and B swapped.
+TEST(Overlap, BigHullsMatchBruteForceWhicheverWayTheyAreMet) {
+  std::mt19937_64 rng(75);
+  std::uniform_real_distribution<double> u(-1, 1);
+  OverlapWorkspace work;
+  const double offsets[] = {0.3, 0.6, 1.0, 1.9, 0.0};  // deep, deep, half, shallow; 0: B shrunk inside A
+  const bool as_surfaces[] = {true, true, true, false, true};
+  for (int c = 0; c < 5; ++c) {
+    const Vec3 axis = normalized(Vec3{u(rng), u(rng), u(rng)});
+    const Quat turn = normalized(Quat{u(rng), u(rng), u(rng), u(rng)});
+    // Posed away from the origin, and either of the two the one of fewer
+    // vertices (moved into the other's frame).
+    const Transform pose_a = Transform::from(Vec3{3, -2, 5}, normalized(Quat{u(rng), u(rng), u(rng), u(rng)}));
+    const Body a = sphere_hull(rng, 300 + 20 * c, pose_a);
+    Body b = sphere_hull(rng, 260 + 60 * c, Transform::from(pose_a.translation + axis * offsets[c], turn));
+    if (offsets[c] == 0) {  // a smaller B, wholly inside A
+      std::vector<Vec3> small;
+      for (const Vec3& v : std::get<Polytope>(b.shape.core).data->vertices) small.push_back(v * 0.5);
+      b = placed_body(small, b.pose);
+    }
+    ASSERT_GE(std::get<Polytope>(a.shape.core).data->triangles.size(), static_cast<std::size_t>(kSurfaceRouteMinTriangles));
+    ASSERT_GE(std::get<Polytope>(b.shape.core).data->triangles.size(), static_cast<std::size_t>(kSurfaceRouteMinTriangles));
+    const auto truth = oracle::brute_force_overlap(a.world, a.tris, b.world, b.tris);
+    const OverlapResult r = overlap(a.shape, a.pose, b.shape, b.pose, work);
+    ASSERT_EQ(r.status, OverlapStatus::Overlapping) << "case " << c;
+    EXPECT_EQ(overlap_surface(work).empty(), as_surfaces[c]) << "case " << c;
+    EXPECT_NEAR(r.volume, truth.volume, 1e-10 * truth.volume) << "case " << c;
+    EXPECT_NEAR(length(r.centroid - truth.centroid), 0.0, 1e-10) << "case " << c;
+    EXPECT_NEAR(length(r.area_a + r.area_b), 0.0, 1e-10 * (length(r.area_a) + 1)) << "case " << c;
+    const OverlapResult swapped = overlap(b.shape, b.pose, a.shape, a.pose, work);
+    EXPECT_NEAR(swapped.volume, r.volume, 1e-12 * r.volume) << "case " << c;
+    EXPECT_NEAR(length(swapped.centroid - r.centroid), 0.0, 1e-12) << "case " << c;
+    if (offsets[c] == 0) {
+      EXPECT_FALSE(r.has_normal);  // all of B: no contact area
+      EXPECT_NEAR(r.volume, volume_of(b), 1e-12 * r.volume);
+      continue;
+    }
+    ASSERT_TRUE(r.has_normal) << "case " << c;
+    EXPECT_NEAR(length(swapped.contact_normal + r.contact_normal), 0.0, 1e-9) << "case " << c;
+    const Vec3 grad = volume_gradient(a, b, work);
+    EXPECT_GT(dot(normalized(-grad), r.contact_normal), 1 - 1e-6) << "case " << c;
+    EXPECT_NEAR(length(grad), length(r.area_a), 1e-5 * length(r.area_a)) << "case " << c;
+    EXPECT_NEAR(r.contact_area, length(r.area_a), 1e-15 * r.contact_area);
+    EXPECT_TRUE(r.has_application_point);
+  }
 }
 
 TEST(Overlap, SurfaceAndIntersectionLine) {

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "gjkdem/shape/surface.hpp"
+#include "gjkdem/tolerances.hpp"
 #include "surface_shapes.hpp"
 
 namespace gjkdem {
@@ -131,6 +134,36 @@ TEST(Surface, TouchingTrianglesMeetAndApartOnesDoNot) {
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
   EXPECT_TRUE(triangles_meet(a, b, c, {0.25, 0.25, 0}, {0.25, 0.25, 1}, {1, 1, 1}));
   EXPECT_FALSE(triangles_meet(a, b, c, {0.25, 0.25, 0x1p-60}, {0.25, 0.25, 1}, {1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace gjkdem
+
+namespace gjkdem {
+namespace {
+
+// A big hull keeps its boundary surface, made once whoever asks first and
+// shared by every copy of the polytope; small and flat hulls keep none.
+TEST(Surface, BigHullsKeepTheirSurfaceOnce) {
+  std::vector<Vec3> sphere;
+  for (int i = 0; i < 400; ++i) {  // a Fibonacci sphere: 796 triangles
+    const Real z = 1 - (2 * i + 1) / Real(400), r = std::sqrt(1 - z * z), turn = i * 2.399963229728653;
+    sphere.push_back({r * std::cos(turn), r * std::sin(turn), z});
+  }
+  const Polytope big = make_polytope(sphere);
+  ASSERT_GE(big.data->triangles.size(), static_cast<std::size_t>(kSurfaceRouteMinTriangles));
+  std::shared_ptr<const Surface> seen[2];
+  std::thread other([&] { seen[1] = hull_surface(big); });
+  seen[0] = hull_surface(big);
+  other.join();
+  ASSERT_TRUE(seen[0]);
+  EXPECT_EQ(seen[0], seen[1]);
+  const Polytope copy = big;
+  EXPECT_EQ(hull_surface(copy), seen[0]);
+  EXPECT_EQ(seen[0]->triangles.size(), big.data->triangles.size());
+  EXPECT_NEAR(seen[0]->volume, big.data->volume, 1e-13);
+  EXPECT_FALSE(hull_surface(make_polytope(std::vector<Vec3>(sphere.begin(), sphere.begin() + 40))));
+  EXPECT_FALSE(hull_surface(make_polytope(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})));
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 // respect to B's position.
 //
 // Polytope-like cores without margins (polytope, box, triangle) are clipped
-// exactly (overlap.cpp). For other shapes the closed forms that
+// exactly (overlap.cpp); two big hulls deep in each other, where clipping
+// costs the most, are met as closed surfaces instead (surface_overlap.hpp,
+// kClipWorkBeyondSurfaces), exact too. For other shapes the closed forms that
 // exist are used: empty overlaps, sphere-sphere lenses, and one shape inside
 // the other. Everything else reports OverlapStatus::Unsupported (curved
 // overlaps need the tessellation of the contact-generation issue).
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "gjkdem/collide/gjk_cache.hpp"
+#include "gjkdem/contact/surface_overlap.hpp"
 #include "gjkdem/math/vec2.hpp"
 #include "gjkdem/shape/shape.hpp"
 
@@ -73,6 +76,7 @@ struct OverlapWorkspace {
   std::vector<Plane> touching;  ///< planes of B that a face of A lies in
   int result = -1;       ///< buffer holding the last clipped polyhedron; -1: none
   Transform frame;       ///< its frame (A's pose) for mapping to the world
+  PosedSurfaceScratch surfaces;  ///< big hulls' overlaps found as their surfaces'
 };
 
 /// One triangle of the overlap polyhedron's surface, world frame, tagged by
@@ -84,7 +88,8 @@ struct OverlapTriangle {
 };
 
 /// The triangulated surface of the last clipped overlap (empty when the last
-/// call did not clip: closed forms, empty or unsupported pairs).
+/// call did not clip: closed forms, big hulls met as surfaces, empty or
+/// unsupported pairs).
 std::vector<OverlapTriangle> overlap_surface(const OverlapWorkspace& work);
 
 /// The intersection line of the last clipped overlap: the edges where a face on

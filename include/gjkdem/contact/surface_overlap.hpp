@@ -65,6 +65,23 @@ struct SurfaceOverlapWorkspace {
   std::unique_ptr<Scratch> scratch;
 };
 
+/// Scratch of posed_surface_overlap: one surface moved into the other's
+/// frame, its memory reused (its topology too, when it is the same surface as
+/// last call's), and surface_overlap's.
+struct PosedSurfaceScratch {
+  SurfaceOverlapWorkspace overlap;
+  Surface moved;
+  std::shared_ptr<const Surface> moved_from;  ///< what `moved` is a copy of
+};
+
+/// The overlap of two surfaces posed apart: the surface of fewer vertices is
+/// moved into the other's frame (fewer to move, and coordinates stay near
+/// that frame's origin, far from the world's); A stays the first surface.
+/// The result is in that frame, whose pose `frame` receives.
+SurfaceOverlap posed_surface_overlap(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+                                     const std::shared_ptr<const Surface>& b, const Transform& pose_b,
+                                     PosedSurfaceScratch& scratch, Transform& frame);
+
 /// Both surfaces in one frame. Throws std::logic_error if the exact
 /// decisions ever fail to close a cycle (a defect, never bad input).
 SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverlapWorkspace& work);

@@ -36,9 +36,7 @@ struct SurfacePatchContact {
 
 /// One thread's scratch for surface contacts (memory reused from call to call).
 struct SurfaceScratch {
-  SurfaceOverlapWorkspace overlap;
-  Surface moved;                       ///< the surface of fewer vertices, in the other's frame
-  std::shared_ptr<const Surface> moved_from;  ///< what `moved` is a copy of (its topology then needs no copy)
+  PosedSurfaceScratch posed;           ///< against another surface
   HalfSpaceScratch half_space;         ///< against a plane
   SurfaceMarginScratch margin;         ///< against triangles with a margin
   std::vector<MarginTriangle> margin_triangles;  ///< in the grain's frame

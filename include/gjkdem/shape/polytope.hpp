@@ -18,6 +18,8 @@
 
 namespace gjkdem {
 
+struct HullSurfaceSlot;  // shape/hull_surface_slot.hpp
+
 /// Cells per cube-face side of the support start table (6 * n * n cells).
 inline constexpr int kSupportMapResolution = 4;
 
@@ -49,6 +51,10 @@ struct PolytopeData {
   std::span<const Vec3> facet_normals;              ///< unit, outward
   Real volume = 0;                                  ///< of the hull; 0 when flat
   Vec3 centroid;                                    ///< of the solid hull; of the vertices when flat
+  /// Where a big hull's boundary surface is kept once made (hull_surface,
+  /// surface.hpp); null below kSurfaceRouteMinTriangles triangles. Owned by
+  /// the block.
+  HullSurfaceSlot* surface_slot = nullptr;
 };
 
 namespace detail {

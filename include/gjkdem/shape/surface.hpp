@@ -11,6 +11,7 @@
 // (box_tree.hpp), all in its own frame.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <span>
 #include <vector>
@@ -67,6 +68,12 @@ void repose(const Surface& surface, const Transform& pose, Surface& copy);
 /// convex body as a surface grain's contacts see it. Throws SurfaceError for
 /// a flat polytope.
 Surface polytope_surface(const Polytope& polytope);
+/// The boundary of a big solid polytope (kSurfaceRouteMinTriangles hull
+/// triangles or more) as polytope_surface gives it, made on the first call
+/// (thread-safe) and kept with the polytope's data for every copy of it.
+/// Null for smaller or flat polytopes, and where the hull's triangles do not
+/// make a valid surface (a hull that is not manifold).
+std::shared_ptr<const Surface> hull_surface(const Polytope& polytope);
 /// The boundary of a solid box (its 12 triangles). Throws SurfaceError for
 /// a flat box.
 Surface box_surface(const Box& box);

@@ -1,0 +1,17 @@
+#pragma once
+// Where a big polytope keeps its boundary surface (PolytopeData::surface_slot):
+// made once, on the first call of hull_surface (surface.hpp), by whichever
+// thread asks first. Private to the shape library and the polytope's block.
+#include <memory>
+#include <mutex>
+
+namespace gjkdem {
+
+struct Surface;
+
+struct HullSurfaceSlot {
+  std::once_flag made;
+  std::shared_ptr<const Surface> surface;  ///< null when the hull's triangles make no valid surface
+};
+
+}  // namespace gjkdem
