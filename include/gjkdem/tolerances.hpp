@@ -218,8 +218,9 @@ inline constexpr int kSurfaceRouteMinTriangles = 256;
 /// times the corners of those faces exceed this, the clip (whose work that
 /// product measures: every cutting plane rewrites every kept face) gives way
 /// to the overlap of their surfaces (surface_overlap), whose work follows the
-/// triangles that cross. Measured on poly-many (docs/benchmarks.md).
-inline constexpr long kClipWorkBeyondSurfaces = 150000;
+/// triangles that cross. Measured on hulls of one ellipsoid (a DEM bed's
+/// grains) and on poly-many's unequal hulls (docs/tolerances.md).
+inline constexpr long kClipWorkBeyondSurfaces = 40000;
 
 /// Polytopes with at least this many (padded) vertices scan 4 at a time where
 /// the processor has AVX2 (chosen at run time; the 2-wide SSE2 scan
