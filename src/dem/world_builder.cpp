@@ -40,12 +40,18 @@ bool without_volume(const Shape& s) {
 }
 
 // The closed surface surface grains meet a convex shape of volume by: a
-// solid polytope's hull triangles, a curved shape's inscribed tessellation
-// (throws SurfaceError for a flat one).
-Surface boundary_surface(const Shape& s, int tessellation) {
-  if (std::holds_alternative<Box>(s.core) && s.margin == 0) return box_surface(std::get<Box>(s.core));
-  if (solid_polytope(s)) return polytope_surface(std::get<Polytope>(s.core));
-  return polytope_surface(tessellate(s, tessellation).polytope);
+// solid polytope's hull triangles (a big hull's own, kept with it:
+// hull_surface), a curved shape's inscribed tessellation (throws
+// SurfaceError for a flat one).
+std::shared_ptr<const Surface> boundary_surface(const Shape& s, int tessellation) {
+  if (std::holds_alternative<Box>(s.core) && s.margin == 0)
+    return std::make_shared<const Surface>(box_surface(std::get<Box>(s.core)));
+  if (solid_polytope(s)) {
+    const Polytope& hull = std::get<Polytope>(s.core);
+    if (std::shared_ptr<const Surface> kept = hull_surface(hull)) return kept;
+    return std::make_shared<const Surface>(polytope_surface(hull));
+  }
+  return std::make_shared<const Surface>(polytope_surface(tessellate(s, tessellation).polytope));
 }
 
 }  // namespace
@@ -283,7 +289,7 @@ void WorldBuilder::check_compound(const BodyShape& shape, const std::string& lab
   std::vector<Real> radii;
   for (const PlacedShape& p : parts) {
     try {
-      solids.push_back(std::make_shared<const Surface>(boundary_surface(p.shape, settings_.tessellation)));
+      solids.push_back(boundary_surface(p.shape, settings_.tessellation));
     } catch (const SurfaceError& e) {
       throw BuildError(label + ": part " + std::to_string(solids.size()) + " cannot meet its surface parts: " + e.what());
     }
@@ -912,7 +918,7 @@ void WorldBuilder::prepare_surfaces() {
         user[k] == kNoBody ? std::vector<std::uint32_t>{} : std::vector<std::uint32_t>{static_cast<std::uint32_t>(user[k])};
     const auto boundary = [&](const Shape& s) {
       try {
-        return std::make_shared<const Surface>(boundary_surface(s, settings_.tessellation));
+        return boundary_surface(s, settings_.tessellation);
       } catch (const SurfaceError& e) {
         throw BuildError(who + ": its boundary cannot meet surface grains: " + e.what(), at);
       }
