@@ -220,7 +220,7 @@ inline constexpr int kSurfaceRouteMinTriangles = 256;
 /// to the overlap of their surfaces (surface_overlap), whose work follows the
 /// triangles that cross. Measured on hulls of one ellipsoid (a DEM bed's
 /// grains) and on poly-many's unequal hulls (docs/tolerances.md).
-inline constexpr long kClipWorkBeyondSurfaces = 40000;
+inline constexpr double kClipWorkBeyondSurfaces = 40000;
 
 /// Polytopes with at least this many (padded) vertices scan 4 at a time where
 /// the processor has AVX2 (chosen at run time; the 2-wide SSE2 scan

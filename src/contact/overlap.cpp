@@ -594,7 +594,7 @@ OverlapResult overlap(const Shape& a, const Transform& pose_a, const Shape& b, c
     // Big hulls deep in each other: each plane that cuts rewrites every kept
     // face, work that outgrows the surfaces' overlap, which follows the
     // triangles that cross.
-    if (static_cast<long>(w.planes.size()) * static_cast<long>(w.points[0].size()) > kClipWorkBeyondSurfaces)
+    if (static_cast<double>(w.planes.size()) * static_cast<double>(w.points[0].size()) > kClipWorkBeyondSurfaces)
       if (const std::shared_ptr<const Surface> sa = big_hull_surface(a))
         if (const std::shared_ptr<const Surface> sb = big_hull_surface(b))
           return overlap_of_surfaces(sa, pose_a, sb, pose_b, w);

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "gjkdem/shape/surface.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "oracle/overlap_oracle.hpp"
 #include "shape/float_sphere.hpp"
@@ -339,7 +340,20 @@ TEST(Overlap, BigHullsMatchBruteForceWhicheverWayTheyAreMet) {
     EXPECT_GT(dot(normalized(-grad), r.contact_normal), 1 - 1e-6) << "case " << c;
     EXPECT_NEAR(length(grad), length(r.area_a), 1e-5 * length(r.area_a)) << "case " << c;
     EXPECT_NEAR(r.contact_area, length(r.area_a), 1e-15 * r.contact_area);
-    EXPECT_TRUE(r.has_application_point);
+    ASSERT_TRUE(r.has_application_point);
+    // Feng's moment and line of action, against both hulls' surfaces placed
+    // in the world and overlapped there.
+    const SurfaceOverlap world = surface_overlap(moved(*hull_surface(std::get<Polytope>(a.shape.core)), a.pose),
+                                                 moved(*hull_surface(std::get<Polytope>(b.shape.core)), b.pose));
+    EXPECT_NEAR(length(r.moment_a - world.area_moment_a), 0.0, 1e-11 * length(world.area_moment_a)) << "case " << c;
+    const Vec3 line = cross(world.area_a, world.area_moment_a) / dot(world.area_a, world.area_a);
+    EXPECT_NEAR(length(cross(r.application_point - line, r.contact_normal)), 0.0, 1e-10) << "case " << c;
+    // A fresh workspace gives the bits of the reused one.
+    OverlapWorkspace fresh;
+    const OverlapResult again = overlap(a.shape, a.pose, b.shape, b.pose, fresh);
+    EXPECT_EQ(again.volume, r.volume);
+    EXPECT_EQ(again.centroid, r.centroid);
+    EXPECT_EQ(again.moment_a, r.moment_a);
   }
 }
 

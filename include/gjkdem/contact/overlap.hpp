@@ -46,7 +46,10 @@ struct OverlapResult {
   /// Energy-conserving point of application of Feng's volume-based contact
   /// theory (CMAME 373, 2021): the force along S_A acts on the line through this
   /// point, x = (S_A x M_A) / |S_A|^2 (the point of that line nearest the world
-  /// origin). Valid when has_normal and the pair was clipped (polytope-like).
+  /// origin). Valid when has_normal and the pair was clipped (polytope-like)
+  /// or met as surfaces (big hulls). On that way has_normal follows the
+  /// surface grains' rule (kEngulfedAreaRel), not kContactNormalRelTol: a
+  /// nearly engulfed pair may differ between the two ways.
   Vec3 application_point;
   bool has_application_point = false;
   int faces = 0;         ///< faces of the clipped polyhedron (statistics)
