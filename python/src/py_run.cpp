@@ -108,9 +108,39 @@ void PyObserver::raise_if_failed() {
   }
 }
 
+PyListener::PyListener(py::object world, py::object callback, std::uint64_t every)
+    : world_(std::move(world)), callback_(std::move(callback)), every_(every) {}
+
+void PyListener::before_forces(dem::OwnedBodies, const dem::RunState& state) {
+  py::gil_scoped_acquire gil;
+  try {
+    callback_(world_, state);
+  } catch (py::error_already_set& e) {
+    const std::string message = std::string("the listener raised ") + e.what();
+    error_.emplace(std::move(e));
+    throw std::runtime_error(message);
+  }
+}
+
+void PyListener::raise_if_failed() {
+  if (error_) {
+    error_->restore();
+    error_.reset();
+    throw py::error_already_set();
+  }
+}
+
+std::optional<PyListener> make_listener(py::object world, const py::object& listener, std::int64_t every) {
+  if (listener.is_none()) return std::nullopt;
+  if (!PyCallable_Check(listener.ptr())) throw py::type_error("listener: expected a callable f(world, state)");
+  if (every < 1) throw py::value_error("listener_every: must be >= 1 (steps)");
+  return std::optional<PyListener>(std::in_place, std::move(world), listener, static_cast<std::uint64_t>(every));
+}
+
 std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> extra,
                      const std::function<dem::RunOutcome(std::span<dem::RunObserver* const>,
-                                                         const std::function<std::string()>&)>& loop) {
+                                                         const std::function<std::string()>&)>& loop,
+                     PyListener* listener) {
   std::vector<dem::RunObserver*> observers(extra.begin(), extra.end());
   observers.push_back(&observer);
   dem::RunOutcome outcome;
@@ -119,6 +149,7 @@ std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> ex
     outcome = loop(observers, [&] { return observer.stop_reason(); });
   }
   observer.raise_if_failed();
+  if (listener) listener->raise_if_failed();
   if (outcome.status == dem::RunStatus::Failed) throw RunError(outcome.error);
   return outcome.status == dem::RunStatus::Completed ? "completed" : "stopped";
 }

@@ -38,6 +38,28 @@ class PyObserver : public dem::RunObserver {
   unsigned polls_ = 0;
 };
 
+/// run(listener=f, listener_every=N): calls f(world, state) before the
+/// force evaluations of every N steps (dem::StepListener), the GIL taken;
+/// `world` is the Python World, whose applied_forces and applied_torques it
+/// may write. A Python exception fails the run and is raised again after it.
+class PyListener : public dem::StepListener {
+ public:
+  PyListener(py::object world, py::object callback, std::uint64_t every);
+  std::uint64_t every() const override { return every_; }
+  void before_forces(dem::OwnedBodies bodies, const dem::RunState& state) override;
+  /// Raises the listener's Python exception, if any.
+  void raise_if_failed();
+
+ private:
+  py::object world_, callback_;
+  std::uint64_t every_;
+  std::optional<py::error_already_set> error_;
+};
+
+/// The listener of run(listener=..., listener_every=...) (none for None),
+/// checked: a callable, every >= 1.
+std::optional<PyListener> make_listener(py::object world, const py::object& listener, std::int64_t every);
+
 /// run(progress=True): the command's progress line (io::progress_line) on
 /// Python's sys.stderr, redrawn in place every 0.25 s on a terminal, a line
 /// every 10 s otherwise (a notebook, a log), and at the end.
@@ -76,9 +98,11 @@ class InUse {
 void idle(const dem::World& world);
 
 /// Runs `loop(observers, stop)` with the GIL released and maps the outcome:
-/// "completed" or "stopped", RunError on failure, the observer's exception.
+/// "completed" or "stopped", RunError on failure, the observer's or the
+/// listener's exception.
 std::string run_with(PyObserver& observer, std::span<dem::RunObserver* const> extra,
                      const std::function<dem::RunOutcome(std::span<dem::RunObserver* const>,
-                                                         const std::function<std::string()>&)>& loop);
+                                                         const std::function<std::string()>&)>& loop,
+                     PyListener* listener = nullptr);
 
 }  // namespace gjkdem::py_bind

@@ -140,23 +140,36 @@ void bind_scenes(py::module_& m) {
       .def_property_readonly("folder", [](const io::SceneRun& r) { return r.folder.dir.string(); })
       .def(
           "run",
-          [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after, bool progress) {
+          [](py::object self, const py::object& observer, std::optional<std::uint64_t> stop_after, bool progress,
+             const py::object& listener, std::int64_t listener_every) {
             io::SceneRun& r = self.cast<io::SceneRun&>();
             const InUse in_use(r.scene.world);
             PyObserver o(self.attr("world"), observer);
+            std::optional<PyListener> listening = make_listener(self.attr("world"), listener, listener_every);
+            std::vector<dem::StepListener*> listeners;
+            if (listening) listeners.push_back(&*listening);
             std::optional<PyProgress> shown;
             std::vector<dem::RunObserver*> extra;
             if (progress) extra.push_back(&shown.emplace(r.state.step, r.scene.duration));
-            return run_with(o, extra, [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
-              return r.run(obs, [&]() -> std::string {
-                if (stop_after && r.state.step >= *stop_after) return "stop_after";
-                return stop();
-              });
-            });
+            return run_with(
+                o, extra,
+                [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+                  return r.run(
+                      obs,
+                      [&]() -> std::string {
+                        if (stop_after && r.state.step >= *stop_after) return "stop_after";
+                        return stop();
+                      },
+                      nullptr, listeners);
+                },
+                listening ? &*listening : nullptr);
           },
           py::arg("observer") = py::none(), py::arg("stop_after") = py::none(), py::arg("progress") = false,
+          py::arg("listener") = py::none(), py::arg("listener_every") = 1,
           "Runs to the end (or until step stop_after), calling observer(world, state) at each output;\n"
-          "progress=True prints the command's progress line on sys.stderr.\n"
+          "progress=True prints the command's progress line on sys.stderr. listener(world, state) is called\n"
+          "before the force evaluations of every listener_every steps (the first at step 0): it may set the\n"
+          "world's applied_forces and applied_torques (docs/python.md).\n"
           "Returns \"completed\" or \"stopped\" (resume with SceneRun.resume(folder)).");
 }
 

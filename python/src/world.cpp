@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "bindings.hpp"
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/measure.hpp"
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
@@ -217,10 +218,13 @@ void bind_world(py::module_& m) {
           })
       .def_readwrite("rocking_resistance", &dem::WorldSettings::rocking_resistance)
       .def_property("tessellation", getter(&dem::WorldSettings::tessellation),
-                    checked(&dem::WorldSettings::tessellation), "support directions of curved shapes (8 to 100000)")
+                    checked(&dem::WorldSettings::tessellation),
+                    ("support directions of curved shapes (" + std::to_string(dem::kMinTessellation) + " to " +
+                     std::to_string(dem::kMaxTessellation) + ")")
+                        .c_str())
       .def_property("box_skin", getter(&dem::WorldSettings::box_skin), checked(&dem::WorldSettings::box_skin))
       .def_property("threads", getter(&dem::WorldSettings::threads), checked(&dem::WorldSettings::threads),
-                    "OpenMP threads of a step (0: every core; up to 4096)")
+                    ("OpenMP threads of a step (0: every core; up to " + std::to_string(dem::kMaxThreads) + ")").c_str())
       .def_property(
           "periodic",
           [](const dem::WorldSettings& s) {
@@ -575,18 +579,23 @@ void bind_world(py::module_& m) {
   def_view<std::uint16_t>(world, "fixed", offsetof(Body, fixed), 0, false, "1 for fixed bodies (N,), read-only view.");
   def_view<std::uint16_t>(world, "motions", offsetof(Body, motion), 0, false,
                           "The motion number (add_motion) of driven bodies, 0 for others (N,), read-only view.");
-  def_view<double>(world, "positions", offsetof(Body, position), 3, false,
-           "Centres of mass (N, 3), read-only view; set_positions changes them.");
-  def_view<double>(world, "orientations", offsetof(Body, orientation), 4, false,
-           "Principal frames [w, x, y, z] (N, 4), read-only view; set_orientations changes them.");
-  def_view<double>(world, "velocities", offsetof(Body, velocity), 3, true,
-           "Velocities of the centres of mass (N, 3), writable view (fixed bodies ignore theirs).");
-  def_view<double>(world, "angular_momenta", offsetof(Body, angular_momentum), 3, true,
-           "Angular momenta about the centres of mass, world frame (N, 3), writable view: the integrator's state.");
-  def_view<double>(world, "forces", offsetof(Body, force), 3, false,
-           "Forces of the last evaluation (N, 3), read-only view.");
-  def_view<double>(world, "torques", offsetof(Body, torque), 3, false,
-           "Torques about the centres of mass (N, 3), read-only view.");
+  // A view per viewed body channel (body_channels.hpp); one of the applied
+  // loads turns them on in the world (World::applied_loads).
+  for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+    if (!(ch.use & dem::kChannelViewed)) continue;
+    const bool writable = ch.use & dem::kChannelWritable;
+    const bool applied = ch.name.starts_with("applied_");
+    const std::size_t offset = ch.offset;
+    const py::ssize_t cols = ch.components == 1 ? 0 : ch.components;
+    world.def_property_readonly(
+        std::string(ch.view).c_str(),
+        [=](py::object self) {
+          World& w = self.cast<World&>();
+          if (applied) w.applied_loads = true;
+          return body_view<double>(w, self, offset, cols, writable);
+        },
+        std::string(ch.doc).c_str());
+  }
   world.def_readonly("time", &World::time)
       .def_property_readonly(
           "cell",
@@ -684,9 +693,12 @@ void bind_world(py::module_& m) {
           "run",
           [](py::object self, double duration, std::optional<double> dt, std::optional<double> output_every,
              const py::object& observer, std::optional<std::string> out, bool overwrite, bool frames,
-             int checkpoint_every, bool progress) {
+             int checkpoint_every, bool progress, const py::object& listener, std::int64_t listener_every) {
             World& w = self.cast<World&>();
             const InUse in_use(w);
+            std::optional<PyListener> listening = make_listener(self, listener, listener_every);
+            std::vector<dem::StepListener*> listeners;
+            if (listening) listeners.push_back(&*listening), w.applied_loads = true;
             const double step = dt ? *dt : dem::critical_time_step(w);
             dem::RunState state;
             try {
@@ -714,24 +726,32 @@ void bind_world(py::module_& m) {
             std::optional<PyProgress> shown;
             if (progress) outputs.push_back(&shown.emplace(state.step, duration));
             PyObserver o(self, observer);
-            return run_with(o, outputs,
-                            [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
-                              return dem::run(w, state, obs, [&] {
-                                const std::string why = stop();
-                                if (writers) writers->info().stopped_by = why;
-                                return !why.empty();
-                              });
-                            });
+            return run_with(
+                o, outputs,
+                [&](std::span<dem::RunObserver* const> obs, const std::function<std::string()>& stop) {
+                  return dem::run(
+                      w, state, obs,
+                      [&] {
+                        const std::string why = stop();
+                        if (writers) writers->info().stopped_by = why;
+                        return !why.empty();
+                      },
+                      {}, listeners);
+                },
+                listening ? &*listening : nullptr);
           },
           py::arg("duration"), py::arg("dt") = py::none(), py::arg("output_every") = py::none(),
           py::arg("observer") = py::none(), py::arg("out") = py::none(), py::arg("overwrite") = false,
-          py::arg("frames") = false, py::arg("checkpoint_every") = 10, py::arg("progress") = false,
+          py::arg("frames") = false, py::arg("checkpoint_every") = io::kDefaultCheckpointEvery, py::arg("progress") = false,
+          py::arg("listener") = py::none(), py::arg("listener_every") = 1,
           "Runs for `duration` s in steps of dt (None: critical_time_step), calling observer(world, state) at the\n"
           "start, every output_every s and at the end; an observer returning False stops the run.\n"
           "out: a run folder to write as `gjkdem run` does (view/ frames for the viewer and analyze, energy.csv,\n"
           "trace.csv of the named bodies, checkpoint.bin, run.json; overwrite replaces an earlier run's files;\n"
           "frames=True adds the VTK frames, which weigh about ten times the rest). progress=True prints the\n"
-          "command's progress line on sys.stderr.\n"
+          "command's progress line on sys.stderr. listener(world, state) is called before the force evaluations\n"
+          "of every listener_every steps (the first at step 0): it may set applied_forces and applied_torques,\n"
+          "which act from that evaluation on (a drag, a field, a coupling; their work is in energies()).\n"
           "Returns \"completed\" or \"stopped\"; raises RunError when the run fails (guards, unsupported pairs).")
       .def("critical_time_step", &dem::critical_time_step)
       .def("stable_time_step", &dem::stable_time_step)
@@ -779,10 +799,14 @@ void bind_world(py::module_& m) {
             double inflow = 0;
             for (const dem::InflowState& f : w.inflow_states) inflow += f.energy;
             d["inflow_energy"] = inflow;
+            double applied = 0;
+            for (const Body& b : w.bodies) applied += b.applied_work;
+            d["applied_work"] = applied;
             return d;
           },
           "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, the work driven\n"
-          "walls and bodies did on the others so far, and the energy inserted bodies brought in (J).")
+          "walls and bodies did on the others so far, the energy inserted bodies brought in and the work of\n"
+          "the applied loads (applied_forces) so far (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
       .def_property_readonly("bonds", [](const World& w) { return w.bonds.size(); },
                              "How many bonds the world's bonded assemblies hold (docs/breakage.md), intact or broken.")

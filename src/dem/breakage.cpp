@@ -132,6 +132,7 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
     if (at == w.bodies.end() || at->id != s.parent) continue;
     const std::size_t i = static_cast<std::size_t>(at - w.bodies.begin());
     const Body parent = *at;
+    const Real volumes = w.templates[first].unit_mass.volume + w.templates[first + 1].unit_mass.volume;
     for (std::size_t f = 0; f < 2; ++f) {
       const GrainSplit::Piece& piece = s.fragments[f];
       Body b = parent;
@@ -139,6 +140,10 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
       b.position = piece.position, b.orientation = piece.orientation;
       b.velocity = piece.velocity, b.angular_momentum = piece.angular_momentum;
       b.force = {}, b.torque = {};
+      // The applied load and its work so far are shared by mass (one density).
+      const Real share = w.templates[b.shape].unit_mass.volume / volumes;
+      b.applied_force = parent.applied_force * share, b.applied_torque = parent.applied_torque * share;
+      b.applied_work = parent.applied_work * share;
       if (f == 0) {
         w.bodies[i] = b;
       } else {

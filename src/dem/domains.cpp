@@ -115,6 +115,7 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
+  d.applied_loads = whole.applied_loads;
   d.stats = whole.stats;
   const BoxCache& boxes = whole.search.boxes;
   const bool boxed = boxes.anchor_position.size() == whole.bodies.size() && boxes.boxes.size() == whole.bodies.size();

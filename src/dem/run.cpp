@@ -112,7 +112,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
       if (!b.fixed) floor += kEnergyGuardFloorRel * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
     if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
       return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start, "
-             "gravity, driven walls and inflows supply " + number_text(available) + " J, at t = " + number_text(w.time) +
+             "gravity, driven walls, inflows and applied loads supply " + number_text(available) + " J, at t = " + number_text(w.time) +
              " s (a blow-up: lower dt, or check the stiffness)";
   }
   return "";
@@ -154,7 +154,12 @@ EnergyBalance energy_balance(const World& w, Real initial) noexcept {
   e.elastic = w.stats.elastic_energy;
   e.wall_work = w.wall_work;
   for (const InflowState& f : w.inflow_states) e.inflow += f.energy;
-  e.dissipated = initial + e.wall_work + e.inflow - e.kinetic - e.potential - e.elastic;
+  Real supplied = initial + e.wall_work + e.inflow;
+  if (w.applied_loads) {  // in id order: the same sum for any rank count
+    for (const Body& b : w.bodies) e.applied_work += b.applied_work;
+    supplied += e.applied_work;
+  }
+  e.dissipated = supplied - e.kinetic - e.potential - e.elastic;
   return e;
 }
 

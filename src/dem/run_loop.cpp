@@ -92,8 +92,10 @@ class Rank {
 
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers, DomainTransport& t,
                        const std::function<bool()>& stop_requested, const RunGuards& guards,
-                       const DomainOptions& options, DomainReport* report) {
+                       const DomainOptions& options, DomainReport* report,
+                       std::span<StepListener* const> listeners) {
   const bool root = t.rank() == 0;
+  if (!listeners.empty()) whole.applied_loads = true;
   Rank rank(whole, t);
   World& stepped = rank.stepped();
   StepContext ctx{.dt = state.dt, .domain = rank.role()};
@@ -223,9 +225,26 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   auto tell_bonds = [&] {
     if (rank.split() && bonded) sync_bonds(stepped, *ctx.domain, t);
   };
+  // The step listeners due before the forces at the end of step `step`
+  // (0: the start), on each rank's own bodies before the exchange hands
+  // them to the others as ghosts; a listener's exception as a message.
+  auto listen = [&](std::uint64_t step) -> std::string {
+    try {
+      for (StepListener* l : listeners) {
+        const std::uint64_t every = std::max<std::uint64_t>(l->every(), 1);
+        if (step % every == 0) l->before_forces({stepped, ctx.domain}, state);
+      }
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const bool fresh = state.step == 0 && state.outputs == 0;
+  std::string listened = fresh ? listen(0) : "";
   rank.exchange();  // the first ghosts
-  if (state.step == 0 && state.outputs == 0) {
-    std::string failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+  if (fresh) {
+    std::string failed = listened;
+    if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
     tell_bonds();
     failed = agree(t, failed);
     settle_wall_power(Real(0), false);
@@ -271,6 +290,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       if (deforming) add_field_work(stepped, *ctx.domain, t);
       first_new = insert_inflow_bodies(stepped, ctx, rank.layout(), t);
     }
+    if (failed.empty() && !listeners.empty()) failed = listen(state.step + 1);
     mine.step_seconds += seconds_since(t0);
     if (rank.split()) {
       rank.exchange();  // every rank takes part, failed or not
@@ -317,9 +337,10 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
 }
 
 RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
-               const std::function<bool()>& stop_requested, const RunGuards& guards) {
+               const std::function<bool()>& stop_requested, const RunGuards& guards,
+               std::span<StepListener* const> listeners) {
   OneRank alone;
-  return run_domains(world, state, observers, alone, stop_requested, guards);
+  return run_domains(world, state, observers, alone, stop_requested, guards, {}, nullptr, listeners);
 }
 
 }  // namespace gjkdem::dem

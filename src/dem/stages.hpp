@@ -1,7 +1,7 @@
 #pragma once
 // The stages of a force evaluation, each in its own file, each taking the
-// spans and values it reads and writes; step.cpp runs them in order
-// (world.hpp lists every stage of a step). Internal to src/dem.
+// spans and values it reads and writes; the stage plan (stage_plan.cpp)
+// hands each its part of the world, in the plan's order. Internal to src/dem.
 #include <cstddef>
 #include <cstdint>
 #include <span>

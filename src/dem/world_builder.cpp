@@ -111,7 +111,8 @@ void check_contact_settings(const WorldSettings& s) {
   need(std::isfinite(s.volume_stiffness) && s.volume_stiffness >= 0, who, "volume_stiffness",
        "must be finite and >= 0 (N/m^3; 0: from the materials)");
   need(s.tessellation >= kMinTessellation && s.tessellation <= kMaxTessellation, who, "tessellation",
-       "must be between 8 and 100000 directions");
+       "must be between " + std::to_string(kMinTessellation) + " and " + std::to_string(kMaxTessellation) +
+           " directions");
   need(std::isfinite(s.box_skin) && s.box_skin >= 0, who, "box_skin", "must be finite and >= 0");
 }
 
@@ -156,7 +157,8 @@ void check_cell(const PeriodicCell& cell, const CellControl& control) {
 void check_settings(const WorldSettings& s) {
   const std::string who = "settings";
   need(is_finite(s.gravity), who, "gravity", "must be finite");
-  need(s.threads >= 0 && s.threads <= kMaxThreads, who, "threads", "must be 0 (all cores) or a thread count up to 4096");
+  need(s.threads >= 0 && s.threads <= kMaxThreads, who, "threads",
+       "must be 0 (all cores) or a thread count up to " + std::to_string(kMaxThreads));
   check_contact_settings(s);
   try {
     check_cell(s.periodic, s.cell_control);
@@ -459,6 +461,12 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
   }
 }
 
+std::string cylinder_segments_problem(std::int64_t segments) {
+  constexpr std::int64_t kFewest = 8, kMost = 4096;
+  if (segments >= kFewest && segments <= kMost) return "";
+  return "must be " + std::to_string(kFewest) + " to " + std::to_string(kMost);
+}
+
 Real cylinder_wall_thickness(const CylinderWall& w) { return w.thickness > 0 ? w.thickness : 0.02 * w.radius; }
 
 void cylinder_wall_mesh(const CylinderWall& w, const std::string& label, std::vector<Vec3>& vertices,
@@ -467,7 +475,8 @@ void cylinder_wall_mesh(const CylinderWall& w, const std::string& label, std::ve
     throw BuildError(label + ": the base and a non-zero axis must be finite");
   if (!(w.radius > 0) || !std::isfinite(w.radius) || !(w.height > 0) || !std::isfinite(w.height))
     throw BuildError(label + ": the radius and height must be finite and > 0");
-  if (w.segments < 8 || w.segments > 4096) throw BuildError(label + ": segments must be 8 to 4096");
+  if (const std::string why = cylinder_segments_problem(w.segments); !why.empty())
+    throw BuildError(label + ": segments " + why);
   if (!(w.thickness >= 0) || !std::isfinite(w.thickness)) throw BuildError(label + ": the thickness must be >= 0");
   const Real t = cylinder_wall_thickness(w);
   const Vec3 a = normalized(w.axis);
@@ -734,7 +743,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
       const std::size_t v = f.weights.empty() ? pick(rng) : pick_weighted(cumulative, uniform(rng));
       const BodyShape& s = f.variants[v];
       const std::vector<std::uint32_t> pieces =
-          add_bonded({.shape = s, .pieces = f.pieces, .seed = bonded_seed(f.pieces_seed, k),
+          add_bonded({.shape = s, .pieces = f.pieces, .seed = derived_seed(f.pieces_seed, k),
                       .relaxations = f.relaxations, .material = f.material,
                       .position = centre - rotate(q, s.pose.translation), .rotation = q, .velocity = f.velocity,
                       .label = label + " assembly " + std::to_string(k)});

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/world_builder.hpp"
@@ -16,13 +17,13 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 9. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 10. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
-    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work; CELL periodic cell lo(3) hi(3) tilt(3) "
+    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work applied_loads(u8); CELL periodic cell lo(3) hi(3) tilt(3) "
     "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); MAKE count, per shape "
     "template the builder made digest(u64), count, per plane wall digest(u64); FRAG grains broken(u64) count, per "
-    "fragment template generation(u32) surface(u8) count, per hull vertex (3); BODY count, per body id(u64) shape(u32) "
-    "material(u32) position(3) orientation(w,x,y,z) velocity(3) angular_momentum(3) force(3) torque(3); FLOW "
+    "fragment template generation(u32) surface(u8) count, per hull vertex (3); BODY count, per column name(u64 "
+    "length, bytes) components(u32), count, per body id(u64) shape(u32) material(u32) then each column's reals; FLOW "
     "count, per inflow inserted(u64) attempts(u64) mass energy behind(u64); BOXS count, per body anchor position(3) and "
     "orientation(4); PAIR count, per pair key(lo,hi u64, parts u32) gjk dirs(4x3) size(u32) hint_a(u32) hint_b(u32) "
     "spring(3) twist roll(3) patch anchor(3); BOND count, per bond a(u64) b(u64) intact(u8) broken_time; LOGS trace_bytes(u64) energy_bytes(u64) cell_bytes(u64) wall_seconds count, per frame name(u64 "
@@ -223,7 +224,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   s = o.begin("STAT");
   o.u8(w.forces_current ? 1 : 0), o.real(w.stats.elastic_energy);
   o.u64(static_cast<std::uint64_t>(w.stats.contacts)), o.u64(static_cast<std::uint64_t>(w.stats.wall_contacts));
-  o.real(w.stats.wall_power), o.real(w.wall_work);
+  o.real(w.stats.wall_power), o.real(w.wall_work), o.u8(w.applied_loads ? 1 : 0);
   o.end(s);
   s = o.begin("CELL");
   o.vec(w.cell.lo), o.vec(w.cell.hi), o.vec(w.cell.tilt);
@@ -248,12 +249,17 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
     for (const Vec3& v : vertices) o.vec(v);
   }
   o.end(s);
-  s = o.begin("BODY");
+  s = o.begin("BODY");  // the saved channels of body_channels.hpp, named
+  std::vector<const dem::BodyChannel*> saved;
+  for (const dem::BodyChannel& ch : dem::kBodyChannels)
+    if (ch.use & dem::kChannelSaved) saved.push_back(&ch);
+  o.u64(saved.size());
+  for (const dem::BodyChannel* ch : saved) o.text(ch->name), o.u32(ch->components);
   o.u64(w.bodies.size());
   for (const dem::Body& b : w.bodies) {
     o.u64(b.id), o.u32(b.shape), o.u32(b.material);
-    o.vec(b.position), o.quat(b.orientation), o.vec(b.velocity), o.vec(b.angular_momentum);
-    o.vec(b.force), o.vec(b.torque);
+    for (const dem::BodyChannel* ch : saved)
+      for (std::uint32_t k = 0; k < ch->components; ++k) o.real(ch->in(b)[k]);
   }
   o.end(s);
   s = o.begin("FLOW");
@@ -349,7 +355,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   stats.wall_contacts = static_cast<int>(in.u64());
   stats.wall_power = in.real();
   const Real wall_work = in.real();
+  const std::uint8_t applied_loads = in.u8();
   in.close(end, "STAT");
+  if (applied_loads > 1) in.fail("the applied loads' flag is not 0 or 1");
   if (!std::isfinite(stats.wall_power) || !std::isfinite(wall_work)) in.fail("the work of driven walls is not finite");
   end = in.section("CELL");
   dem::PeriodicCell cell = w.settings.periodic, searched = w.settings.periodic;
@@ -393,7 +401,24 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   // inflows' templates (checked against the FLOW counts below).
   std::vector<dem::Body> bodies = w.bodies;
   end = in.section("BODY");
-  const std::uint64_t count = in.count(8 + 2 * 4 + 19 * 8);
+  // Its columns, found by name: a channel the checkpoint lacks keeps the
+  // scene's value (a body inserted since: none).
+  std::vector<const dem::BodyChannel*> columns(in.count(8 + 4));
+  std::uint64_t row_reals = 0;
+  for (const dem::BodyChannel*& column : columns) {
+    const std::string label = in.text();
+    const std::uint32_t components = in.u32();
+    column = dem::find_body_channel(label);
+    if (!column || !(column->use & dem::kChannelSaved))
+      throw CheckpointError(name + ": its bodies have a column '" + label +
+                            "' this gjkdem does not know (written by a newer gjkdem?)");
+    if (column->components != components) in.fail("the column '" + label + "' has the wrong number of components");
+    row_reals += components;
+  }
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (columns[j] == columns[k]) in.fail("the column '" + std::string(columns[k]->name) + "' twice");
+  const std::uint64_t count = in.count(8 + 2 * 4 + row_reals * 8);
   if (count < bodies.size() || (count > bodies.size() && w.inflows.empty() && broken == 0))
     refuse("the scene has " + std::to_string(bodies.size()) + " bodies, the checkpoint " + std::to_string(count) +
            (count > bodies.size() ? " (and the scene has no inflow to have inserted them)" : ""));
@@ -425,14 +450,16 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
       b = dem::Body{};
       b.id = id, b.shape = shape, b.material = material;
     }
-    const Vec3 position = in.vec();
-    const Quat orientation = in.quat();
+    dem::Body saved = b;
+    for (const dem::BodyChannel* column : columns)
+      for (std::uint32_t k = 0; k < column->components; ++k) column->in(saved)[k] = in.real();
+    const Vec3& position = saved.position;
+    const Quat& orientation = saved.orientation;
     if (b.fixed && b.motion == 0 &&
         !(position == b.position && orientation.w == b.orientation.w && orientation.x == b.orientation.x &&
           orientation.y == b.orientation.y && orientation.z == b.orientation.z))
       if (differs.empty()) differs = body_text(w, b.id) + " (fixed) is not where it was in the checkpoint";
-    b.position = position, b.orientation = orientation, b.velocity = in.vec(), b.angular_momentum = in.vec();
-    b.force = in.vec(), b.torque = in.vec();
+    b = saved;
   }
   in.close(end, "BODY");
   end = in.section("FLOW");
@@ -512,8 +539,10 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.forces_current = forces_current;
   w.stats = stats;
   w.wall_work = wall_work;
+  w.applied_loads = w.applied_loads || applied_loads != 0;
   if (how == Restore::NewRun) {  // a new clock; forces under the new settings
     w.time = 0, w.wall_work = 0, w.forces_current = false;
+    for (dem::Body& b : w.bodies) b.applied_work = 0;  // the loads stay, their work starts again
     c.logs = {};
   }
   w.cell = cell;

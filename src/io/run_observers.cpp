@@ -124,6 +124,8 @@ void ViewWriter::on_output(const dem::World& w, const dem::RunState& state) {
 
 void CsvLog::start(const fs::path& file, const std::string& header) {
   file_ = file;
+  if (out_.is_open()) out_.close();  // started again (EnergyWriter::take_applied_work)
+  out_.clear();
   out_.open(file, std::ios::binary | std::ios::trunc);
   bytes_ = 0;
   append(header);
@@ -156,7 +158,13 @@ void TraceWriter::on_output(const dem::World& w, const dem::RunState&) {
 
 void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
   const dem::EnergyBalance e = dem::energy_balance(w, state.initial_energy);
-  append(energy_row(w.time, e, w.stats.contacts));
+  append(energy_row(w.time, e, w.stats.contacts, applied));
+}
+
+void EnergyWriter::take_applied_work() {
+  if (applied || bytes() != energy_header(false).size()) return;
+  applied = true;
+  start(file(), energy_header(true));
 }
 
 void CellWriter::on_output(const dem::World& w, const dem::RunState&) {
@@ -252,6 +260,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
       checkpoints_(folder.checkpoint(), options.checkpoint_every, options.fingerprint, frames_, trace_, energy_, cell_,
                    restored ? restored->logs.wall_seconds : 0),
       info_(folder.run_json(), options.info_json, checkpoints_) {
+  energy_.applied = world.applied_loads;
   if (restored) {
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);
@@ -259,7 +268,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
     if (world.cell.active()) cell_.resume(folder.cell(), restored->logs.cell_bytes);
   } else {
     trace_.start(folder.trace(), trace_header());
-    energy_.start(folder.energy(), energy_header());
+    energy_.start(folder.energy(), energy_header(energy_.applied));
     if (world.cell.active()) cell_.start(folder.cell(), cell_header());
   }
   // After a kill, run.json tells how far the last checkpoint got.

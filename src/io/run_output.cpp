@@ -248,7 +248,10 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   return s;
 }
 
-std::string energy_header() { return "time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy\n"; }
+std::string energy_header(bool applied) {
+  return std::string("time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy") +
+         (applied ? ",applied_work\n" : "\n");
+}
 
 std::string cell_header() {
   return "time,lx,ly,lz,tilt_xy,tilt_xz,tilt_yz,volume,rate_xx,rate_yy,rate_zz,rate_xy,rate_xz,rate_yz,stress_xx,"
@@ -273,7 +276,7 @@ std::string cell_row(const dem::World& w) {
   return s;
 }
 
-std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
+std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts, bool applied) {
   std::string s;
   for (Real v : {time, e.kinetic, e.potential, e.elastic, e.dissipated}) {
     append_number(s, v);
@@ -283,6 +286,10 @@ std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts) {
   append_number(s, e.wall_work);
   s += ',';
   append_number(s, e.inflow);
+  if (applied) {
+    s += ',';
+    append_number(s, e.applied_work);
+  }
   s += "\n";
   return s;
 }

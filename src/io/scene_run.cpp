@@ -222,12 +222,14 @@ void SceneRun::open_writers(const std::string& text, const std::string& scene_fi
 double SceneRun::wall_seconds() const { return writers_ ? writers_->wall_seconds() : 0.0; }
 
 dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop,
-                              dem::DomainTransport* transport) {
+                              dem::DomainTransport* transport, std::span<dem::StepListener* const> listeners) {
   const bool domains = transport && transport->size() > 1;
+  if (!listeners.empty()) scene.world.applied_loads = true;
+  if (scene.world.applied_loads && writers_) writers_->take_applied_work();
   if (!writers_) {  // a follower: its own stop request counts too (a signal may reach it alone)
     if (!domains) throw std::logic_error("SceneRun: a follower runs only on domains");
     const auto asked = [&] { return stop && !stop().empty(); };
-    return dem::run_domains(scene.world, state, {}, *transport, asked, scene.guards);
+    return dem::run_domains(scene.world, state, {}, *transport, asked, scene.guards, {}, nullptr, listeners);
   }
   std::vector<dem::RunObserver*> observers = writers_->observers();
   observers.insert(observers.end(), extra.begin(), extra.end());
@@ -241,7 +243,7 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
   };
   dem::OneRank alone;
   return dem::run_domains(scene.world, state, observers, transport ? *transport : alone, stop_and_say, scene.guards,
-                          {}, &domain_report);
+                          {}, &domain_report, listeners);
 }
 
 }  // namespace gjkdem::io

@@ -34,6 +34,10 @@
 namespace gjkdem::io {
 namespace {
 
+// Inflows draw their random streams (dem::derived_seed) from this number on,
+// past any generator's.
+constexpr std::uint64_t kInflowStreams = 500009;
+
 using Json = nlohmann::ordered_json;
 using detail::as_real;
 using detail::line_of;
@@ -174,7 +178,7 @@ class SceneBuilder {
         scene_.dt = r.positive("dt");
       }
     }
-    settings_.gravity = r.vec3("gravity").value_or(Vec3{0, 0, -9.81});
+    settings_.gravity = r.vec3("gravity").value_or(dem::WorldSettings{}.gravity);
     const std::int64_t threads = r.integer("threads").value_or(0);  // a scene's default: every core
     settings_.threads = clamped_int(threads);
     const std::string overlaps = r.string("initial_overlaps").value_or("refuse");
@@ -247,7 +251,7 @@ class SceneBuilder {
       if (scene_.output_dir.empty()) r.fail("dir", "must not be empty");
       scene_.output_every = r.positive("every", scene_.output_every);
       scene_.overwrite = r.boolean("overwrite", false);
-      const std::int64_t every = r.integer("checkpoint_every").value_or(10);
+      const std::int64_t every = r.integer("checkpoint_every").value_or(kDefaultCheckpointEvery);
       if (every < 0) r.fail("checkpoint_every", "must be >= 0 (0: no checkpoints)");
       scene_.checkpoint_every = static_cast<int>(every);
       scene_.write_frames = r.boolean("frames", true);
@@ -877,7 +881,7 @@ class SceneBuilder {
     fill.lo = region.lo, fill.hi = region.hi, fill.round = region.round;
     fill.velocity = r.vec3("velocity").value_or(Vec3{});
     fill.fixed = r.boolean("fixed", false);
-    std::mt19937_64 rng(scene_.seed * 1000003 + generator_count_++);
+    std::mt19937_64 rng(dem::derived_seed(scene_.seed, generator_count_++));
     const toml::table* bonded = bonded_table(r);
     Mix mix = bonded ? read_bonded_mix(r, *bonded, fill) : read_mix(r, count, rng);
     fill.variants = std::move(mix.variants);
@@ -901,7 +905,7 @@ class SceneBuilder {
 
   // A generator of bonded assemblies: shape = { type = "bonded", shape =
   // SHAPE, pieces = N, seed, relaxations }, each assembly cut anew (its
-  // sites from seed and its number: dem::bonded_seed).
+  // sites from seed and its number: dem::derived_seed).
   Mix read_bonded_mix(TableReader& r, const toml::table& table, dem::RegionFill& fill) {
     for (const char* key : {"shapes", "sizes", "variants", "fractions"})
       if (r.has(key))
@@ -959,7 +963,7 @@ class SceneBuilder {
     if (count < 0 || count > static_cast<std::int64_t>(dem::kMaxInflowBodies))
       r.fail("count", "must be a positive integer up to " + std::to_string(dem::kMaxInflowBodies));
     d.count = static_cast<std::uint64_t>(count);
-    d.seed = scene_.seed * 1000003 + 500009 + inflow_count_;
+    d.seed = dem::derived_seed(scene_.seed, kInflowStreams + inflow_count_);
     std::mt19937_64 rng(d.seed);
     Mix mix = read_mix(r, count > 0 ? count : 50, rng);
     d.variants = std::move(mix.variants);
@@ -1071,8 +1075,8 @@ class SceneBuilder {
       c.height = r.positive("height");
       c.bottom = r.boolean("bottom", true);
       c.top = r.boolean("top", false);
-      const std::int64_t segments = r.integer("segments").value_or(48);
-      if (segments < 8 || segments > 4096) r.fail("segments", "must be 8 to 4096");
+      const std::int64_t segments = r.integer("segments").value_or(dem::CylinderWall{}.segments);
+      if (const std::string why = dem::cylinder_segments_problem(segments); !why.empty()) r.fail("segments", why);
       c.segments = static_cast<int>(segments);
       if (r.has("thickness")) c.thickness = r.positive("thickness");
       TriangleMesh mesh;

@@ -106,16 +106,16 @@ struct Ended {
   World world;
 };
 
-Ended run_whole(World world, RunState state, Recorder& recorder) {
+Ended run_whole(World world, RunState state, Recorder& recorder, std::span<StepListener* const> listeners = {}) {
   RunObserver* observers[] = {&recorder};
-  const RunOutcome outcome = run(world, state, observers);
+  const RunOutcome outcome = run(world, state, observers, {}, {}, listeners);
   return {outcome, state, std::move(world)};
 }
 
 // Runs `world` on `ranks` threads, stopping after `stop_at` steps (0: to
 // the end); rank 0's recorder sees the outputs.
 Ended run_on(int ranks, const World& world, const RunState& state, Recorder& recorder, std::uint64_t stop_at = 0,
-             DomainReport* report = nullptr) {
+             DomainReport* report = nullptr, std::span<StepListener* const> listeners = {}) {
   ThreadRanks all(ranks);
   std::vector<RunOutcome> outcomes(ranks);
   std::vector<World> wholes(ranks, world);
@@ -127,7 +127,8 @@ Ended run_on(int ranks, const World& world, const RunState& state, Recorder& rec
         RunObserver* observers[] = {&recorder};
         const auto seen = r == 0 ? std::span<RunObserver* const>(observers) : std::span<RunObserver* const>();
         outcomes[r] = run_domains(wholes[r], states[r], seen, all.rank(r),
-                                  [&] { return stop_at > 0 && states[r].step == stop_at; }, {}, {}, report);
+                                  [&] { return stop_at > 0 && states[r].step == stop_at; }, {}, {}, report,
+                                  listeners);
       });
   }
   for (int r = 1; r < ranks; ++r) EXPECT_EQ(outcomes[r].status, outcomes[0].status);
@@ -357,6 +358,35 @@ TEST(Domains, AStoppedRunContinuesOnAnotherNumberOfRanks) {
   ASSERT_EQ(first.state.step, plan.steps_total / 2);
   ASSERT_EQ(run_on(2, first.world, first.state, domains).outcome.status, RunStatus::Completed);
   expect_same(serial.outputs, domains.outputs, 3);
+}
+
+// A step listener (run.hpp) on every rank: a drag F = -beta v on the bodies
+// each owns, every 2 steps, on 3 ranks and stopped on 3 and continued on 1,
+// gives the serial bits, applied loads and their work included.
+TEST(Domains, ADragListenerGivesTheSerialBitsOnAnyNumberOfRanks) {
+  struct Drag : StepListener {
+    std::uint64_t every() const override { return 2; }
+    void before_forces(OwnedBodies bodies, const RunState&) override {
+      for (std::size_t i = 0; i < bodies.world.bodies.size(); ++i)
+        if (bodies.owns(i)) bodies.world.bodies[i].applied_force = bodies.world.bodies[i].velocity * -0.02;
+    }
+  } drag;
+  StepListener* listeners[] = {&drag};
+  const World world = pour(ContactModel::Volume);
+  const RunState plan = plan_run(0.06, critical_time_step(world), 0.01);
+  Recorder serial, domains, resumed;
+  const Ended whole = run_whole(world, plan, serial, listeners);
+  ASSERT_EQ(whole.outcome.status, RunStatus::Completed);
+  Real work = 0;
+  for (const Body& b : whole.world.bodies) work += b.applied_work;
+  EXPECT_LT(work, 0);
+  const Ended split = run_on(3, world, plan, domains, 0, nullptr, listeners);
+  ASSERT_EQ(split.outcome.status, RunStatus::Completed);
+  expect_same(serial.outputs, domains.outputs, 3);
+  const Ended first = run_on(3, world, plan, resumed, plan.steps_total / 2 + 1, nullptr, listeners);
+  ASSERT_EQ(first.outcome.status, RunStatus::Stopped);
+  ASSERT_EQ(run_on(1, first.world, first.state, resumed, 0, nullptr, listeners).outcome.status, RunStatus::Completed);
+  expect_same(serial.outputs, resumed.outputs, 3);
 }
 
 // The highest grain, owned by the top domain, becomes a sphere, which the

@@ -146,6 +146,14 @@ struct Body {
   Vec3 velocity;                 ///< m/s (of a driven body, set by its motion)
   Vec3 angular_momentum;         ///< world frame, about the centre of mass (kg m^2/s)
   Vec3 force, torque;            ///< of the last force evaluation (N, N m about the centre of mass)
+  /// Load from outside the engine (a fluid's drag, a field, a user's push):
+  /// added to the force and torque of every evaluation until changed (a step
+  /// listener's or Python's to set, run.hpp); kept by checkpoints, moved
+  /// with the body between domains, shared by mass between fragments.
+  Vec3 applied_force, applied_torque;  ///< N, N m about the centre of mass
+  /// Work the applied load did on the body so far (J): the kinetic energy
+  /// each kick gave it (World::applied_loads), in the energy balance.
+  Real applied_work = 0;
 };
 static_assert(std::is_trivially_copyable_v<Body> && std::is_standard_layout_v<Body>);
 

@@ -174,6 +174,6 @@ std::vector<Real> body_costs(const World& whole);
 RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* const> observers,
                        DomainTransport& transport, const std::function<bool()>& stop_requested = {},
                        const RunGuards& guards = {}, const DomainOptions& options = {},
-                       DomainReport* report = nullptr);
+                       DomainReport* report = nullptr, std::span<StepListener* const> listeners = {});
 
 }  // namespace gjkdem::dem

@@ -10,7 +10,9 @@
 
 namespace gjkdem::dem {
 
-void kick(std::span<Body> bodies, const Makeup& makeup, Real h, int threads) noexcept;
+/// `applied`: the bodies' applied loads (Body::applied_force) are counted
+/// into their applied_work, as the kinetic energy this kick gave by them.
+void kick(std::span<Body> bodies, const Makeup& makeup, Real h, int threads, bool applied = false) noexcept;
 
 void drift(std::span<Body> bodies, const Makeup& makeup, Real dt, int threads) noexcept;
 

@@ -29,12 +29,14 @@ struct RunState {
 /// fewer than 2^53 steps.
 RunState plan_run(Real duration, Real dt, Real output_every);
 
-/// Where the energy went (J): dissipated = initial + wall_work + inflow -
-/// kinetic - potential - elastic, what damping and friction took out of the
-/// system; wall_work is what driven walls and bodies put in
-/// (World::wall_work), inflow what inserted bodies brought (InflowState).
+/// Where the energy went (J): dissipated = initial + wall_work + inflow +
+/// applied_work - kinetic - potential - elastic, what damping and friction
+/// took out of the system; wall_work is what driven walls and bodies put in
+/// (World::wall_work), inflow what inserted bodies brought (InflowState),
+/// applied_work what applied loads did (the bodies' Body::applied_work, in
+/// id order).
 struct EnergyBalance {
-  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0, inflow = 0;
+  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0, inflow = 0, applied_work = 0;
 };
 
 EnergyBalance energy_balance(const World& world, Real initial_energy) noexcept;
@@ -92,13 +94,45 @@ class RunObserver {
   virtual void on_stop(const World& /*world*/, const RunState& /*state*/, const RunOutcome& /*outcome*/) {}
 };
 
+/// What a step listener may change: the moving bodies of the world a rank
+/// steps that it owns (a whole world's: every moving body; fixed bodies
+/// belong to no rank). Their applied loads (Body::applied_force,
+/// applied_torque) are the channel for forces from outside; a listener may
+/// also set velocities. Changes to other bodies are lost, or differ between
+/// rank counts.
+struct OwnedBodies {
+  World& world;                      ///< the whole world, or a rank's domain of it
+  const DomainRole* role = nullptr;  ///< null: the world is whole
+  bool owns(std::size_t i) const noexcept { return !world.bodies[i].fixed && (!role || role->owns(i)); }
+};
+
+/// Takes part in a run from outside the engine (a fluid coupling, a field,
+/// a controller): called on every rank before the force evaluations at
+/// step 0 and at every `every()` steps, with the state at that step's end
+/// (positions moved, velocities half kicked) and `state.step` the steps
+/// done before it. Applied loads set here act from that evaluation on; a
+/// resumed run calls it where the run that did not stop did, and the loads
+/// it set last come back from the checkpoint. An exception fails the run
+/// with its message. What it does must depend on each body alone (its own
+/// state, its id): then the run gives the same bits for any thread or rank
+/// count.
+class StepListener {
+ public:
+  virtual ~StepListener() = default;
+  virtual std::uint64_t every() const { return 1; }
+  virtual void before_forces(OwnedBodies bodies, const RunState& state) = 0;
+};
+
 /// Advances `world` until state.steps_total, calling the observers.
 /// `stop_requested` (optional) is asked before every step. On a new run
 /// (state.step == 0 and no output yet) the forces are evaluated, the initial
 /// energy recorded and the first output made before the first step. The
 /// loop is run_domains's (domains.hpp) on one rank: one loop for every run.
+/// Step listeners (a run with any sets World::applied_loads) are called in
+/// the order given.
 RunOutcome run(World& world, RunState& state, std::span<RunObserver* const> observers,
-               const std::function<bool()>& stop_requested = {}, const RunGuards& guards = {});
+               const std::function<bool()>& stop_requested = {}, const RunGuards& guards = {},
+               std::span<StepListener* const> listeners = {});
 
 /// The longest stable time step (s) of the world's stiffest contact: 2 / omega
 /// of the stiffest linear or volume contact (for the volume law, a face of

@@ -9,29 +9,10 @@
 // WorldBuilder (world_builder.hpp), which checks what it is given; a World
 // assembled by hand must keep the invariants the builder documents.
 //
-// One step (dt), in the order step.cpp runs it, each stage in its own file:
-//   begin_step
-//     first kick    integrator.cpp    half a step of force and torque on velocities and angular momenta
-//     cell control  periodic.cpp      a deforming cell's velocity gradient (its servo), and its field's change
-//     drift         integrator.cpp    positions, and the symplectic free rotation (rigid_rotation.hpp)
-//     cell          periodic.cpp      a deforming cell's edges moved; bodies wrapped back into the cell
-//     inflows       inflow.cpp        bodies inserted where and when inflows owe them
-//     motions       motion.cpp        driven walls and bodies placed at the step's end time
-//   (a domain run exchanges bodies here: domain_exchange.cpp)
-//   finish_step: a force evaluation, then the second half kick
-//     boxes         boxes.cpp         enlarged boxes, recomputed when a body may leave its own
-//     candidates    candidates.cpp    moving boxes by sweep and prune (broad_phase.cpp), fixed ones in a
-//                                     static tree, periodic images (periodic.cpp)
-//     contact list  contact_list.cpp  the candidates and plane walls in pair-key order, compound parts
-//     pair store    pair_state.cpp    springs and warm starts aligned with the contact list
-//     narrow phase  narrow_phase.cpp  contact geometry per contact (GJK/EPA or the overlap region)
-//     laws          contact_force.cpp forces from geometry, material pair, the sides (contact_sides.cpp)
-//                                     and the pair's springs
-//     sums          force_sums.cpp    forces on bodies, springs kept, stats, wall power, the cell's stress
-//     bonds         bonds.cpp         the bonds' forces (their bodies' contacts are skipped while they hold),
-//                                     and the bonds that break
-//   then, where a material has a strength:
-//     breakage      breakage.cpp      grains whose stress reached their strength split in two
+// One step (dt): begin_step and finish_step (step.cpp) keep the fixed core
+// (kicks, drift, the cell, inflows, motions) and walk the stage plan
+// between (stage_plan.hpp: every stage in order, its phase, its file, what
+// it reads and writes; docs/architecture.md prints it).
 //
 // Threads: boxes, the sweep's strips, narrow phase and laws run in parallel
 // (OpenMP), each contact writing only its own slot; forces are then summed in
@@ -126,6 +107,11 @@ struct World {
   std::vector<PlaneWall> planes;
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
+  /// Bodies may carry applied loads (Body::applied_force): each force
+  /// evaluation adds them and each kick counts their work. Set by a run with
+  /// a step listener (run.hpp) and by Python's views of the applied loads;
+  /// off, neither costs a step anything.
+  bool applied_loads = false;
   std::vector<InflowState> inflow_states;  ///< one per inflow
   /// Grains broken so far (breakage.hpp): each split added a body, and
   /// the fragments' templates follow the builder's in `templates`.

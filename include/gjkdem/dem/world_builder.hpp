@@ -162,6 +162,10 @@ struct CylinderWall {
   Real thickness = 0;        ///< of the pieces (0: 2% of the radius)
 };
 
+/// The rule of CylinderWall::segments: "" when `segments` keeps it, else
+/// what it must be.
+std::string cylinder_segments_problem(std::int64_t segments);
+
 /// The thickness of its pieces (CylinderWall::thickness, or its default).
 Real cylinder_wall_thickness(const CylinderWall& wall);
 
@@ -187,14 +191,16 @@ struct RegionFill {
   std::string label;                ///< e.g. "generator[0]"
   /// > 0: each body placed is a bonded assembly (BondedDef) of its shape
   /// cut into this many pieces, the sites of the k-th drawn from
-  /// bonded_seed(pieces_seed, k); moving bodies only.
+  /// derived_seed(pieces_seed, k); moving bodies only.
   std::uint32_t pieces = 0;
   std::uint64_t pieces_seed = 1;
   int relaxations = 3;              ///< of each assembly's sites (BondedDef::relaxations)
 };
 
-/// The seed of the sites of the k-th bonded assembly a region fill places.
-inline std::uint64_t bonded_seed(std::uint64_t seed, std::uint64_t k) noexcept { return seed * 1000003 + k; }
+/// The seed of the k-th stream drawn from `seed`: the sites of the k-th
+/// bonded assembly a region fill places, a scene's k-th generator and
+/// inflow (scene_toml.cpp). One rule, so that streams never share a seed.
+inline std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t k) noexcept { return seed * 1000003 + k; }
 
 /// A region inserting bodies during a run (inflow.hpp): a rate in bodies or
 /// kilograms per second (one of them > 0), from `start` until `stop` or

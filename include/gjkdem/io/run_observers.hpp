@@ -72,6 +72,7 @@ class CsvLog : public dem::RunObserver {
   void start(const std::filesystem::path& file, const std::string& header);
   void resume(const std::filesystem::path& file, std::uint64_t bytes);
   std::uint64_t bytes() const { return bytes_; }
+  const std::filesystem::path& file() const { return file_; }
 
  protected:
   void append(const std::string& rows);
@@ -93,9 +94,15 @@ class TraceWriter : public CsvLog {
 };
 
 /// energy.csv: the energy balance at every output.
+/// A world with applied loads (World::applied_loads, as the run starts or
+/// is resumed) adds their work as a last column, applied_work.
 class EnergyWriter : public CsvLog {
  public:
   void on_output(const dem::World& world, const dem::RunState& state) override;
+  /// The applied_work column from now, when no row is written yet (a run
+  /// with loads from its start); a log with rows keeps its columns.
+  void take_applied_work();
+  bool applied = false;
 };
 
 /// cell.csv: a periodic world's cell and stress at every output (nothing
@@ -159,7 +166,7 @@ class RunInfoWriter : public dem::RunObserver {
 struct RunWriterOptions {
   bool frames = true;                ///< VTK frames at every output
   bool view = true;                  ///< view/ frames at every output (docs/view-format.md)
-  int checkpoint_every = 10;         ///< outputs between checkpoints (0: only when stopped)
+  int checkpoint_every = kDefaultCheckpointEvery;  ///< outputs between checkpoints (0: only when stopped)
   std::vector<TracedBody> traced;    ///< bodies logged in trace.csv
   std::uint64_t fingerprint = 0;     ///< of the scene (checkpoints of another are refused)
   std::string info_json = "{}";      ///< run.json's description of the run (a JSON object)
@@ -181,6 +188,8 @@ class RunFolderWriters {
   std::vector<dem::RunObserver*> observers() { return {&frames_, &view_, &trace_, &energy_, &cell_, &checkpoints_, &info_}; }
   RunInfoWriter& info() { return info_; }
   double wall_seconds() const { return checkpoints_.wall_seconds(); }
+  /// energy.csv counts the applied loads' work (EnergyWriter::take_applied_work).
+  void take_applied_work() { energy_.take_applied_work(); }
 
  private:
   RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,

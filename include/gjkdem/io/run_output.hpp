@@ -48,6 +48,9 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
 /// in their own terms).
 std::optional<std::string> read_file(const std::filesystem::path& file);
 
+/// Outputs between checkpoints where a scene or a Python run does not say.
+inline constexpr int kDefaultCheckpointEvery = 10;
+
 /// `value` appended as the shortest text that reads back to the same double
 /// (the CSV files' numbers).
 void append_number(std::string& text, Real value);
@@ -64,9 +67,11 @@ std::vector<TracedBody> traced_bodies(const dem::World& world);
 std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);
-std::string energy_header();
-/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy.
-std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts);
+/// `applied`: with the applied loads' work as a last column (applied_work).
+std::string energy_header(bool applied = false);
+/// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy
+/// and, `applied`, applied_work.
+std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts, bool applied = false);
 
 /// A wall time as "4m05s" or "1h02m" ("?" when negative or not finite).
 std::string duration_text(double seconds);

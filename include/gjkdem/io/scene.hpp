@@ -30,7 +30,7 @@ struct Scene {
   std::string output_dir = "out";
   Real output_every = 0;        ///< s between frames
   bool overwrite = false;
-  int checkpoint_every = 10;    ///< frames between checkpoints (0: none)
+  int checkpoint_every = kDefaultCheckpointEvery;  ///< frames between checkpoints (0: none)
   bool write_frames = true;
   bool write_view = true;       ///< view/ frames (docs/view-format.md)
   dem::RunGuards guards;        ///< [simulation].guards: "stop" (default), "warn" or "off"

@@ -71,8 +71,10 @@ class SceneRun {
   /// than one rank, every rank calls run() together and the world runs on
   /// domains (dem::run_domains): rank 0 writes, observes and decides
   /// when to stop, the others pass no observers.
+  /// `listeners` (dem::StepListener) are called on every rank.
   dem::RunOutcome run(std::span<dem::RunObserver* const> extra = {},
-                      const std::function<std::string()>& stop = {}, dem::DomainTransport* transport = nullptr);
+                      const std::function<std::string()>& stop = {}, dem::DomainTransport* transport = nullptr,
+                      std::span<dem::StepListener* const> listeners = {});
 
   Scene scene;
   dem::RunState state;
