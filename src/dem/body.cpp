@@ -35,6 +35,10 @@ void check_one_shell(const Surface& surface, const std::string& what) {
 
 }  // namespace
 
+void make_hull_surface(const Shape& shape) {
+  if (const Polytope* p = std::get_if<Polytope>(&shape.core)) static_cast<void>(hull_surface(*p));
+}
+
 ShapeTemplate make_template(const Shape& shape) {
   ShapeTemplate t;
   t.shape = shape;

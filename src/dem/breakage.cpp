@@ -50,6 +50,7 @@ Real grain_size(const ShapeTemplate& t) noexcept { return sphere_diameter(t.unit
 
 ShapeTemplate fragment_template(const Polytope& solid, std::uint32_t generation, bool with_surface) {
   ShapeTemplate t = make_template(Shape{solid});
+  make_hull_surface(t.shape);  // a big fragment's kept surface now, not inside a step's overlap()
   t.generation = generation;
   if (with_surface) t.surface = std::make_shared<const Surface>(polytope_surface(solid));
   return t;

@@ -898,9 +898,10 @@ void WorldBuilder::prepare_shapes() {
     if (world_.templates[t].surface_grain) continue;  // its hull only bounds it
     if (world_.templates[t].parts.empty()) {
       prepare_for_volume_law(world_.templates[t].shape, world_.templates[t].given, who, user[t]);
+      make_hull_surface(world_.templates[t].shape);
     } else {  // the hull stays: it only bounds the parts
       for (TemplatePart& part : world_.templates[t].parts)
-        if (!part.surface_grain) prepare_for_volume_law(part.shape, part.given, who, user[t]);
+        if (!part.surface_grain) prepare_for_volume_law(part.shape, part.given, who, user[t]), make_hull_surface(part.shape);
     }
   }
 }

@@ -8,9 +8,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/io/scene.hpp"
+#include "gjkdem/shape/hull_surface_slot.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
 
 namespace gjkdem::dem {
@@ -209,6 +212,37 @@ shape = { type = "sphere", radius = 0.01 }
   } catch (const io::SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("velocity must be zero for fixed bodies"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace gjkdem::dem
+
+namespace gjkdem::dem {
+namespace {
+
+// A big hull's kept surface (hull_surface) is made when the world is built
+// under the volume law, and when breakage makes a fragment's template: a
+// step's overlap() never makes one (issue 53). Small hulls keep none.
+TEST(WorldBuilderPrepares, BigHullsSurfacesBeforeTheFirstStep) {
+  std::mt19937_64 rng(7);
+  const Shape big = random_polyhedron(300, 0.02, rng), small = random_polyhedron(12, 0.02, rng);
+  const auto kept = [](const Shape& s) {
+    const HullSurfaceSlot* slot = std::get<Polytope>(s.core).data->surface_slot;
+    return slot && slot->surface != nullptr;
+  };
+  ASSERT_GE(std::get<Polytope>(big.core).data->triangles.size(), 256u);
+  ASSERT_FALSE(kept(big));
+  WorldSettings s;
+  s.model = ContactModel::Volume;
+  WorldBuilder b(s);
+  const std::uint32_t m = b.add_material({"rock", 2600, 1e7});
+  b.add_body({.shape = {big, {}}, .material = m, .position = {0, 0, 0}});
+  b.add_body({.shape = {small, {}}, .material = m, .position = {0.1, 0, 0}});
+  const World w = b.build();
+  EXPECT_TRUE(kept(w.templates[w.bodies[0].shape].shape));
+  EXPECT_EQ(std::get<Polytope>(w.templates[w.bodies[1].shape].shape.core).data->surface_slot, nullptr);
+  const ShapeTemplate fragment = fragment_template(std::get<Polytope>(random_polyhedron(300, 0.02, rng).core), 1, false);
+  EXPECT_TRUE(kept(fragment.shape));
 }
 
 }  // namespace

@@ -92,6 +92,12 @@ struct ShapeTemplate {
 /// without volume).
 ShapeTemplate make_template(const Shape& shape);
 
+/// A big solid polytope's kept surface (hull_surface, shape/surface.hpp)
+/// made now, so that no step makes it inside overlap(): the builder does
+/// it for every template it prepares under the volume law, breakage for
+/// each fragment. Nothing for other shapes and for small hulls.
+void make_hull_surface(const Shape& shape);
+
 /// A template for fixed pieces (a flat triangle has no volume): no mass, and
 /// its principal frame is the shape's own frame.
 ShapeTemplate make_wall_template(const Shape& shape);
