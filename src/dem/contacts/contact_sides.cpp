@@ -2,7 +2,7 @@
 #include <limits>
 
 #include "gjkdem/dem/rigid_rotation.hpp"
-#include "stages.hpp"
+#include "step/stages.hpp"
 
 namespace gjkdem::dem::detail {
 namespace {

@@ -2,7 +2,7 @@
 // triangle in one step. A mesh wall is thin, and its contact pushes a body
 // away from the nearer face: past the middle, on through. (A plane wall's
 // counterpart is the narrow phase's GeometryStatus::Through.)
-#include "stages.hpp"
+#include "step/stages.hpp"
 
 namespace gjkdem::dem::detail {
 namespace {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "domain_records.hpp"
+#include "domains/domain_records.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/domains.hpp"

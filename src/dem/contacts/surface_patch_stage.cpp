@@ -7,7 +7,7 @@
 
 #include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
-#include "stages.hpp"
+#include "step/stages.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/tolerances.hpp"
 

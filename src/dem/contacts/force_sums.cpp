@@ -1,5 +1,5 @@
 // The sums of a force evaluation (stages.hpp).
-#include "stages.hpp"
+#include "step/stages.hpp"
 
 namespace gjkdem::dem::detail {
 

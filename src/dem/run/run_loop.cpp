@@ -12,10 +12,10 @@
 #include <optional>
 #include <stdexcept>
 
-#include "domain_records.hpp"
+#include "domains/domain_records.hpp"
 #include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/domains.hpp"
-#include "run_guard.hpp"
+#include "run/run_guard.hpp"
 
 namespace gjkdem::dem {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // The stages of a force evaluation, each in its own file, each taking the
-// spans and values it reads and writes; the stage plan (stage_plan.cpp)
+// spans and values it reads and writes; the stage plan (step/stage_plan.cpp)
 // hands each its part of the world, in the plan's order. Internal to src/dem.
 #include <cstddef>
 #include <cstdint>
@@ -15,7 +15,7 @@
 
 namespace gjkdem::dem::detail {
 
-/// candidates.cpp: the candidate body pairs (work.candidates, and in a
+/// broad_phase/candidates.cpp: the candidate body pairs (work.candidates, and in a
 /// periodic world work.candidate_images) from the bodies' boxes: moving and
 /// driven bodies against each other by the sweep (two driven ones never
 /// touch: `any_driven` says there may be some), moving against fixed ones
@@ -24,7 +24,7 @@ namespace gjkdem::dem::detail {
 void find_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell* periodic,
                      bool any_driven, int threads, StepWorkspace& work);
 
-/// contact_list.cpp: the contact list (work.contacts and work.keys) in
+/// contacts/contact_list.cpp: the contact list (work.contacts and work.keys) in
 /// pair-key order from the candidates and the plane walls the boxes reach,
 /// a contact per pair of compound parts whose bounding spheres meet; a
 /// domain (`domain` not null) lists only pairs with a body it owns.
@@ -32,7 +32,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
                    std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
                    const DomainRole* domain, StepWorkspace& work);
 
-/// surface_contacts.cpp: each listed contact of a surface grain replaced by
+/// contacts/surface_patch_stage.cpp: each listed contact of a surface grain replaced by
 /// one per patch (its geometry found, its slot matched against `last`, the
 /// pair store of the last evaluation, keys kept in order); a pair the model
 /// cannot take, or a body through a plane wall, stays one contact with that
@@ -41,7 +41,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
                              std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
                              std::span<const PairState> last, int threads, StepWorkspace& work);
 
-/// wall_crossing.cpp: the first listed contact (in list order) of a moving
+/// contacts/wall_crossing.cpp: the first listed contact (in list order) of a moving
 /// body with a mesh wall piece whose triangle (ShapeTemplate::wall_face) the
 /// body's centre crossed during the last step of length `dt` (the centre's
 /// path taken back by its velocity, relative to a driven piece): ThroughWall
@@ -51,7 +51,7 @@ StepReport find_wall_crossing(std::span<const Body> bodies, std::span<const Shap
                               std::span<const MotionFrame> motion_frames, const PeriodicCell& cell,
                               std::span<const StepContact> contacts, Real dt);
 
-/// contact_sides.cpp: what the contact laws see of each side of a contact,
+/// contacts/contact_sides.cpp: what the contact laws see of each side of a contact,
 /// from the bodies' make-up, the driven motions' frames at this step's time
 /// and a deforming cell's velocity gradient.
 struct SideSources {
@@ -66,7 +66,7 @@ ContactSide plane_side(const SideSources& sources, const PlaneWall& plane);
 /// with b and the deforming cell.
 ContactSide side_of(const SideSources& sources, const Body& body, std::uint32_t part, const Vec3& shift = {});
 
-/// force_sums.cpp: the contacts' forces and torques added to their bodies
+/// contacts/force_sums.cpp: the contacts' forces and torques added to their bodies
 /// in the fixed order of the contact list (the same bits for any thread
 /// count), the pairs' springs kept or forgotten (`pairs` aligned with
 /// `contacts`); returns the stats (the driven walls' power included, but

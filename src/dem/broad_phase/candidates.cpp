@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "stages.hpp"
+#include "step/stages.hpp"
 
 namespace gjkdem::dem::detail {
 

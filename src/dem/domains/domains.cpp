@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "domain_records.hpp"
+#include "domains/domain_records.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::dem {

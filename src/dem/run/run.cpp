@@ -6,7 +6,7 @@
 
 #include "gjkdem/tolerances.hpp"
 #include "number_text.hpp"
-#include "run_guard.hpp"
+#include "run/run_guard.hpp"
 
 namespace gjkdem::dem {
 namespace {
