@@ -8,9 +8,10 @@
 //
 // Every number is little-endian (IEEE-754 doubles, unsigned integers), written
 // field by field, never as a struct (no padding, no machine byte order). The
-// payload is a list of sections, each a four-letter tag and a u64 length:
-// INFO (text naming the format and its sections), RUN, STAT, BODY, BOXS,
-// PAIR, CELL, MAKE, FLOW and LOGS (docs/checkpoints.md). A reader refuses another format version, a checksum that
+// payload is a list of sections, each a four-letter tag and a u64 length,
+// the first (INFO) the text naming the format and its sections; their
+// layout is docs/checkpoints.md's (the body section's columns come from
+// body_channels.hpp). A reader refuses another format version, a checksum that
 // does not match, a checkpoint of another scene (its fingerprint), and any
 // count or length that does not fit in the file, each with a message saying so.
 #include <cstdint>
