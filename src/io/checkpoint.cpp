@@ -1,5 +1,6 @@
 #include "gjkdem/io/checkpoint.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -418,6 +419,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   for (std::size_t k = 0; k < columns.size(); ++k)
     for (std::size_t j = 0; j < k; ++j)
       if (columns[j] == columns[k]) in.fail("the column '" + std::string(columns[k]->name) + "' twice");
+  for (const dem::BodyChannel& ch : dem::kBodyChannels)
+    if ((ch.use & dem::kChannelRequired) && std::find(columns.begin(), columns.end(), &ch) == columns.end())
+      in.fail("its bodies have no column '" + std::string(ch.name) + "'");
   const std::uint64_t count = in.count(8 + 2 * 4 + row_reals * 8);
   if (count < bodies.size() || (count > bodies.size() && w.inflows.empty() && broken == 0))
     refuse("the scene has " + std::to_string(bodies.size()) + " bodies, the checkpoint " + std::to_string(count) +

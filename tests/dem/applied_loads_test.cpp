@@ -9,7 +9,8 @@
 //   the energy guard stays quiet where the listener pushes energy in;
 // - a bed with drag on 1 and 2 threads, and stopped and resumed, gives the
 //   same bits; a listener called every 5 steps is called at steps 0, 5, 10;
-// - a listener's exception fails the run with its message;
+// - a listener's exception fails the run with its message; loads a listener
+//   sets at the start of a world run again act in its first kick;
 // - a world without applied loads (World::applied_loads off) has no
 //   applied work, whatever its bodies' fields hold.
 #include <gtest/gtest.h>
@@ -155,6 +156,22 @@ TEST(AppliedLoads, DragGivesTheSameBitsOnAnyThreadCountAndAcrossAResume) {
   Real work = 0;
   for (const Body& body : one.bodies) work += body.applied_work;
   EXPECT_LT(work, 0);  // drag took energy out
+}
+
+TEST(AppliedLoads, ALoadSetAtTheStartActsInTheFirstKickOfAWorldRunAgain) {
+  World w = lone(make_sphere(0.01));
+  RunState before = plan_run(1e-3, 1e-4, 1e-4);
+  ASSERT_EQ(run(w, before, {}).status, RunStatus::Completed);  // its forces are current now
+  ASSERT_TRUE(w.forces_current);
+  struct Push : StepListener {
+    void before_forces(OwnedBodies bodies, const RunState&) override { bodies.world.bodies[0].applied_force = {0.01, 0, 0}; }
+  } push;
+  StepListener* listeners[] = {&push};
+  RunState again = plan_run(1e-2, 1e-4, 1e-3);
+  ASSERT_EQ(run(w, again, {}, {}, {}, listeners).status, RunStatus::Completed);
+  const Real m = mass_of(w, w.bodies[0]), v = 0.01 / m * 1e-2;  // every kick of the 100 steps pushed
+  EXPECT_NEAR(w.bodies[0].velocity.x, v, 1e-12 * v);
+  EXPECT_NEAR(w.bodies[0].applied_work, 0.5 * m * v * v, 1e-12 * m * v * v);
 }
 
 TEST(AppliedLoads, AListenerIsCalledEveryItsSteps) {

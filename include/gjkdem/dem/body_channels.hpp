@@ -18,6 +18,7 @@ enum BodyChannelUse : unsigned {
   kChannelSaved = 1,     ///< a checkpoint's BODY section holds it
   kChannelViewed = 2,    ///< Python's World has a NumPy view of it, under BodyChannel::view
   kChannelWritable = 4,  ///< that view may be written
+  kChannelRequired = 8,  ///< a checkpoint without it is refused (the integrator's state)
 };
 
 /// A channel of reals, `components` of them in a row from `offset` bytes
@@ -39,21 +40,22 @@ struct BodyChannel {
 
 inline constexpr unsigned kSavedViewed = kChannelSaved | kChannelViewed;
 inline constexpr unsigned kSavedWritable = kChannelSaved | kChannelViewed | kChannelWritable;
+inline constexpr unsigned kState = kChannelRequired;
 
 inline constexpr std::array kBodyChannels{
-    BodyChannel{"position", "positions", "m", 3, offsetof(Body, position), kSavedViewed,
+    BodyChannel{"position", "positions", "m", 3, offsetof(Body, position), kSavedViewed | kState,
                 "Centres of mass (N, 3), read-only view; set_positions changes them."},
-    BodyChannel{"orientation", "orientations", "1", 4, offsetof(Body, orientation), kSavedViewed,
+    BodyChannel{"orientation", "orientations", "1", 4, offsetof(Body, orientation), kSavedViewed | kState,
                 "Principal frames [w, x, y, z] (N, 4), read-only view; set_orientations changes them."},
-    BodyChannel{"velocity", "velocities", "m/s", 3, offsetof(Body, velocity), kSavedWritable,
+    BodyChannel{"velocity", "velocities", "m/s", 3, offsetof(Body, velocity), kSavedWritable | kState,
                 "Velocities of the centres of mass (N, 3), writable view (fixed bodies ignore theirs)."},
     BodyChannel{"angular_momentum", "angular_momenta", "kg m^2/s", 3, offsetof(Body, angular_momentum),
-                kSavedWritable,
+                kSavedWritable | kState,
                 "Angular momenta about the centres of mass, world frame (N, 3), writable view: the integrator's "
                 "state."},
-    BodyChannel{"force", "forces", "N", 3, offsetof(Body, force), kSavedViewed,
+    BodyChannel{"force", "forces", "N", 3, offsetof(Body, force), kSavedViewed | kState,
                 "Forces of the last evaluation (N, 3), read-only view."},
-    BodyChannel{"torque", "torques", "N m", 3, offsetof(Body, torque), kSavedViewed,
+    BodyChannel{"torque", "torques", "N m", 3, offsetof(Body, torque), kSavedViewed | kState,
                 "Torques about the centres of mass (N, 3), read-only view."},
     BodyChannel{"applied_force", "applied_forces", "N", 3, offsetof(Body, applied_force), kSavedWritable,
                 "Forces applied from outside (N, 3), writable view: added to every force evaluation from the next "

@@ -241,6 +241,9 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   };
   const bool fresh = state.step == 0 && state.outputs == 0;
   std::string listened = fresh ? listen(0) : "";
+  // The loads set now act in the start's evaluation, also on a world whose
+  // forces were current (a world run again from Python).
+  if (fresh && !listeners.empty()) stepped.forces_current = false;
   rank.exchange();  // the first ghosts
   if (fresh) {
     std::string failed = listened;
@@ -290,7 +293,12 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       if (deforming) add_field_work(stepped, *ctx.domain, t);
       first_new = insert_inflow_bodies(stepped, ctx, rank.layout(), t);
     }
-    if (failed.empty() && !listeners.empty()) failed = listen(state.step + 1);
+    // Every rank's listeners are called, failed or not: a coupling may hold
+    // collectives of its own.
+    if (!listeners.empty()) {
+      std::string heard = listen(state.step + 1);
+      if (failed.empty()) failed = std::move(heard);
+    }
     mine.step_seconds += seconds_since(t0);
     if (rank.split()) {
       rank.exchange();  // every rank takes part, failed or not
