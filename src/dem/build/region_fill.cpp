@@ -5,19 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <tuple>
 #include <unordered_map>
 
-#include "build/builder_detail.hpp"
 #include "gjkdem/collide/query.hpp"
-#include "gjkdem/contact/half_space.hpp"
-#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
-#include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
-#include "gjkdem/shape/tessellate.hpp"
-#include "gjkdem/tolerances.hpp"
 #include "number_text.hpp"
 
 namespace gjkdem::dem {
@@ -96,7 +88,6 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
   inflow_labels_.push_back(label);
   return static_cast<std::uint32_t>(world_.inflows.size() - 1);
 }
-
 
 std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
   const std::string& label = f.label.empty() ? std::string("region") : f.label;

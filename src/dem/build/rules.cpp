@@ -4,14 +4,9 @@
 #include "gjkdem/dem/world_builder.hpp"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
-#include "number_text.hpp"
-
 namespace gjkdem::dem {
-
-using detail::number_text;
 
 namespace {
 

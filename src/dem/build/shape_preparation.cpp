@@ -5,24 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <tuple>
-#include <unordered_map>
 
 #include "build/builder_detail.hpp"
 #include "gjkdem/collide/query.hpp"
-#include "gjkdem/contact/half_space.hpp"
-#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
 #include "gjkdem/shape/polytope.hpp"
-#include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/shape/tessellate.hpp"
-#include "gjkdem/tolerances.hpp"
-#include "number_text.hpp"
 
 namespace gjkdem::dem {
-
-using detail::number_text;
 
 namespace detail {
 

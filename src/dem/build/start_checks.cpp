@@ -6,17 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
-#include <unordered_map>
 
-#include "build/builder_detail.hpp"
 #include "gjkdem/collide/query.hpp"
 #include "gjkdem/contact/half_space.hpp"
-#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
-#include "gjkdem/shape/polytope.hpp"
-#include "gjkdem/shape/shape_factories.hpp"
-#include "gjkdem/shape/tessellate.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "number_text.hpp"
 
@@ -142,7 +135,6 @@ void WorldBuilder::check_explicit_bodies() const {
     }
   }
 }
-
 
 // A periodic cell must hold every body with room to spare: a pair may meet
 // through one image only. Moving bodies start inside it. (What the cell and

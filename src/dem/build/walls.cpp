@@ -6,11 +6,8 @@
 #include <tuple>
 
 #include "gjkdem/shape/polytope.hpp"
-#include "number_text.hpp"
 
 namespace gjkdem::dem {
-
-using detail::number_text;
 
 void WorldBuilder::add_plane(const Vec3& point, const Vec3& normal, std::uint32_t material, const std::string& label,
                              std::uint32_t motion) {

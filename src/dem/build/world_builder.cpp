@@ -6,18 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <tuple>
-#include <unordered_map>
 
 #include "build/builder_detail.hpp"
 #include "gjkdem/collide/query.hpp"
-#include "gjkdem/contact/half_space.hpp"
 #include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
-#include "gjkdem/shape/polytope.hpp"
-#include "gjkdem/shape/shape_factories.hpp"
-#include "gjkdem/shape/tessellate.hpp"
 #include "gjkdem/tolerances.hpp"
 #include "number_text.hpp"
 
@@ -236,7 +229,6 @@ std::uint32_t WorldBuilder::add_shape(const BodyShape& shape, const std::string&
   shared_.push_back({add_template(shape, fixed, label), shape.pose, fixed});
   return static_cast<std::uint32_t>(shared_.size() - 1);
 }
-
 
 World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
