@@ -11,6 +11,18 @@ export const MODES = {
   id: { label: 'body id', unit: '' },
 };
 
+// Besides these, a frame's channel block (docs/view-format.md) gives one
+// mode per channel, 'channel:NAME': its magnitude (its value with one
+// component).
+export const CHANNEL_MODE = 'channel:';
+
+// {label, unit} of `mode` for the legend; null for a mode the frame cannot show.
+export function modeInfo(mode, frame) {
+  if (mode in MODES) return MODES[mode];
+  const channel = mode.startsWith(CHANNEL_MODE) && frame ? frame.channels[mode.slice(CHANNEL_MODE.length)] : undefined;
+  return channel ? { label: mode.slice(CHANNEL_MODE.length).replaceAll('_', ' '), unit: channel.unit } : null;
+}
+
 let values = new Float32Array(0);
 let forces = new Float32Array(0);
 let colors = new Float32Array(0);
@@ -62,6 +74,15 @@ export function colorBodies(frame, mode, templateCount) {
   } else if (mode === 'force') {
     resultantForces(frame);
     for (let i = 0; i < n; i++) values[i] = Math.sqrt(forces[3 * i] ** 2 + forces[3 * i + 1] ** 2 + forces[3 * i + 2] ** 2);
+  } else if (mode.startsWith(CHANNEL_MODE)) {
+    // A channel this frame lacks (a feature turned off since) shows zeros.
+    const channel = frame.channels[mode.slice(CHANNEL_MODE.length)];
+    const c = channel ? channel.components : 0, v = channel ? channel.values : null;
+    for (let i = 0; i < n; i++) {
+      let sum = 0;
+      for (let k = 0; k < c; k++) sum += v[c * i + k] ** 2;
+      values[i] = c === 1 ? v[i] : Math.sqrt(sum);
+    }
   } else {
     for (let i = 0; i < n; i++) values[i] = frame.id[i];
   }

@@ -11,7 +11,7 @@ function checkMagic(buffer, magic, what, header) {
   const text = String.fromCharCode(...bytes);
   if (text !== magic) throw new Error(`${what}: not a ${magic} file`);
   const version = new DataView(buffer).getUint32(8, true);
-  if (version !== 2 && version !== 3) throw new Error(`${what}: version ${version} unknown (this viewer reads 2 and 3)`);
+  if (version < 2 || version > 4) throw new Error(`${what}: version ${version} unknown (this viewer reads 2 to 4)`);
   return version;
 }
 
@@ -44,11 +44,12 @@ export function parseFrame(buffer) {
   const dv = new DataView(buffer);
   const n = dv.getUint32(12, true), m = dv.getUint32(16, true), p = dv.getUint32(20, true);
   const align4 = (x) => Math.ceil(x / 4) * 4; // arithmetic, not bit operations: sizes may pass 2^31
-  // Version 3 ends with the bonds of bonded assemblies: a count, then 21 bytes each.
+  // Version 3 adds the bonds of bonded assemblies: a count, then 21 bytes each.
   const before = align4(40 + 61 * n) + 44 * m + 24 * p + 40;
   const k = version >= 3 && buffer.byteLength >= before + 4 ? dv.getUint32(before, true) : 0;
-  const expected = before + (version >= 3 ? 4 + 21 * k : 0);
-  if (buffer.byteLength !== expected) throw new Error(`frame: ${buffer.byteLength} bytes, its header says ${expected}`);
+  const bondsEnd = before + (version >= 3 ? 4 + 21 * k : 0);
+  if (version < 4 ? buffer.byteLength !== bondsEnd : buffer.byteLength < align4(bondsEnd) + 4)
+    throw new Error(`frame: ${buffer.byteLength} bytes, its header says ${version < 4 ? bondsEnd : 'at least ' + (align4(bondsEnd) + 4)}`);
   let o = 40;
   const take = (Type, count) => {
     const a = new Type(buffer, o, count);
@@ -84,6 +85,28 @@ export function parseFrame(buffer) {
   f.bondSecond = take(Uint32Array, k);
   f.bondPoint = take(Float32Array, 3 * k); // the glued face's centre
   f.bondIntact = take(Uint8Array, k); // 1 holds, 0 broken
+  // Version 4 ends with the channel block: per-body channels by name
+  // (docs/view-format.md), each {unit, components, values: Float32Array}.
+  f.channels = Object.create(null); // no prototype: a channel may have any name
+  if (version >= 4) {
+    o = align4(o);
+    const count = take(Uint32Array, 1)[0];
+    for (let c = 0; c < count; c++) {
+      if (o + 12 > buffer.byteLength) throw new Error(`frame: channel ${c} runs past the end`);
+      const components = dv.getUint32(o, true), nameBytes = dv.getUint32(o + 4, true), unitBytes = dv.getUint32(o + 8, true);
+      o += 12;
+      if (components < 1 || components > 4 || nameBytes < 1 || nameBytes > 64 || unitBytes > 64 || o + nameBytes + unitBytes > buffer.byteLength)
+        throw new Error(`frame: channel ${c} has a size, a name or a unit length it cannot have`);
+      const name = String.fromCharCode(...new Uint8Array(buffer, o, nameBytes));
+      const unit = String.fromCharCode(...new Uint8Array(buffer, o + nameBytes, unitBytes));
+      if (!/^[a-z0-9_]+$/.test(name) || Object.hasOwn(f.channels, name)) throw new Error(`frame: channel ${c} has a bad or repeated name`);
+      if (!/^[\x20-\x7e]*$/.test(unit)) throw new Error(`frame: channel ${name} has a unit that is not printable ASCII`);
+      o = align4(o + nameBytes + unitBytes);
+      if (o + 4 * components * n > buffer.byteLength) throw new Error(`frame: channel ${name} runs past the end`);
+      f.channels[name] = { unit, components, values: take(Float32Array, components * n) };
+    }
+  }
+  if (o !== buffer.byteLength) throw new Error(`frame: ${buffer.byteLength} bytes, its contents end at ${o}`);
   for (let b = 0; b < k; b++)
     if (f.bondFirst[b] >= n || f.bondSecond[b] >= n) throw new Error(`frame: bond ${b} names a body it does not have`);
   for (let c = 0; c < m; c++) {

@@ -4,7 +4,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { ForceChains } from './chains.js';
 import { BondLines } from './bonds.js';
-import { MODES, colorBodies } from './coloring.js';
+import { CHANNEL_MODE, colorBodies, modeInfo } from './coloring.js';
 import { CHAINS, VIRIDIS, paintBar } from './colors.js';
 import { Grains } from './grains.js';
 import { Spheres } from './spheres.js';
@@ -180,6 +180,7 @@ function apply(frame, k) {
   const t0 = performance.now();
   state.frame = frame;
   state.k = k;
+  offerChannels(frame);
   const coloring = colorBodies(frame, state.mode, grains.geometries.length);
   grains.update(frame, coloring.colors);
   const asSpheres = state.draw === 'spheres' ||
@@ -221,7 +222,7 @@ function redraw() {
 }
 
 function showLegend({ min, max, categories }) {
-  const { label, unit } = MODES[state.mode];
+  const { label, unit } = modeInfo(state.mode, state.frame) ?? { label: state.mode.slice(CHANNEL_MODE.length), unit: '' };
   $('legend-title').textContent = unit ? `${label} (${unit})` : label;
   $('legend-min').textContent = categories ? String(min) : formatNumber(min);
   $('legend-max').textContent = categories ? String(max) : formatNumber(max);
@@ -489,8 +490,21 @@ function setDraw(mode) {
   return redraw();
 }
 
+// Each channel of a frame's channel block becomes a colouring mode, once.
+function offerChannels(frame) {
+  const select = $('color-mode');
+  for (const name of Object.keys(frame.channels)) {
+    const value = CHANNEL_MODE + name;
+    if ([...select.options].some((o) => o.value === value)) continue;
+    const option = document.createElement('option');
+    option.value = value;
+    option.textContent = name.replaceAll('_', ' ');
+    select.append(option);
+  }
+}
+
 function setColorMode(mode) {
-  if (!(mode in MODES)) throw new Error(`unknown colour mode ${mode}`);
+  if (!modeInfo(mode, state.frame)) throw new Error(`unknown colour mode ${mode}`);
   state.mode = $('color-mode').value = mode;
   paintLegendBar();
   return redraw();

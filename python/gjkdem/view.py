@@ -12,8 +12,8 @@ import pathlib
 
 import numpy as np
 
-VERSION = 3
-OLDEST_VERSION = 2  # version 2 frames hold no bonds
+VERSION = 4
+OLDEST_VERSION = 2  # version 2 frames hold no bonds, version 3 no channel block
 PLANE_SIDE = 0x80000000  # a contact's first side at or above this is plane wall (side - PLANE_SIDE)
 FIXED, DRIVEN = 1, 2     # body flags
 
@@ -55,7 +55,10 @@ class _Cursor:
 
 
 class Frame:
-    """One frame: bodies (N), touching contacts (M) and plane walls (P)."""
+    """One frame: bodies (N), touching contacts (M) and plane walls (P).
+
+    `channels` maps each channel of the frame's channel block (docs/view-format.md: applied loads while a run has
+    them) to its (N, components) values, `channel_units` to its unit."""
 
     def __init__(self, data, what="frame"):
         c = _Cursor(data, what)
@@ -87,6 +90,27 @@ class Frame:
         self.bond_second = c.take("<u4", k)
         self.bond_points = c.take("<f4", 3 * k, 3)
         self.bond_intact = c.take("u1", k).astype(bool)
+        # The channel block (version 4): per-body quantities by name, each (N, components) float32.
+        self.channels, self.channel_units = {}, {}
+        if c.version >= 4:
+            c.pad4()
+            for number in range(int(c.take("<u4", 1)[0])):
+                components, name_bytes, unit_bytes = (int(x) for x in c.take("<u4", 3))
+                if not (1 <= components <= 4 and 1 <= name_bytes <= 64 and unit_bytes <= 64):
+                    raise ViewFormatError(f"{what} has channel {number} with a size, a name or a unit length it "
+                                          "cannot have")
+                text = bytes(c.take("u1", name_bytes + unit_bytes))
+                name, unit = text[:name_bytes].decode("latin-1"), text[name_bytes:].decode("latin-1")
+                if not all(ch.islower() or ch.isdigit() or ch == "_" for ch in name) or not name.isascii():
+                    raise ViewFormatError(f"{what} has channel {number} whose name is not lower case letters, "
+                                          "digits and _")
+                if name in self.channels:
+                    raise ViewFormatError(f"{what} has the channel '{name}' twice")
+                if not all(" " <= ch <= "~" for ch in unit):
+                    raise ViewFormatError(f"{what} has channel '{name}' whose unit is not printable ASCII")
+                c.pad4()
+                self.channels[name] = c.take("<f4", components * n, components)
+                self.channel_units[name] = unit
         c.end()
         if np.any(self.bond_first >= n) or np.any(self.bond_second >= n):
             raise ViewFormatError(f"{what} has a bond naming a body it does not have")

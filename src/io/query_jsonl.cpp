@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 
+#include "gjkdem/io/number_text.hpp"
 #include "gjkdem/tolerances.hpp"
 #include <vector>
 
@@ -221,20 +222,17 @@ PlacedInput shape_from_json(const Json& s, const std::string& where) {
   return out;
 }
 
-void append_number(std::string& s, Real v) {
-  if (v == 0) v = 0;  // no "-0"
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  s += buf;
-}
+// Answers print no "-0" (io::append_number keeps the sign): a zero is the
+// same text whichever side it came from.
+void append_value(std::string& s, Real v) { append_number(s, v == 0 ? Real{0} : v); }
 
 void append_vec(std::string& s, const Vec3& v) {
   s += '[';
-  append_number(s, v.x);
+  append_value(s, v.x);
   s += ',';
-  append_number(s, v.y);
+  append_value(s, v.y);
   s += ',';
-  append_number(s, v.z);
+  append_value(s, v.z);
   s += ']';
 }
 
@@ -319,17 +317,17 @@ std::string format_result(const std::string& id_json, const PenetrationResult& r
   std::string s;
   s.reserve(400);
   s += "{\"id\":" + id_json + ",\"intersect\":" + (r.intersect ? "true" : "false") + ",\"distance\":";
-  append_number(s, r.distance);
+  append_value(s, r.distance);
   s += ",\"witness_a\":";
   append_vec(s, r.witness_a);
   s += ",\"witness_b\":";
   append_vec(s, r.witness_b);
   s += ",\"depth\":";
-  append_number(s, r.depth);
+  append_value(s, r.depth);
   s += ",\"normal\":";
   append_vec(s, r.normal);
   s += ",\"overlap_volume\":";
-  if (o.computed) append_number(s, o.volume);
+  if (o.computed) append_value(s, o.volume);
   else s += "null";
   s += ",\"overlap_centroid\":";
   if (o.has_centroid) append_vec(s, o.centroid);
@@ -350,7 +348,7 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
   std::string s;
   s.reserve(400);
   s += "{\"id\":" + id_json + ",\"intersect\":" + (o.intersect ? "true" : "false") + ",\"distance\":";
-  append_number(s, d ? d->distance : 0);
+  append_value(s, d ? d->distance : 0);
   s += ",\"witness_a\":";
   if (d) append_vec(s, d->witness_a);
   else s += "null";
@@ -358,7 +356,7 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
   if (d) append_vec(s, d->witness_b);
   else s += "null";
   s += ",\"depth\":null,\"normal\":null,\"overlap_volume\":";
-  append_number(s, o.volume);
+  append_value(s, o.volume);
   s += ",\"overlap_centroid\":";
   if (o.volume > 0) append_vec(s, o.centroid);
   else s += "null";
@@ -371,14 +369,14 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
     const SurfacePatch& p = o.patches[k];
     const Vec3 m = p.area_a - p.area_b;
     s += k ? ",{\"volume\":" : "{\"volume\":";
-    append_number(s, p.volume);
+    append_value(s, p.volume);
     s += ",\"centroid\":";
     append_vec(s, p.centroid);
     s += ",\"normal\":";
     if (length(m) > 0) append_vec(s, m / length(m));
     else s += "null";
     s += ",\"area\":";
-    append_number(s, 0.5 * length(m));
+    append_value(s, 0.5 * length(m));
     s += "}";
   }
   s += "]}";

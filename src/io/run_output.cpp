@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 
@@ -39,12 +40,6 @@ void polytope_mesh(const PolytopeData& d, DisplayMesh& m) {
 }
 
 }  // namespace
-
-void append_number(std::string& text, Real value) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, value);
-  text.append(buf, r.ptr);
-}
 
 std::optional<std::string> read_file(const std::filesystem::path& file) {
   std::error_code ec;
@@ -157,17 +152,17 @@ void write_vtk_frame(const std::filesystem::path& file, const dem::World& w, std
   per_cell([&](const dem::Body& b) { put_big_endian(out, static_cast<std::int32_t>(b.id)); });
   out += "\nSCALARS fixed int 1\nLOOKUP_TABLE default\n";
   per_cell([&](const dem::Body& b) { put_big_endian(out, static_cast<std::int32_t>(b.fixed)); });
-  out += "\nVECTORS velocity float\n";
-  per_cell([&](const dem::Body& b) {
-    put_big_endian(out, static_cast<float>(b.velocity.x)), put_big_endian(out, static_cast<float>(b.velocity.y)),
-        put_big_endian(out, static_cast<float>(b.velocity.z));
-  });
-  out += "\nVECTORS angular_velocity float\n";
-  per_cell([&](const dem::Body& b) {
-    const Vec3 s = dem::angular_velocity_of(w, b);
-    put_big_endian(out, static_cast<float>(s.x)), put_big_endian(out, static_cast<float>(s.y)),
-        put_big_endian(out, static_cast<float>(s.z));
-  });
+  Real values[dem::kMaxChannelComponents];
+  for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+    if (!(ch.use & dem::kChannelVtk) || !ch.in_outputs_of(w)) continue;
+    out += "\n";
+    if (ch.components == 3) out += "VECTORS " + std::string(ch.name) + " float\n";
+    else out += "SCALARS " + std::string(ch.name) + " float " + std::to_string(ch.components) + "\nLOOKUP_TABLE default\n";
+    per_cell([&](const dem::Body& b) {
+      ch.read(w, b, values);
+      for (std::uint32_t k = 0; k < ch.components; ++k) put_big_endian(out, static_cast<float>(values[k]));
+    });
+  }
   out += "\n";
   std::ofstream f(file, std::ios::binary);
   f.write(out.data(), static_cast<std::streamsize>(out.size()));
@@ -229,20 +224,25 @@ std::string ProgressClock::due(Real time, Real duration, std::uint64_t step, std
   return progress_line(time, duration, step, steps_total, rate);
 }
 
-std::string trace_header() { return "time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"; }
+std::string trace_header() {
+  std::string s = "time,name";
+  for (const dem::BodyChannel& ch : dem::kBodyChannels)
+    if (ch.use & dem::kChannelTraced) s.append(",").append(ch.columns);
+  return s + "\n";
+}
 
 std::string trace_row(const dem::World& w, const std::string& name, const dem::Body& b) {
   std::string s;
   append_number(s, w.time);
   s += "," + name;
-  // The orientation of the body frame the author gave: principal frame -> world
-  // composed with the template's shape frame.
-  const Quat q = dem::shape_orientation(w.templates[b.shape], b);
-  const Vec3 spin = dem::angular_velocity_of(w, b);
-  for (Real v : {b.position.x, b.position.y, b.position.z, q.w, q.x, q.y, q.z, b.velocity.x, b.velocity.y,
-                 b.velocity.z, spin.x, spin.y, spin.z}) {
-    s += ',';
-    append_number(s, v);
+  Real values[dem::kMaxChannelComponents];
+  for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+    if (!(ch.use & dem::kChannelTraced)) continue;
+    ch.read(w, b, values);
+    for (std::uint32_t k = 0; k < ch.components; ++k) {
+      s += ',';
+      append_number(s, values[k]);
+    }
   }
   s += '\n';
   return s;

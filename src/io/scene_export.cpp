@@ -5,6 +5,7 @@
 
 #include <toml++/toml.h>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/io/scene.hpp"
 
 namespace gjkdem::io {
@@ -186,8 +187,18 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     if (b.fixed) {
       body.insert("fixed", true);
     } else {
-      body.insert("velocity", array_of(b.velocity));
-      body.insert("angular_velocity", array_of(dem::angular_velocity_of(w, b)));
+      Real values[dem::kMaxChannelComponents];
+      for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+        if (!(ch.use & dem::kChannelExported) || !ch.in_outputs_of(w)) continue;
+        ch.read(w, b, values);
+        if (ch.components == 1) {
+          body.insert(ch.name, values[0]);
+        } else {
+          toml::array a;
+          for (std::uint32_t k = 0; k < ch.components; ++k) a.push_back(values[k]);
+          body.insert(ch.name, std::move(a));
+        }
+      }
     }
     bodies.push_back(std::move(body));
   }

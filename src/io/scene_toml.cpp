@@ -617,6 +617,10 @@ class SceneBuilder {
     d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
     if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
       r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0; give it a 'motion')");
+    d.applied_force = r.vec3("applied_force").value_or(Vec3{});
+    d.applied_torque = r.vec3("applied_torque").value_or(Vec3{});
+    if (d.fixed && (length(d.applied_force) > 0 || length(d.applied_torque) > 0))
+      r.fail("applied_force", "is for free bodies (a fixed body takes no applied load)");
     Json motion_json;
     if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
     d.motion = read_motion(r, motion_json);
@@ -627,6 +631,8 @@ class SceneBuilder {
     Json j = {{"shape", "(as given)"}, {"material", r.required_string("material")},
               {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
               {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
+    if (length(d.applied_force) > 0 || length(d.applied_torque) > 0)
+      j["applied_force"] = to_json(d.applied_force), j["applied_torque"] = to_json(d.applied_torque);
     if (name) j["name"] = *name;
     if (d.motion) j["motion"] = motion_json["motion"];
     resolved_["body"].push_back(j);

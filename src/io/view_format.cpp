@@ -145,6 +145,16 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
                             rotate(bb.orientation, bond.point_b)) * 0.5);
     f.bond_intact.push_back(bond.intact);
   }
+  Real values[dem::kMaxChannelComponents];
+  for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+    if (!(ch.use & dem::kChannelFramed) || !ch.in_outputs_of(w)) continue;
+    ViewChannel& c = f.channels.emplace_back(ViewChannel{std::string(ch.name), std::string(ch.unit), ch.components, {}});
+    c.values.reserve(ch.components * n);
+    for (const dem::Body& b : w.bodies) {
+      ch.read(w, b, values);
+      for (std::uint32_t k = 0; k < ch.components; ++k) c.values.push_back(static_cast<float>(values[k]));
+    }
+  }
   return f;
 }
 
@@ -185,6 +195,17 @@ std::string encode(const ViewFrame& f) {
   put(out, static_cast<std::uint32_t>(f.bond_count()));
   put_array(out, f.bond_first), put_array(out, f.bond_second), put_array(out, f.bond_points);
   put_array(out, f.bond_intact);
+  pad4(out);
+  put(out, static_cast<std::uint32_t>(f.channels.size()));
+  for (const ViewChannel& c : f.channels) {
+    put(out, c.components);
+    put(out, static_cast<std::uint32_t>(c.name.size()));
+    put(out, static_cast<std::uint32_t>(c.unit.size()));
+    out += c.name;
+    out += c.unit;
+    pad4(out);
+    put_array(out, c.values);
+  }
   return out;
 }
 
@@ -231,6 +252,32 @@ ViewFrame decode_view_frame(const std::string& bytes) {
     for (std::uint64_t b = 0; b < k; ++b)
       if (f.bond_first[b] >= n || f.bond_second[b] >= n || f.bond_intact[b] > 1)
         r.fail("has bond " + std::to_string(b) + " naming a body it does not have, or a state it cannot have");
+  }
+  if (r.version() >= 4) {
+    r.skip_pad4();
+    const std::uint32_t channels = r.get<std::uint32_t>();
+    for (std::uint32_t k = 0; k < channels; ++k) {
+      ViewChannel c;
+      c.components = r.get<std::uint32_t>();
+      const std::uint32_t name_bytes = r.get<std::uint32_t>(), unit_bytes = r.get<std::uint32_t>();
+      if (c.components < 1 || c.components > kViewChannelComponents || name_bytes < 1 ||
+          name_bytes > kViewChannelNameBytes || unit_bytes > kViewChannelNameBytes)
+        r.fail("has channel " + std::to_string(k) + " with a size, a name or a unit length it cannot have");
+      std::vector<char> text;
+      r.get_array(text, name_bytes + unit_bytes);
+      c.name.assign(text.begin(), text.begin() + name_bytes);
+      c.unit.assign(text.begin() + name_bytes, text.end());
+      for (const char ch : c.name)
+        if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_'))
+          r.fail("has channel " + std::to_string(k) + " whose name is not lower case letters, digits and _");
+      for (const char ch : c.unit)
+        if (ch < 0x20 || ch > 0x7e) r.fail("has channel '" + c.name + "' whose unit is not printable ASCII");
+      for (const ViewChannel& before : f.channels)
+        if (before.name == c.name) r.fail("has the channel '" + c.name + "' twice");
+      r.skip_pad4();
+      r.get_array(c.values, c.components * n);
+      f.channels.push_back(std::move(c));
+    }
   }
   r.expect_end();
   if (f.cell_axes > 7) r.fail("has periodic axes it cannot have");

@@ -4,14 +4,15 @@
 // as spheres and the force chains change the picture, and that the plots draw and follow the slider.
 // Screenshots go to the artifacts folder, named by check.
 //
-//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--breakage-scene SCENE] [--bonded-scene SCENE] [--bench] [--chromium PATH]
+//   node tests/browser/viewer_test.mjs --gjkdem BIN --run DIR --artifacts DIR [--live-scene SCENE] [--periodic-scene SCENE] [--breakage-scene SCENE] [--bonded-scene SCENE] [--channel-scene SCENE] [--bench] [--chromium PATH]
 //
 // --live-scene also opens a run of SCENE that is still going (stopped, then
 // resumed beside the open page) and checks that the page follows it;
 // --periodic-scene SCENE, that a periodic world's cell is drawn;
 // --breakage-scene SCENE, that fragments of grains that break are drawn as
 // the run adds them; with --bonded-scene SCENE, that a bonded assembly's
-// bonds are drawn, broken ones apart.
+// bonds are drawn, broken ones apart; --channel-scene SCENE, that the frames'
+// channels (applied loads) are colouring modes.
 //
 // --bench measures instead (for a big run): page open to first frame drawn,
 // one uncached frame's fetch + decode + draw, and frames per second while
@@ -455,6 +456,41 @@ async function runBonded(errors) {
   }
 }
 
+// 10. Channels: a frame's channel block (applied loads of a pulled ball)
+// becomes colouring modes, its name and unit in the legend, its magnitude
+// the colour.
+async function runChannels(errors) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_channels_'));
+  try {
+    const done = spawnSync(args.gjkdem, ['run', args['channel-scene'], '--out', dir, '--quiet']);
+    check(done.status === 0, `the pulled ball runs (exit ${done.status})`);
+    const s = serve(dir);
+    liveServer = s.proc;
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => errors.push(`channels page error: ${e.message}`));
+    await page.goto(await s.url);
+    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+    await page.evaluate(() => window.gjkdemViewer.ready);
+    const offered = await page.evaluate(() => [...document.getElementById('color-mode').options].map((o) => o.value));
+    check(offered.includes('channel:applied_force') && offered.includes('channel:applied_torque'),
+      `the frame's channels are colouring modes (${offered.join(', ')})`);
+    await page.selectOption('#color-mode', 'channel:applied_force');
+    const legend = await page.evaluate(() => ({
+      title: document.getElementById('legend-title').textContent,
+      min: Number(document.getElementById('legend-min').textContent),
+      max: Number(document.getElementById('legend-max').textContent),
+    }));
+    check(legend.title === 'applied force (N)' && legend.min === 0 && Math.abs(legend.max - 0.02) < 1e-4,
+      `the legend shows the channel's name, unit and range (${JSON.stringify(legend)})`);
+    await shoot(page, 'channel_applied_force');
+    check(errors.length === 0, `no page error colouring by a channel${errors.length ? ': ' + errors.join('; ') : ''}`);
+    await page.close();
+  } finally {
+    liveServer?.kill();
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
 try {
   const url = await startServer();
   browser = await chromium.launch({ executablePath: args.chromium, args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
@@ -480,6 +516,7 @@ try {
   if (args['periodic-scene'] && !args.bench) await runPeriodic(errors);
   if (args['breakage-scene'] && !args.bench) await runBreakage(errors);
   if (args['bonded-scene'] && !args.bench) await runBonded(errors);
+  if (args['channel-scene'] && !args.bench) await runChannels(errors);
 } catch (error) {
   check(false, error.stack ?? String(error));
 }

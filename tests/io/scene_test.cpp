@@ -685,6 +685,8 @@ fixed = true
         Bad{"motion_on_moving_body", kHead + kCube + "motion = { velocity = [1.0, 0.0, 0.0] }\n",
             "body[0].motion: is for fixed bodies"},
         Bad{"fixed_body_velocity", kHead + kCube + "fixed = true\nvelocity = [1.0, 0.0, 0.0]\n", "give it a 'motion'"},
+        Bad{"fixed_body_applied_force", kHead + kCube + "fixed = true\napplied_force = [1.0, 0.0, 0.0]\n", "takes no applied load"},
+        Bad{"applied_torque_not_a_vector", kHead + kCube + "applied_torque = [1.0, 0.0]\n", "applied_torque"},
         Bad{"motion_unknown_key", kHead + kCube + kPlane + "motion = { speed = 2.0 }\n",
             "wall[0].motion: unknown key 'speed'"},
         Bad{"motion_not_table", kHead + kCube + kPlane + "motion = 3.0\n", "wall[0].motion: must be a table"},

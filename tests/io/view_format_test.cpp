@@ -72,8 +72,8 @@ TEST(ViewFormat, AFrameHoldsTheWorldAndReadsBackTheSame) {
   const std::string bytes = encode(f);
   const std::size_t planes = w.planes.size();
   EXPECT_EQ(bytes.size(), 40 + 61 * f.body_count() + (4 - f.body_count() % 4) % 4 + 44 * f.contact_count() + 24 * planes +
-                              40 + 4 + 21 * f.bond_count())
-      << "the size docs/view-format.md gives";
+                              40 + 4 + 21 * f.bond_count() + (4 - 21 * f.bond_count() % 4) % 4 + 4)
+      << "the size docs/view-format.md gives (no channels: the bed has no applied loads)";
   const ViewFrame back = decode_view_frame(bytes);
   EXPECT_EQ(back.time, f.time);
   EXPECT_EQ(back.positions, f.positions);
@@ -164,14 +164,17 @@ TEST(ViewFormat, DamagedFilesAreRefused) {
   refused(decode_view_shapes, frame, "wrong magic");
   refused(decode_view_shapes, shapes.substr(0, shapes.size() / 2), "");
   std::string newer = frame;
-  newer[8] = 4;
-  refused(decode_view_frame, newer, "version 4");
-  // A version 2 frame (no bonds: it ends with the cell) is still read.
-  std::string older = frame.substr(0, frame.size() - 4);
-  older[8] = 2;
-  EXPECT_EQ(decode_view_frame(older).body_count(), bed().bodies.size());
+  newer[8] = 5;
+  refused(decode_view_frame, newer, "version 5");
+  // A version 3 frame (no channel block: it ends with the bonds) and a
+  // version 2 one (no bonds: it ends with the cell) are still read.
+  for (const auto& [version, cut] : {std::pair{3, 4}, std::pair{2, 8}}) {
+    std::string older = frame.substr(0, frame.size() - cut);
+    older[8] = static_cast<char>(version);
+    EXPECT_EQ(decode_view_frame(older).body_count(), bed().bodies.size()) << "version " << version;
+  }
   std::string cell = frame;
-  cell[cell.size() - 44] = 8;  // the periodic axes' bits (then the cell, then no bonds)
+  cell[cell.size() - 48] = 8;  // the periodic axes' bits (then the cell, no bonds, no channels)
   refused(decode_view_frame, cell, "periodic axes");
   // A contact naming a body the frame does not have.
   const ViewFrame f = decode_view_frame(frame);
@@ -190,6 +193,57 @@ TEST(ViewFormat, DamagedFilesAreRefused) {
   bad = f;
   bad.contact_a[0] = kViewPlaneSide + 1;
   refused(decode_view_frame, encode(bad), "naming a body or plane");
+}
+
+// The channel block holds the table's framed channels whose feature is on,
+// by name: applied loads while the world has them, none otherwise.
+TEST(ViewFormat, AppliedLoadsTravelAsNamedChannels) {
+  dem::World w = bed();
+  EXPECT_TRUE(view_frame(w, 0).channels.empty());
+  w.applied_loads = true;
+  for (std::size_t k = 0; k < w.bodies.size(); ++k) {
+    const Real s = static_cast<Real>(k);
+    w.bodies[k].applied_force = {s, 2 * s, -0.5 * s}, w.bodies[k].applied_torque = {0, -s, 0.25};
+  }
+  const ViewFrame f = decode_view_frame(encode(view_frame(w, 3)));
+  ASSERT_EQ(f.channels.size(), 2u);
+  EXPECT_EQ(f.channels[0].name, "applied_force");
+  EXPECT_EQ(f.channels[0].unit, "N");
+  EXPECT_EQ(f.channels[1].name, "applied_torque");
+  EXPECT_EQ(f.channels[1].unit, "N m");
+  for (const ViewChannel& c : f.channels) {
+    ASSERT_EQ(c.components, 3u);
+    ASSERT_EQ(c.values.size(), 3 * w.bodies.size());
+  }
+  for (std::size_t k = 0; k < w.bodies.size(); ++k) {
+    const Vec3 force = at(f.channels[0].values, k), torque = at(f.channels[1].values, k);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_FLOAT_EQ(force[a], static_cast<float>(w.bodies[k].applied_force[a]));
+      EXPECT_FLOAT_EQ(torque[a], static_cast<float>(w.bodies[k].applied_torque[a]));
+    }
+  }
+  // Damaged blocks are refused, naming the channel.
+  auto refused = [](ViewFrame bad, const std::string& why) {
+    try {
+      decode_view_frame(encode(bad));
+      ADD_FAILURE() << "accepted: " << why;
+    } catch (const ViewFormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  ViewFrame bad = f;
+  bad.channels[1].name = "applied_force";
+  refused(bad, "twice");
+  bad = f, bad.channels[0].name = "Applied force";
+  refused(bad, "lower case");
+  bad = f, bad.channels[0].name = "";
+  refused(bad, "name");
+  bad = f, bad.channels[0].components = 5, bad.channels[0].values.resize(5 * w.bodies.size());
+  refused(bad, "size");
+  bad = f, bad.channels[0].unit = "N\n";
+  refused(bad, "printable");
+  bad = f, bad.channels[1].values.pop_back();
+  refused(bad, "cut short");
 }
 
 TEST(ViewFormat, AResumedWriterCutsItsIndexBackToTheCheckpoint) {

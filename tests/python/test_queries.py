@@ -38,7 +38,7 @@ def test_every_shared_sample_gives_the_programs_answer(cli, pairs_dir):
             a, b = gjkdem.Shape.from_json(pair["a"]), gjkdem.Shape.from_json(pair["b"])
             r = gjkdem.penetration(a, b)
             what = f"{path.name} {pair['id']}"
-            # The same code on the same numbers: the same bits (the program prints 17 digits).
+            # The same code on the same numbers: the same bits (the program prints numbers that read back exactly).
             assert r.intersect == expected["intersect"], what
             assert r.distance == expected["distance"], what
             assert r.depth == expected["depth"], what

@@ -76,7 +76,7 @@ def test_damaged_view_files_are_refused(run_dir, tmp_path):
     frame = out / "view" / "frame_000003.bin"
     data = frame.read_bytes()
     for damaged, why in [(data[:-3], "cut short"), (data + b"\0", "past its end"), (b"GJKSHAPE" + data[8:], "wrong magic"),
-                         (data[:8] + b"\x04" + data[9:], "version 4")]:
+                         (data[:8] + b"\x05" + data[9:], "version 5")]:
         with pytest.raises(gjkdem.ViewFormatError, match=why):
             gjkdem.view.Frame(damaged)
     (out / "view" / "shapes.bin").write_bytes((out / "view" / "shapes.bin").read_bytes()[:20])
@@ -172,3 +172,45 @@ def test_a_bonded_drop_s_frames_hold_its_bonds(repo, tmp_path):
         a, b = f.positions[f.bond_first], f.positions[f.bond_second]
         # The face centre lies nearer each piece's centre than the pieces' centres lie apart (0.02 m box).
         assert np.all(np.linalg.norm(f.bond_points - a, axis=1) < np.linalg.norm(b - a, axis=1) + 0.02)
+
+
+def test_a_scenes_applied_loads_move_its_ball_and_travel_as_channels(repo, tmp_path):
+    """A scene's constant applied_force and applied_torque (pulled_ball.toml)
+    accelerate the ball as F/m and T/I, their work is energy.csv's
+    applied_work, and the frames' channel block holds them by name."""
+    shutil.copy(repo / "tests" / "data" / "scenes" / "pulled_ball.toml", tmp_path / "pulled_ball.toml")
+    out = tmp_path / "out"
+    assert gjkdem.SceneRun(str(tmp_path / "pulled_ball.toml"), out=str(out), threads=1).run() == "completed"
+    force, torque, radius = 0.02, 1.0e-6, 0.01
+    mass = 7800.0 * 4.0 / 3.0 * np.pi * radius**3
+    inertia = 0.4 * mass * radius**2
+    with open(out / "trace.csv") as f:
+        rows = [r for r in csv.DictReader(f) if r["name"] == "pulled"]
+    assert len(rows) == 6
+    for r in rows:
+        t = float(r["time"])
+        assert float(r["x"]) == pytest.approx(force * t**2 / (2 * mass), rel=1e-9, abs=1e-15)
+        assert float(r["wz"]) == pytest.approx(torque * t / inertia, rel=1e-9, abs=1e-15)
+    with open(out / "energy.csv") as f:
+        last = list(csv.DictReader(f))[-1]
+    t = float(last["time"])
+    work = force * force * t**2 / (2 * mass) + torque * torque * t**2 / (2 * inertia)
+    assert float(last["applied_work"]) == pytest.approx(work, rel=1e-9)
+    run = gjkdem.read_view(out)
+    for k in range(len(run)):
+        frame = run.frame(k)
+        assert list(frame.channels) == ["applied_force", "applied_torque"]
+        assert frame.channel_units == {"applied_force": "N", "applied_torque": "N m"}
+        np.testing.assert_array_equal(frame.channels["applied_force"], np.float32([[force, 0, 0], [0, 0, 0]]))
+        np.testing.assert_array_equal(frame.channels["applied_torque"], np.float32([[0, 0, torque], [0, 0, 0]]))
+    # The exported state keeps the loads: they are state.
+    exported = tmp_path / "again.toml"
+    gjkdem.export_scene(str(out), path=str(exported))
+    again = gjkdem.load_scene(str(exported)).world
+    np.testing.assert_array_equal(again.applied_forces, [[force, 0, 0], [0, 0, 0]])
+    np.testing.assert_array_equal(again.applied_torques, [[0, 0, torque], [0, 0, 0]])
+
+
+def test_a_run_without_loads_has_no_channels(run_dir):
+    out, _ = run_dir
+    assert gjkdem.read_view(out).frame(-1).channels == {}

@@ -114,6 +114,10 @@ struct BodyDef {
   Quat rotation{};              ///< of the body's frame, world
   Vec3 velocity{};              ///< of the centre of mass (m/s)
   Vec3 angular_velocity{};      ///< world (rad/s)
+  /// Loads from outside, constant unless a listener changes them (Body::
+  /// applied_force, applied_torque; N, N m about the centre of mass, world).
+  /// Any nonzero turns World::applied_loads on. Free bodies only.
+  Vec3 applied_force{}, applied_torque{};
   bool fixed = false;           ///< not moved by forces; must have no velocity
   std::uint32_t motion = 0;     ///< > 0: a fixed body moved by this motion (add_motion)
   std::string label{};          ///< names the body in messages, e.g. "body[2]"; empty: its name, else "body N"

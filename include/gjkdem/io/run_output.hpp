@@ -13,6 +13,7 @@
 
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world.hpp"
+#include "gjkdem/io/number_text.hpp"
 
 namespace gjkdem::io {
 
@@ -50,10 +51,6 @@ std::optional<std::string> read_file(const std::filesystem::path& file);
 
 /// Outputs between checkpoints where a scene or a Python run does not say.
 inline constexpr int kDefaultCheckpointEvery = 10;
-
-/// `value` appended as the shortest text that reads back to the same double
-/// (the CSV files' numbers).
-void append_number(std::string& text, Real value);
 
 /// A body written to trace.csv every output, under its name.
 struct TracedBody {

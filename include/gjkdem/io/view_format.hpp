@@ -11,16 +11,22 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::io {
 
-inline constexpr std::uint32_t kViewVersion = 3;
-/// The oldest version readers take (version 2 frames hold no bonds).
+inline constexpr std::uint32_t kViewVersion = 4;
+/// The oldest version readers take (version 2 frames hold no bonds, 3 no
+/// channel block).
 inline constexpr std::uint32_t kOldestViewVersion = 2;
 /// A contact's first side with this bit set is plane wall (side - kViewPlaneSide).
 inline constexpr std::uint32_t kViewPlaneSide = 0x80000000u;
 inline constexpr std::uint8_t kViewFixed = 1, kViewDriven = 2;
+/// A frame channel's most components and longest name (bytes), as readers
+/// check them: the table's own limits.
+inline constexpr std::uint32_t kViewChannelComponents = dem::kMaxChannelComponents;
+inline constexpr std::uint32_t kViewChannelNameBytes = dem::kMaxChannelNameBytes;
 
 struct ViewFormatError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -35,6 +41,15 @@ struct ViewMesh {
 struct ViewShapes {
   std::vector<ViewMesh> templates;
   std::vector<std::uint32_t> plane_ids;
+};
+
+/// A body channel of a frame's channel block (version 4): the framed rows
+/// of dem::kBodyChannels present in the world, `components` values a body.
+struct ViewChannel {
+  std::string name;
+  std::string unit;  ///< SI, as the table gives it (printable ASCII)
+  std::uint32_t components = 0;
+  std::vector<float> values;  ///< components per body, in the frame's body order
 };
 
 /// One frame, arrays as stored (structure of arrays, single precision).
@@ -57,6 +72,7 @@ struct ViewFrame {
   std::vector<std::uint32_t> bond_first, bond_second;
   std::vector<float> bond_points;  ///< 3 per bond
   std::vector<std::uint8_t> bond_intact;
+  std::vector<ViewChannel> channels;  ///< the channel block (version 4), in the table's order
   std::size_t body_count() const { return templates.size(); }
   std::size_t bond_count() const { return bond_first.size(); }
   std::size_t contact_count() const { return contact_b.size(); }

@@ -193,10 +193,14 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     if (names_.count(d.name)) throw BuildError(label + ": two bodies are named '" + d.name + "'");
   }
   check_material(d.material, label);
-  for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
-    if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
+  for (const Vec3& v : {d.position, d.velocity, d.angular_velocity, d.applied_force, d.applied_torque})
+    if (!is_finite(v))
+      throw BuildError(label + ": position, velocity, angular velocity and applied loads must be finite");
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     throw BuildError(label + ": a fixed body cannot move (velocity and angular_velocity must be 0)");
+  const bool loaded = length(d.applied_force) > 0 || length(d.applied_torque) > 0;
+  if (d.fixed && loaded)
+    throw BuildError(label + ": a fixed body takes no applied load (applied_force and applied_torque are for free bodies)");
   check_motion_number(d.motion, label);
   if (d.motion && !d.fixed) throw BuildError(label + ": a motion is for fixed bodies (forces move the others)");
   Body b;
@@ -216,6 +220,8 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     b.shape = add_template(d.shape, d.fixed, label);
     place(b, d.shape, d.position, d.rotation, d.velocity, d.angular_velocity);
   }
+  b.applied_force = d.applied_force, b.applied_torque = d.applied_torque;
+  world_.applied_loads = world_.applied_loads || loaded;
   world_.bodies.push_back(b);
   labels_.push_back(label);
   if (!d.name.empty()) world_.names.push_back({b.id, d.name}), names_.insert(d.name);
