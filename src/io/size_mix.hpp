@@ -3,7 +3,7 @@
 // size distribution: each part (a shape and its fraction) drawn in every
 // size class of a sieve table, with the number weight of each variant such
 // that the classes get their mass fractions and the parts their number (or
-// mass) fractions. No TOML here: the scene reader (scene_toml.cpp) reads
+// mass) fractions. No TOML here: the scene reader (scene_reader/) reads
 // the tables, this samples. Internal to src/io.
 #include <cstdint>
 #include <optional>

@@ -1,8 +1,8 @@
 #pragma once
-// Typed reading of one TOML table for the scene reader (scene_toml.cpp):
+// Typed reading of one TOML table for the scene reader (scene_reader/):
 // getters that refuse a wrong type or a non-finite number with the key's
 // line, and finish(), which refuses the keys nobody asked for. Internal to
-// src/io; toml++ is included by scene_toml.cpp and, to write scenes,
+// src/io; toml++ is included by the scene reader and, to write scenes,
 // scene_export.cpp.
 #include <cmath>
 #include <cstdint>

@@ -133,12 +133,57 @@ inline const std::shared_ptr<const Surface>& surface_of(const ShapeTemplate& t, 
   return t.parts.empty() ? t.surface : t.parts[part].surface;
 }
 
+/// A mesh wall's piece under the Hertz and linear laws (a triangle with a
+/// margin, which meets surfaces by margin_patches): its triangle, or null
+/// for any other template.
+inline const Triangle* margin_piece(const ShapeTemplate& t) noexcept {
+  return t.wall_face && t.shape.margin > 0 ? std::get_if<Triangle>(&t.shape.core) : nullptr;
+}
+
+/// How a part of a body meets others (`part` 0 for a body of one shape):
+/// the one fact the contacts' routes are read from (pair_route).
+enum class PartKind : std::uint8_t {
+  Convex,     ///< a convex shape (in a world with surfaces, met by its boundary, ShapeTemplate::surface)
+  Surface,    ///< a closed surface, convex or not: a surface grain, a compound's surface part
+  Shell,      ///< a thin shell: its triangles with their margin
+  WallPiece,  ///< a mesh wall's piece under the penetration laws (margin_piece)
+};
+
+inline PartKind part_kind(const ShapeTemplate& t, std::uint32_t part) noexcept {
+  if (t.shell) return PartKind::Shell;
+  if (surface_side(t, part)) return PartKind::Surface;
+  return margin_piece(t) ? PartKind::WallPiece : PartKind::Convex;
+}
+
+/// How two sides of a contact meet. Every place that meets two bodies (the
+/// step's narrow phase and surface stage, the start's overlap check, the
+/// placing of generated and inflowing bodies) takes its route from here.
+enum class ContactRoute : std::uint8_t {
+  Convex,   ///< convex shapes: GJK and the narrow phase's laws
+  Patches,  ///< the patches of two closed surfaces (a convex part by its boundary), or of a surface beyond a plane
+  Shell,    ///< a thin shell's triangles against the other side's surface, or a plane by their corners
+  Margin,   ///< a surface's or a shell's triangles against a mesh wall's piece: the margin model
+};
+
+/// The route of parts of kinds `a` and `b` (either order gives the same).
+constexpr ContactRoute pair_route(PartKind a, PartKind b) noexcept {
+  const auto meshed = [](PartKind k) { return k == PartKind::Surface || k == PartKind::Shell; };
+  if ((a == PartKind::WallPiece && meshed(b)) || (b == PartKind::WallPiece && meshed(a))) return ContactRoute::Margin;
+  if (a == PartKind::Shell || b == PartKind::Shell) return ContactRoute::Shell;
+  if (a == PartKind::Surface || b == PartKind::Surface) return ContactRoute::Patches;
+  return ContactRoute::Convex;
+}
+
+/// The route of a plane wall and a part of kind `b`.
+constexpr ContactRoute plane_route(PartKind b) noexcept {
+  if (b == PartKind::Shell) return ContactRoute::Shell;
+  return b == PartKind::Surface ? ContactRoute::Patches : ContactRoute::Convex;
+}
+
 /// Whether template `t` is a thin shell or any part of it a surface
 /// (surface_side): worlds with one give every other shape a surface to be
 /// met by.
 bool holds_surface(const ShapeTemplate& t) noexcept;
-
-
 
 struct Body {
   std::uint64_t id = 0;          ///< global id, stable across domains and restarts

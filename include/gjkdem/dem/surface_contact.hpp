@@ -89,13 +89,6 @@ bool placed_body_meets(const Shape& shape, const Transform& pose, const std::sha
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
                            SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 
-/// A mesh wall's piece under the Hertz and linear laws (a triangle with a
-/// margin, which meets surface grains by margin_patches): its triangle, or
-/// null for any other template.
-inline const Triangle* margin_piece(const ShapeTemplate& t) noexcept {
-  return t.wall_face && t.shape.margin > 0 ? std::get_if<Triangle>(&t.shape.core) : nullptr;
-}
-
 /// A mesh wall's piece (margin_piece) placed at `pose`: its triangle in
 /// world coordinates, with its margin.
 inline MarginTriangle placed_margin_triangle(const ShapeTemplate& piece, const Transform& pose) noexcept {
@@ -120,6 +113,12 @@ void margin_patches(const TriangleSet& grain, const Transform& pose, std::span<c
 /// A thin shell's triangles as margin contacts meet them (TriangleSet).
 inline TriangleSet shell_triangles(const Shell& s) noexcept {
   return {s.vertices, s.triangles, &s.tree, s.mass.centroid, s.margin};
+}
+
+/// The triangles a part of the Margin route's grain side (pair_route:
+/// a surface, or a shell) meets a mesh wall's piece by, in its frame.
+inline TriangleSet margin_triangles(const ShapeTemplate& grain, std::uint32_t part) noexcept {
+  return grain.shell ? shell_triangles(*grain.shell) : triangles_of(*surface_of(grain, part));
 }
 
 /// A thin shell's triangles placed at `pose`, those whose boxes meet `near`

@@ -203,7 +203,7 @@ struct RegionFill {
 
 /// The seed of the k-th stream drawn from `seed`: the sites of the k-th
 /// bonded assembly a region fill places, a scene's k-th generator and
-/// inflow (scene_toml.cpp). One rule, so that streams never share a seed.
+/// inflow (src/io/scene_reader/bodies.cpp). One rule, so that streams never share a seed.
 inline std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t k) noexcept { return seed * 1000003 + k; }
 
 /// A region inserting bodies during a run (inflow.hpp): a rate in bodies or

@@ -195,8 +195,7 @@ std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::m
             intersect(given_shapes_[world_.bodies[n.body].shape], n.pose, ball, ball_pose)))
         return false;
       const ShapeTemplate& t = world_.templates[world_.bodies[n.body].shape];
-      const bool by_surface = t.surface_grain || t.shell ||
-                              std::any_of(t.parts.begin(), t.parts.end(), [](const TemplatePart& p) { return p.surface_grain; });
+      const bool by_surface = holds_surface(t);
       if (by_surface && !cube) cube = std::make_shared<const Surface>(box_surface(Box{{diameter / 2, diameter / 2, diameter / 2}}));
       return placed_body_meets(ball, ball_pose, by_surface ? cube : nullptr, false, t, n.pose, scratch, patches);
     };

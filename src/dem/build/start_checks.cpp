@@ -19,51 +19,54 @@ using detail::number_text;
 
 namespace {
 
-// How deep a part of body a and a part of body b overlap at the start: a
-// surface and a mesh wall's piece by the margin model, a convex part and a
-// piece by their penetration, two parts by their surfaces' patches
-// (infinite: one wholly inside the other), or by their penetration in a
-// world without surfaces; 0 where one part has no surface to meet the
-// other's by (no volume: the run reports the pair).
+// How deep a part of body a and a part of body b overlap at the start, by
+// their route (pair_route): a surface's or a shell's triangles and a mesh
+// wall's piece by the margin model; a shell and another part by the shell's
+// patches; two parts by their surfaces' patches (infinite: one wholly inside
+// the other), or by their penetration where neither has a surface (a world
+// without surfaces) or one is a mesh wall's piece; 0 where one part has no
+// surface to meet the other's by (no volume: the run reports the pair).
 Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std::uint32_t pa, const Body& b,
                    std::uint32_t pb, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches,
                    std::vector<std::uint32_t>& hosts) {
   const ShapeTemplate &ta = templates[a.shape], &tb = templates[b.shape];
   const PartPose at_a = part_pose(ta, a, pa), at_b = part_pose(tb, b, pb);
+  const PartKind ka = part_kind(ta, pa), kb = part_kind(tb, pb);
   patches.clear();
-  if (ta.shell || tb.shell) {  // the margin model, against another body's surface
-    const bool shell_is_a = ta.shell != nullptr;
-    const ShapeTemplate &shell = shell_is_a ? ta : tb, &other = shell_is_a ? tb : ta;
-    const PartPose &at_shell = shell_is_a ? at_a : at_b, &body = shell_is_a ? at_b : at_a;
-    if (margin_piece(other)) {  // the shell's triangles against the piece, with both margins
-      const MarginTriangle piece = placed_margin_triangle(other, body.pose);
-      margin_patches(shell_triangles(*shell.shell), at_shell.pose, {&piece, 1}, scratch, patches, hosts);
-    } else if (shell_patches(shell, at_shell.pose, other, shell_is_a ? pb : pa, body, shell_is_a, scratch, patches) ==
-               GeometryStatus::Unsupported) {
-      return 0;  // the run reports the pair
+  switch (pair_route(ka, kb)) {
+    case ContactRoute::Margin: {
+      const bool piece_is_a = ka == PartKind::WallPiece;
+      const MarginTriangle piece = placed_margin_triangle(piece_is_a ? ta : tb, (piece_is_a ? at_a : at_b).pose);
+      margin_patches(margin_triangles(piece_is_a ? tb : ta, piece_is_a ? pb : pa), (piece_is_a ? at_b : at_a).pose,
+                     {&piece, 1}, scratch, patches, hosts);
+      break;
     }
-  } else if (margin_piece(ta) || margin_piece(tb)) {
-    const bool piece_is_a = margin_piece(ta) != nullptr;
-    const ShapeTemplate& other = piece_is_a ? tb : ta;
-    const std::uint32_t part = piece_is_a ? pb : pa;
-    const PartPose& piece = piece_is_a ? at_a : at_b;
-    const PartPose& body = piece_is_a ? at_b : at_a;
-    if (!surface_side(other, part)) {
-      const PenetrationResult pr = penetration(*body.shape, body.pose, *piece.shape, piece.pose);
-      return pr.intersect ? pr.depth : 0;
+    case ContactRoute::Shell: {
+      const bool shell_is_a = ka == PartKind::Shell;
+      const ShapeTemplate &shell = shell_is_a ? ta : tb, &other = shell_is_a ? tb : ta;
+      const PartPose &at_shell = shell_is_a ? at_a : at_b, &body = shell_is_a ? at_b : at_a;
+      if (shell_patches(shell, at_shell.pose, other, shell_is_a ? pb : pa, body, shell_is_a, scratch, patches) ==
+          GeometryStatus::Unsupported)
+        return 0;  // the run reports the pair
+      break;
     }
-    const MarginTriangle t = placed_margin_triangle(piece_is_a ? ta : tb, piece.pose);
-    margin_patches(triangles_of(*surface_of(other, part)), body.pose, {&t, 1}, scratch, patches,
-                   hosts);
-  } else {
-    const std::shared_ptr<const Surface>&sa = surface_of(ta, pa), &sb = surface_of(tb, pb);
-    if (!sa && !sb) {  // convex parts (a world without surfaces): their penetration
-      const PenetrationResult pr = penetration(*at_a.shape, at_a.pose, *at_b.shape, at_b.pose);
-      return pr.intersect ? pr.depth : 0;
+    case ContactRoute::Patches:
+    case ContactRoute::Convex: {
+      if (ka == PartKind::WallPiece || kb == PartKind::WallPiece) {  // a convex part and a piece
+        const PartPose &piece = ka == PartKind::WallPiece ? at_a : at_b, &body = ka == PartKind::WallPiece ? at_b : at_a;
+        const PenetrationResult pr = penetration(*body.shape, body.pose, *piece.shape, piece.pose);
+        return pr.intersect ? pr.depth : 0;
+      }
+      const std::shared_ptr<const Surface>&sa = surface_of(ta, pa), &sb = surface_of(tb, pb);
+      if (!sa && !sb) {  // convex parts (a world without surfaces): their penetration
+        const PenetrationResult pr = penetration(*at_a.shape, at_a.pose, *at_b.shape, at_b.pose);
+        return pr.intersect ? pr.depth : 0;
+      }
+      if (!sa || !sb) return 0;
+      if (!surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches))
+        return std::numeric_limits<Real>::infinity();
+      break;
     }
-    if (!sa || !sb) return 0;
-    if (!surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches))
-      return std::numeric_limits<Real>::infinity();
   }
   Real depth = 0;
   for (const SurfacePatchContact& p : patches) depth = std::fmax(depth, p.geometry.depth);

@@ -14,29 +14,28 @@
 namespace gjkdem::dem::detail {
 namespace {
 
-// A contact with a surface on either side (a surface grain, a compound's
-// surface part or a thin shell): found by the patches of surfaces.
-bool of_surface(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
-  const ShapeTemplate& tb = templates[bodies[c.b].shape];
-  if (surface_side(tb, c.part_b) || tb.shell) return true;
-  if (c.a_is_plane) return false;
-  const ShapeTemplate& ta = templates[bodies[c.a].shape];
-  return surface_side(ta, c.part_a) || ta.shell;
+// The route of a listed contact (body.hpp's pair_route and plane_route):
+// all but Convex are found here, by patches.
+ContactRoute route_of(std::span<const Body> bodies, std::span<const ShapeTemplate> templates, const StepContact& c) {
+  const PartKind b = part_kind(templates[bodies[c.b].shape], c.part_b);
+  if (c.a_is_plane) return plane_route(b);
+  return pair_route(part_kind(templates[bodies[c.a].shape], c.part_a), b);
 }
 
-
-// The patches of one listed contact, or why there are none to find.
+// The patches of one listed contact of the Patches or Shell route (Margin
+// contacts are found by find_margin_patches), or why there are none to find.
 GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
                             const StepContact& c, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
   out.clear();
+  const ContactRoute route = route_of(bodies, templates, c);
   // A compound meets a surface part by part, as it meets other bodies.
   const Body& b = bodies[c.b];
   const ShapeTemplate& tb = templates[b.shape];
   PartPose pb = part_pose(tb, b, c.part_b);
   pb.pose.translation += image_shift_of(cell, c);
   const std::shared_ptr<const Surface>& sb = surface_of(tb, c.part_b);
-  if (c.a_is_plane && tb.shell)
+  if (c.a_is_plane && route == ContactRoute::Shell)
     return plane_shell_patches(planes[c.a], *tb.shell, pb.pose, scratch, out) ? GeometryStatus::Touching
                                                                                : GeometryStatus::Through;
   if (c.a_is_plane && !sb) return GeometryStatus::Unsupported;
@@ -46,8 +45,9 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
   const PartPose pa = part_pose(ta, a, c.part_a);
-  if (ta.shell) return shell_patches(ta, pa.pose, tb, c.part_b, pb, true, scratch, out);
-  if (tb.shell) return shell_patches(tb, pb.pose, ta, c.part_a, pa, false, scratch, out);
+  if (route == ContactRoute::Shell)
+    return ta.shell ? shell_patches(ta, pa.pose, tb, c.part_b, pb, true, scratch, out)
+                    : shell_patches(tb, pb.pose, ta, c.part_a, pa, false, scratch, out);
   const std::shared_ptr<const Surface>& sa = surface_of(ta, c.part_a);
   // Hulls apart (GJK on the convex shapes that hold the surfaces): no
   // patch, and nothing to move or traverse.
@@ -57,16 +57,13 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
                                                                         : GeometryStatus::Engulfed;
 }
 
-// A grain's contact with a mesh wall's piece under the penetration laws:
-// the grain's index (the other is the piece), or kNotMargin.
+// A contact of the Margin route, a grain and a mesh wall's piece: the
+// grain's index (the other is the piece); kNotMargin for other routes.
 constexpr std::uint32_t kNotMargin = ~0u;
 std::uint32_t margin_grain(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                            const StepContact& c) {
-  if (c.a_is_plane) return kNotMargin;
-  const ShapeTemplate &ta = templates[bodies[c.a].shape], &tb = templates[bodies[c.b].shape];
-  if (margin_piece(ta) && (surface_side(tb, c.part_b) || tb.shell)) return c.b;
-  if (margin_piece(tb) && (surface_side(ta, c.part_a) || ta.shell)) return c.a;
-  return kNotMargin;
+  if (route_of(bodies, templates, c) != ContactRoute::Margin) return kNotMargin;
+  return part_kind(templates[bodies[c.a].shape], c.part_a) == PartKind::WallPiece ? c.b : c.a;
 }
 
 // The patches of a grain's contacts with the pieces of one mesh wall
@@ -102,8 +99,7 @@ void find_margin_patches(std::span<const Body> bodies, std::span<const ShapeTemp
     found[m].clear();
     status[m] = GeometryStatus::Touching;
   }
-  margin_patches(tg.shell ? shell_triangles(*tg.shell) : triangles_of(*surface_of(tg, part)), pose,
-                 scratch.margin_pieces, scratch, scratch.margin_found,
+  margin_patches(margin_triangles(tg, part), pose, scratch.margin_pieces, scratch, scratch.margin_found,
                  scratch.margin_hosts);
   for (std::size_t k = 0; k < scratch.margin_found.size(); ++k) {
     SurfacePatchContact p = scratch.margin_found[k];
@@ -153,7 +149,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   std::vector<std::uint32_t>& listed = work.surface_listed;
   listed.clear();
   for (std::uint32_t k = 0; k < contacts.size(); ++k)
-    if (of_surface(bodies, templates, contacts[k])) listed.push_back(k);
+    if (route_of(bodies, templates, contacts[k]) != ContactRoute::Convex) listed.push_back(k);
   if (listed.empty()) return;
   if (static_cast<int>(work.surface.size()) < threads) work.surface.resize(threads);
   if (work.surface_found.size() < listed.size()) work.surface_found.resize(listed.size());

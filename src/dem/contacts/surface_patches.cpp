@@ -54,10 +54,12 @@ bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pos
 bool placed_body_meets(const Shape& shape, const Transform& pose, const std::shared_ptr<const Surface>& surface,
                        bool surface_grain, const ShapeTemplate& other, const Transform& other_pose,
                        SurfaceScratch& scratch, std::vector<SurfacePatchContact>& patches) {
+  const PartKind placed = surface_grain ? PartKind::Surface : PartKind::Convex;
   if (!other.parts.empty()) {
-    for (const TemplatePart& part : other.parts) {
+    for (std::uint32_t k = 0; k < other.parts.size(); ++k) {
+      const TemplatePart& part = other.parts[k];
       const Transform part_pose = compose(other_pose, part.pose);
-      if ((surface_grain || part.surface_grain) && surface && part.surface) {
+      if (pair_route(placed, part_kind(other, k)) == ContactRoute::Patches && surface && part.surface) {
         if (surfaces_meet(surface, pose, part.surface, part_pose, scratch, patches)) return true;
       } else if (intersect(shape, pose, part.given ? *part.given : part.shape, part_pose)) {
         return true;
@@ -65,13 +67,20 @@ bool placed_body_meets(const Shape& shape, const Transform& pose, const std::sha
     }
     return false;
   }
-  if (other.shell && surface) {
-    placed_shell_triangles(*other.shell, other_pose, aabb(shape, pose), scratch, scratch.margin_pieces);
-    margin_patches(triangles_of(*surface), pose, scratch.margin_pieces, scratch, patches, scratch.margin_hosts);
-    return !patches.empty();
+  switch (pair_route(placed, part_kind(other, 0))) {
+    case ContactRoute::Shell:
+      if (!surface) return true;
+      placed_shell_triangles(*other.shell, other_pose, aabb(shape, pose), scratch, scratch.margin_pieces);
+      margin_patches(triangles_of(*surface), pose, scratch.margin_pieces, scratch, patches, scratch.margin_hosts);
+      return !patches.empty();
+    case ContactRoute::Patches:
+      if (!surface || !other.surface) return true;
+      return surfaces_meet(surface, pose, other.surface, other_pose, scratch, patches);
+    case ContactRoute::Convex:
+    case ContactRoute::Margin:
+      break;
   }
-  if (!(surface_grain || other.surface_grain) || !surface || !other.surface) return true;  // the hulls are the solids
-  return surfaces_meet(surface, pose, other.surface, other_pose, scratch, patches);
+  return true;  // the hulls are the solids, or (a surface and a mesh wall's piece) taken as meeting
 }
 
 bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,

@@ -144,7 +144,10 @@ ShapeTemplate make_shell_template(std::shared_ptr<const Shell> shell, bool fixed
 }
 
 bool holds_surface(const ShapeTemplate& t) noexcept {
-  return t.surface_grain || t.shell || std::any_of(t.parts.begin(), t.parts.end(), [](const TemplatePart& p) { return p.surface_grain; });
+  const std::uint32_t parts = t.parts.empty() ? 1 : static_cast<std::uint32_t>(t.parts.size());
+  for (std::uint32_t k = 0; k < parts; ++k)
+    if (part_kind(t, k) == PartKind::Surface || part_kind(t, k) == PartKind::Shell) return true;
+  return false;
 }
 
 PartPose part_pose(const ShapeTemplate& t, const Body& b, std::uint32_t part) noexcept {
