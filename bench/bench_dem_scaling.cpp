@@ -202,7 +202,8 @@ Footprint footprint(const World& w) {
        k.sweep.cursor.capacity()) * sizeof(std::uint32_t));
   double contacts = static_cast<double>(w.pairs.capacity() * sizeof(PairState) +
                                         k.candidates.capacity() * sizeof(BodyPair) +
-                                        k.contacts.capacity() * sizeof(StepContact) + k.keys.capacity() * sizeof(PairKey));
+                                        w.results.contacts.capacity() * sizeof(StepContact) +
+                                        w.results.keys.capacity() * sizeof(PairKey));
   for (const auto& found : k.sweep.found) contacts += static_cast<double>(found.capacity() * sizeof(BodyPair));
   return {bodies / static_cast<double>(w.bodies.size()), contacts / std::max(1, w.stats.contacts)};
 }
@@ -274,8 +275,8 @@ void free_fall(int threads, int steps, const std::string& export_file, const std
 // start as the bed left it; the fastest pass counts.
 void time_narrow_phase(const World& w, int passes) {
   std::vector<std::size_t> touching, apart;
-  for (std::size_t k = 0; k < w.work.contacts.size(); ++k) {
-    const StepContact& c = w.work.contacts[k];
+  for (std::size_t k = 0; k < w.results.contacts.size(); ++k) {
+    const StepContact& c = w.results.contacts[k];
     if (c.a_is_plane) continue;
     (c.active ? touching : apart).push_back(k);
   }
@@ -286,7 +287,7 @@ void time_narrow_phase(const World& w, int passes) {
     for (int p = 0; p < passes; ++p) {
       const auto t0 = std::chrono::steady_clock::now();
       for (const std::size_t k : list) {
-        const StepContact& c = w.work.contacts[k];
+        const StepContact& c = w.results.contacts[k];
         const PartPose a = part_pose(w.templates[w.bodies[c.a].shape], w.bodies[c.a], c.part_a);
         const PartPose b = part_pose(w.templates[w.bodies[c.b].shape], w.bodies[c.b], c.part_b);
         GjkCache cache = w.pairs[k].gjk;

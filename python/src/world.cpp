@@ -166,7 +166,7 @@ void def_view(py::class_<World>& c, const char* name, std::size_t offset, py::ss
 py::dict contacts_of(const World& w) {
   idle(w);
   std::size_t n = 0;
-  for (const dem::StepContact& c : w.work.contacts) n += c.active;
+  for (const dem::StepContact& c : w.results.contacts) n += c.active;
   py::array_t<std::uint64_t> ids({static_cast<py::ssize_t>(n), py::ssize_t{2}});
   py::array_t<double> points({static_cast<py::ssize_t>(n), py::ssize_t{3}});
   py::array_t<double> normals({static_cast<py::ssize_t>(n), py::ssize_t{3}});
@@ -176,7 +176,7 @@ py::dict contacts_of(const World& w) {
   double *p = points.mutable_data(), *nn = normals.mutable_data(), *f = forces.mutable_data();
   double *d = depth.mutable_data(), *v = volume.mutable_data();
   std::size_t k = 0;
-  for (const dem::StepContact& c : w.work.contacts) {
+  for (const dem::StepContact& c : w.results.contacts) {
     if (!c.active) continue;
     id[2 * k] = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id;
     id[2 * k + 1] = w.bodies[c.b].id;

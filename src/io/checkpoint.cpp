@@ -9,7 +9,6 @@
 #include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/breakage.hpp"
-#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/io/run_output.hpp"
 
 namespace gjkdem::io {

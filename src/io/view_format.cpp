@@ -124,7 +124,7 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
     f.ids.push_back(static_cast<std::uint32_t>(b.id));
     f.flags.push_back(static_cast<std::uint8_t>((b.fixed ? kViewFixed : 0) | (b.motion ? kViewDriven : 0)));
   }
-  for (const dem::StepContact& c : w.work.contacts) {
+  for (const dem::StepContact& c : w.results.contacts) {
     if (!c.active) continue;
     f.contact_a.push_back(c.a_is_plane ? kViewPlaneSide + c.a : c.a);
     f.contact_b.push_back(c.b);

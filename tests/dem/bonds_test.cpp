@@ -187,7 +187,7 @@ TEST(Bonds, AnAssemblyRestsWholeOnAFloorAndCracksWhenDroppedHardTheSameOnTwoThre
     for (int s = 0; s < 2000; ++s) ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
     for (const Bond& bond : w.bonds) EXPECT_TRUE(bond.intact);
     EXPECT_GT(w.stats.contacts, 0);
-    for (const StepContact& c : w.work.contacts) EXPECT_FALSE(c.active && !c.a_is_plane) << "pieces touch while glued";
+    for (const StepContact& c : w.results.contacts) EXPECT_FALSE(c.active && !c.a_is_plane) << "pieces touch while glued";
   }
   std::vector<World> runs;
   for (const int threads : {1, 2}) {

@@ -44,7 +44,7 @@ Brazilian brazilian(Real tensile, Real shear, std::uint64_t seed, std::uint32_t 
       break;
     }
     Real f = 0;
-    for (const StepContact& c : w.work.contacts)
+    for (const StepContact& c : w.results.contacts)
       if (c.active && c.a_is_plane && c.a == 1) f -= c.force.z;  // the plate's push on the disc is -z
     out.peak = std::fmax(out.peak, f);
     if (f < 0.5 * out.peak && broken_bonds(w.bonds) > 0) break;

@@ -210,7 +210,7 @@ TEST(Breakage, CrushingStressesFollowTheSizeEffectOfTheirWeibullModulus) {
       broke = !find_splits(w, nullptr).empty();
       w.materials[0].strength.mean = 1e30;
       if (broke)
-        for (const StepContact& c : w.work.contacts)
+        for (const StepContact& c : w.results.contacts)
           if (c.active && c.a_is_plane) force += 0.5 * std::fabs(c.force.z);
     }
     ASSERT_TRUE(broke) << "grain " << g << " of side " << side << " did not break";

@@ -122,7 +122,7 @@ World standing_ell(bool hull) {
 TEST(Compound, AnLStandsOnBothFeetWhereItsHullRocks) {
   const World ell = standing_ell(false);
   std::set<int> parts;
-  for (const StepContact& c : ell.work.contacts)
+  for (const StepContact& c : ell.results.contacts)
     if (c.active) parts.insert(c.part_b);
   EXPECT_EQ(parts, (std::set<int>{0, 1})) << "both feet carry the L";
   const Real spin = length(angular_velocity_of(ell, ell.bodies[0]));

@@ -71,7 +71,7 @@ struct Recorder : RunObserver {
   std::vector<Snapshot> outputs;
   void on_output(const World& w, const RunState&) override {
     std::vector<StepContact> touching;
-    for (const StepContact& c : w.work.contacts)
+    for (const StepContact& c : w.results.contacts)
       if (c.active) touching.push_back(c);
     outputs.push_back({w.time, bytes_of(w.bodies), bytes_of(w.search.boxes.anchor_position),
                        bytes_of(w.search.boxes.anchor_orientation), bytes_of(w.pairs), bytes_of(touching),

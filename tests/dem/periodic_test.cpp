@@ -90,7 +90,7 @@ TEST(Periodic, ABedTouchesAcrossTheBoundaryAndResumesWithTheSameBits) {
     int across = 0, outside = 0;
     void on_output(const World&, const RunState&) override {}
     void on_step(const World& w, const RunState&) override {
-      for (const StepContact& c : w.work.contacts) across += c.active && c.image != kNoImage;
+      for (const StepContact& c : w.results.contacts) across += c.active && c.image != kNoImage;
       for (const Body& b : w.bodies)
         if (!b.fixed && (b.position.x < 0 || b.position.x >= 0.08 || b.position.y < 0 || b.position.y >= 0.08))
           ++outside;

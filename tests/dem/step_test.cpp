@@ -154,7 +154,7 @@ TEST(StepTest, OneAndTwoThreadsGiveTheSameBits) {
   for (int i = 0; i < 300; ++i) {
     ASSERT_EQ(step(one, 2e-5).status, StepStatus::Ok);
     ASSERT_EQ(step(two, 2e-5).status, StepStatus::Ok);
-    most_candidates = std::max(most_candidates, two.work.contacts.size());
+    most_candidates = std::max(most_candidates, two.results.contacts.size());
     most_contacts = std::max(most_contacts, two.stats.contacts);
   }
   EXPECT_GE(most_candidates, 64u) << "the contact loops ran on the threads";

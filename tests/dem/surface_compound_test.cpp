@@ -154,7 +154,7 @@ TEST(SurfaceCompound, AUAndTheBoxInItsHollowAreTheSolidBox) {
   EXPECT_EQ(w.stats.contacts, 3);
   EXPECT_LT(length(b.velocity), 1e-4);
   EXPECT_GT(rotate(shape_orientation(w.templates[b.shape], b), Vec3{0, 0, 1}).z, 1 - 1e-6);
-  const std::vector<PairKey>& keys = w.work.keys;
+  const std::vector<PairKey>& keys = w.results.keys;
   EXPECT_TRUE(std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<PairKey>()) == keys.end());
 }
 
@@ -183,8 +183,8 @@ TEST(SurfaceCompound, TwoCompoundsKeepEachPairOfPartsApart) {
     builder.accept_initial_overlaps();
     World w = builder.build();
     for (int i = 0; i < 100; ++i) ASSERT_EQ(step(w, 1e-6).status, StepStatus::Ok) << i;  // springs build up
-    for (const StepContact& c : w.work.contacts) patches[compound] += c.surface && c.active;
-    const std::vector<PairKey>& keys = w.work.keys;
+    for (const StepContact& c : w.results.contacts) patches[compound] += c.surface && c.active;
+    const std::vector<PairKey>& keys = w.results.keys;
     EXPECT_TRUE(std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<PairKey>()) == keys.end()) << compound;
     force[compound] = w.bodies.back().force, torque[compound] = w.bodies.back().torque;
   }

@@ -148,7 +148,7 @@ TEST(SurfaceGrain, ACompoundMeetsASurfaceGrainPartByPart) {
     for (int i = 0; i < 100; ++i) ASSERT_EQ(step(w, 1e-6).status, StepStatus::Ok) << i;  // springs build up
     EXPECT_EQ(w.stats.contacts, 2) << compound;
     // One spring store each: the contacts' keys strictly increasing.
-    const std::vector<PairKey>& keys = w.work.keys;
+    const std::vector<PairKey>& keys = w.results.keys;
     EXPECT_TRUE(std::adjacent_find(keys.begin(), keys.end(), std::greater_equal<PairKey>()) == keys.end()) << compound;
     force[compound] = b.force, torque[compound] = b.torque;
   }
@@ -377,7 +377,7 @@ TEST(SurfaceGrain, ACornerOnAMeshFloorPushesAsOnAPlaneAtItsMargin) {
       if (surface != 1) continue;
       // (The plane pushes at its cut face's middle, so only the force compares.)
       const Vec3 corner = apply(shape_pose(t, b), hull.data->vertices[low]);
-      for (const StepContact& c : w.work.contacts) {
+      for (const StepContact& c : w.results.contacts) {
         if (c.active) {
           EXPECT_LT(length(c.geometry.point - Vec3{corner.x, corner.y, (corner.z + rho) / 2}), 1e-12);
         }

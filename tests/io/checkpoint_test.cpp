@@ -75,7 +75,7 @@ TEST(Checkpoint, RestoredWorldContinuesWithTheSameBits) {
       int seen = 0;
       void on_output(const dem::World&, const dem::RunState&) override {}
       void on_step(const dem::World& w, const dem::RunState&) override {
-        for (const dem::StepContact& c : w.work.contacts) seen += c.active && (c.part_a > 0 || c.part_b > 0);
+        for (const dem::StepContact& c : w.results.contacts) seen += c.active && (c.part_a > 0 || c.part_b > 0);
       }
     } parts;
     dem::RunObserver* watch[] = {&parts};

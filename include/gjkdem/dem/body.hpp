@@ -231,6 +231,9 @@ std::size_t index_of_body(std::span<const Body> bodies, std::uint64_t id) noexce
 /// Fixed and without a motion: its box and place never change.
 inline bool is_static(const Body& b) noexcept { return b.fixed && b.motion == 0; }
 
+/// Plane walls get ids from here up, above every body's.
+inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
+
 /// An infinite plane wall: material on the side opposite to `normal`.
 struct PlaneWall {
   std::uint64_t id = 0;       ///< global id, above every body's (it keys the pair store)

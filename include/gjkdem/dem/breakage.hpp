@@ -87,7 +87,7 @@ std::vector<GrainSplit> find_splits(const World& world, const DomainRole* domain
 void apply_splits(World& world, std::span<GrainSplit> splits, std::uint64_t next_id, DomainRole* domain);
 
 /// Splits every breakable grain of the world whose stress at the last force
-/// evaluation (world.work.contacts, whose forces are current) reaches its
+/// evaluation (world.results.contacts, whose forces are current) reaches its
 /// strength, in id order; its pairs' springs are dropped, its fragments
 /// start with no force (the world's forces are no longer current) and every
 /// box is made again where the bodies are. Returns how many grains broke. A

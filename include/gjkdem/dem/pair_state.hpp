@@ -15,6 +15,9 @@
 
 namespace gjkdem::dem {
 
+/// The most parts of a compound (part indices key the pair store in 16 bits).
+inline constexpr std::size_t kMaxCompoundParts = 1024;
+
 /// The ids of a pair, smaller first (a plane wall's id is above every body's),
 /// and for compounds the parts in contact: lo's part << 16 | hi's part; for
 /// surface grains the patch's slot (surface_contact.hpp).

@@ -171,14 +171,6 @@ bool deform_cell(PeriodicCell& cell, const CellTensor& rate, Real dt);
 /// the broad phase counts it as motion.
 Real cell_drift(const PeriodicCell& now, const PeriodicCell& searched) noexcept;
 
-/// The largest reach of the moving bodies (those the inflows insert
-/// included; in a domain, of the whole world's: DomainRole::whole_reach).
-Real largest_reach(const World& world, const DomainRole* domain = nullptr) noexcept;
-
-/// The shortest width the cell may have across each periodic axis: four
-/// times the largest reach with its box skin.
-Real shortest_period(const World& world, const DomainRole* domain = nullptr) noexcept;
-
 /// The cell's width across axis a: the distance between its two faces
 /// crossing that axis (the length on the axis for an unsheared cell).
 Real cell_width(const PeriodicCell& cell, int axis) noexcept;

@@ -129,6 +129,8 @@ struct World {
   CellTensor cell_stress{};
   StepStats stats;
   SearchCache search;  ///< the broad phase's cache a bit-exact resume needs
+  // Results of the last force evaluation, which outputs read.
+  StepResults results;
   // Scratch of a step, kept between steps to reuse its memory.
   StepWorkspace work;
 };
@@ -153,6 +155,14 @@ StepReport compute_forces_now(World& world, const DomainRole* domain = nullptr);
 /// Puts the driven walls and bodies where their motions have them at
 /// world.time, with their velocities (motion.hpp).
 void place_driven(World& world);
+
+/// The largest reach of the moving bodies (those the inflows insert
+/// included; in a domain, of the whole world's: DomainRole::whole_reach).
+Real largest_reach(const World& world, const DomainRole* domain = nullptr) noexcept;
+
+/// The shortest width a periodic cell may have across each periodic axis:
+/// four times the largest reach with its box skin (periodic.hpp).
+Real shortest_period(const World& world, const DomainRole* domain = nullptr) noexcept;
 
 Transform shape_pose(const World& world, const Body& body) noexcept;
 Real mass_of(const World& world, const Body& body) noexcept;

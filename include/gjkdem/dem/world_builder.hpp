@@ -20,23 +20,10 @@
 #include <unordered_set>
 #include <vector>
 
+#include "gjkdem/dem/build_error.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
-
-/// What the builder refuses; the message names the body, wall or material.
-struct BuildError : std::runtime_error {
-  explicit BuildError(const std::string& what, std::vector<std::uint32_t> at = {})
-      : std::runtime_error(what), bodies(std::move(at)) {}
-  /// A field's rule broken: what() reads "<subject>: <key> <rule>"; a reader
-  /// that knows where the field was written (a scene's line) names it by
-  /// `key` and `rule` instead.
-  BuildError(const std::string& subject, const std::string& field, const std::string& broken)
-      : std::runtime_error(subject + ": " + field + " " + broken), key(field), rule(broken) {}
-  std::vector<std::uint32_t> bodies;  ///< indices of the bodies at fault, when there are
-  std::string key;   ///< the field at fault, as a scene names it in its table ("" when none)
-  std::string rule;  ///< what the field must be ("must lie in (-1, 0.5)")
-};
 
 /// The range of WorldSettings::tessellation (support directions).
 inline constexpr int kMinTessellation = 8;
@@ -68,8 +55,6 @@ void check_settings(const WorldSettings& settings);
 /// apply it before it draws the fill's shapes.
 void check_fill_count(std::int64_t count);
 
-/// Plane walls get ids from here up, above every body's.
-inline constexpr std::uint64_t kPlaneIdBase = std::uint64_t{1} << 62;
 /// The most bodies a world may come to hold, with what its inflows insert
 /// and its grains' fragments (memory is reserved for all of them, untouched
 /// until used).
@@ -100,9 +85,6 @@ struct BodyShape {
 
 /// Whether the shape is a compound (of convex parts, surfaces or both).
 inline bool is_compound(const BodyShape& s) noexcept { return !s.parts.empty() || !s.surface_parts.empty(); }
-
-/// The most parts of a compound (part indices key the pair store in 16 bits).
-inline constexpr std::size_t kMaxCompoundParts = 1024;
 
 struct BodyDef {
   BodyShape shape{};            ///< ignored when `shared_shape` is set

@@ -63,7 +63,7 @@ void add_outer(Mat3& m, const Vec3& a, const Vec3& b) noexcept {
 
 std::vector<MeasuredContact> touching_contacts(const World& w) {
   std::vector<MeasuredContact> out;
-  for (const StepContact& c : w.work.contacts)
+  for (const StepContact& c : w.results.contacts)
     if (c.active) out.push_back({c.a, c.a_is_plane, c.b, c.geometry.point, c.geometry.normal, c.force});
   return out;
 }

@@ -75,7 +75,7 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
              !std::binary_search(held.begin(), held.end(), b.id);
   }
   std::vector<GrainLoad> loads;
-  for (const StepContact& c : w.work.contacts) {
+  for (const StepContact& c : w.results.contacts) {
     if (!c.active) continue;
     // b's image lies at b + shift, where the contact point is.
     if (can[c.b]) loads.push_back({c.b, c.geometry.point - image_shift_of(w.cell, c), c.force});

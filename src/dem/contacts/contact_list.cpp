@@ -33,10 +33,10 @@ void part_spheres(const ShapeTemplate& t, const Body& b, std::vector<PartSphere>
 // pair of parts whose bounding spheres meet, in part order.
 void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                    std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
-                   const DomainRole* domain, StepWorkspace& work) {
-  std::vector<StepContact>& contacts = work.contacts;
+                   const DomainRole* domain, const StepWorkspace& work, StepResults& results) {
+  std::vector<StepContact>& contacts = results.contacts;
   contacts.clear();
-  work.keys.clear();
+  results.keys.clear();
   const std::vector<BodyPair>& pairs = work.candidates;
   std::vector<PartSphere> parts_a, parts_b;
   // Worlds without compounds never look at templates here.
@@ -57,7 +57,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
         c.a = i;
         c.b = pairs[k].second;
         c.image = image;
-        work.keys.push_back(pair_key(body.id, other.id));
+        results.keys.push_back(pair_key(body.id, other.id));
         continue;
       }
       StepContact c;
@@ -71,7 +71,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
           if (length(parts_a[pa].centre - parts_b[pb].centre) > parts_a[pa].radius + parts_b[pb].radius) continue;
           c.part_a = pa, c.part_b = pb;
           contacts.push_back(c);
-          work.keys.push_back(pair_key(body.id, other.id, pa, pb));
+          results.keys.push_back(pair_key(body.id, other.id, pa, pb));
         }
     }
     if (body.fixed || (domain && !domain->owns(i))) continue;
@@ -86,7 +86,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
         c.a = p;
         c.b = i;
         c.a_is_plane = true;
-        work.keys.push_back(pair_key(body.id, wall.id));
+        results.keys.push_back(pair_key(body.id, wall.id));
         continue;
       }
       StepContact c;
@@ -97,7 +97,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
         if (dot(parts_a[pb].centre - wall.point, wall.normal) > parts_a[pb].radius) continue;
         c.part_b = pb;
         contacts.push_back(c);
-        work.keys.push_back(pair_key(body.id, wall.id, pb, 0));
+        results.keys.push_back(pair_key(body.id, wall.id, pb, 0));
       }
     }
   }

@@ -8,7 +8,7 @@
 #include "gjkdem/collide/query.hpp"
 #include "parallel.hpp"
 #include "step/stages.hpp"
-#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/dem/pair_state.hpp"
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::dem::detail {
@@ -144,8 +144,9 @@ Real match_reach(std::span<const Body> bodies, std::span<const ShapeTemplate> te
 
 void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                              std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
-                             std::span<const PairState> last, int threads, StepWorkspace& work) {
-  std::vector<StepContact>& contacts = work.contacts;
+                             std::span<const PairState> last, int threads, StepResults& results,
+                             StepWorkspace& work) {
+  std::vector<StepContact>& contacts = results.contacts;
   std::vector<std::uint32_t>& listed = work.surface_listed;
   listed.clear();
   for (std::uint32_t k = 0; k < contacts.size(); ++k)
@@ -212,7 +213,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
   for (std::uint32_t k = 0; k < contacts.size(); ++k) {
     const StepContact& c = contacts[k];
     if (next == listed.size() || listed[next] != k) {
-      out.push_back(c), keys.push_back(work.keys[k]);
+      out.push_back(c), keys.push_back(results.keys[k]);
       continue;
     }
     const GeometryStatus status = work.surface_status[next];
@@ -222,7 +223,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
       StepContact stop = c;
       stop.surface = true;
       stop.geometry.status = status;
-      out.push_back(stop), keys.push_back(work.keys[k]);
+      out.push_back(stop), keys.push_back(results.keys[k]);
       continue;
     }
     if (patches.empty()) continue;
@@ -232,7 +233,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     const Transform frame = shape_pose(templates[lo.shape], lo);
     anchors.clear();
     for (const SurfacePatchContact& p : patches) anchors.push_back(apply_inverse(frame, p.centroid));
-    const PairKey key = work.keys[k];
+    const PairKey key = results.keys[k];
     const bool two_compounds = !c.a_is_plane && !templates[bodies[c.a].shape].parts.empty() &&
                                !templates[bodies[c.b].shape].parts.empty();
     const PatchKeys patch_keys = patch_keys_of(key, two_compounds);
@@ -268,12 +269,12 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
     std::vector<std::uint32_t> by_key(out.size());
     for (std::uint32_t i = 0; i < by_key.size(); ++i) by_key[i] = i;
     std::sort(by_key.begin(), by_key.end(), [&](std::uint32_t x, std::uint32_t y) { return keys[x] < keys[y]; });
-    contacts.clear(), work.keys.clear();
-    for (const std::uint32_t i : by_key) contacts.push_back(out[i]), work.keys.push_back(keys[i]);
+    contacts.clear(), results.keys.clear();
+    for (const std::uint32_t i : by_key) contacts.push_back(out[i]), results.keys.push_back(keys[i]);
     return;
   }
   contacts.swap(out);
-  work.keys.swap(keys);
+  results.keys.swap(keys);
 }
 
 }  // namespace gjkdem::dem::detail

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "contacts/contact_sums.hpp"
 #include "domains/domain_records.hpp"
 #include "gjkdem/tolerances.hpp"
 
@@ -27,20 +28,6 @@ struct ContactRecord {
 
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
 
-// A contact's share of the driven pieces' and the cell's power (step.cpp's
-// sum), on its way to rank 0.
-struct PowerTerm {
-  PairKey key;
-  Real on_image = 0, on_a = 0, on_b = 0;  // of the cell through b's image, driven_power of a's motion, of b's
-  std::uint8_t driven = 0;                // 1: a is driven, 2: b is, 4: b's image moves with the cell
-};
-
-// A contact's share of the cell's stress (step.cpp's virial), on its way to rank 0.
-struct VirialTerm {
-  PairKey key;
-  Vec3 force, branch;
-};
-
 // Every rank's records, gathered on rank 0 and sorted by key (copies of a
 // contact two domains share kept once); empty on the others.
 template <class T, class Key>
@@ -53,6 +40,25 @@ std::vector<T> gather_sorted(DomainTransport& t, std::vector<T> mine, Key key) {
   for (const std::string& message : in) Reader(message).get(mine);
   sort_unique(mine, key);
   return mine;
+}
+
+// Every rank's shares of the force evaluation's sums (contacts/
+// contact_sums.hpp) that `wanted` keeps, added on rank 0 in key order, as
+// one rank adds its list (zero sums on the other ranks).
+template <class Wanted>
+ContactSums gathered_sums(const World& d, DomainTransport& t, Wanted wanted) {
+  std::vector<ContactTerm> terms;
+  for (std::size_t k = 0; k < d.results.contacts.size(); ++k) {
+    const StepContact& c = d.results.contacts[k];
+    if (!c.active) continue;
+    const ContactTerm term =
+        contact_term(d.results.keys[k], c, d.bodies, d.planes, d.results.motion_frames, d.cell, d.cell_rate);
+    if (wanted(term)) terms.push_back(term);
+  }
+  ContactSums sums;
+  for (const ContactTerm& term : gather_sorted(t, std::move(terms), [](const ContactTerm& x) { return x.key; }))
+    sums.add(term);
+  return sums;
 }
 
 }  // namespace
@@ -158,10 +164,10 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   std::vector<ContactRecord> contacts;
   for (std::size_t i = 0; i < d.bodies.size(); ++i)
     if (role.owns(i) || (t.rank() == 0 && d.bodies[i].fixed)) bodies.push_back(record_of(d, i));
-  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
-    const StepContact& c = d.work.contacts[k];
+  for (std::size_t k = 0; k < d.results.contacts.size(); ++k) {
+    const StepContact& c = d.results.contacts[k];
     if (!c.active) continue;
-    ContactRecord r{d.work.keys[k], c.a_is_plane ? c.a : d.bodies[c.a].id, d.bodies[c.b].id, c};
+    ContactRecord r{d.results.keys[k], c.a_is_plane ? c.a : d.bodies[c.a].id, d.bodies[c.b].id, c};
     contacts.push_back(r);
   }
   std::vector<PairState> pairs;  // with an owned body (a domain lists no other)
@@ -170,11 +176,11 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   // Each bond's energy from the domain that owns its first body (which
   // holds the second: exchange_bodies), summed below in bond order.
   std::vector<BondEnergy> bond_energies;
-  if (d.work.bond_energies.size() == d.bonds.size())
+  if (d.results.bond_energies.size() == d.bonds.size())
     for (std::size_t k = 0; k < d.bonds.size(); ++k) {
       const std::size_t a = index_of_body(d.bodies, d.bonds[k].a);
       if (a < d.bodies.size() && role.owns(a))
-        bond_energies.push_back({k, d.work.bond_energies[k]});
+        bond_energies.push_back({k, d.results.bond_energies[k]});
     }
   Writer m;
   m.put(bodies), m.put(pairs), m.put(contacts), m.put(bond_energies);
@@ -204,34 +210,29 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   for (std::size_t k = whole.templates.size(); k < d.templates.size(); ++k) whole.templates.push_back(d.templates[k]);
   whole.broken = d.broken;
   whole.planes = d.planes;  // where their motions have them
-  whole.work.motion_frames = d.work.motion_frames;
+  whole.results.motion_frames = d.results.motion_frames;
   whole.time = d.time;
   whole.forces_current = d.forces_current;
   whole.wall_work = d.wall_work;
-  // The stats and the fixed bodies' reactions, summed as step.cpp sums
-  // them: in the order of the contact list, which is the order of keys.
-  StepStats stats;
-  whole.work.contacts.clear(), whole.work.keys.clear();
+  // The stats and the fixed bodies' reactions, summed as one rank sums
+  // them (force_sums.cpp, contact_sums.hpp): in the order of the contact
+  // list, which is the order of keys.
+  whole.results.contacts.clear(), whole.results.keys.clear();
   for (Body& b : whole.bodies)
     if (b.fixed) b.force = b.torque = {};
-  const bool periodic = d.cell.active();
-  CellTensor virial{};
+  ContactSums sums;
   for (ContactRecord& r : contacts) {
     StepContact& c = r.contact;
     c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
-    const Vec3 shift = image_shift_of(d.cell, c);
-    if (b.fixed) push_b(b, c, shift);
+    if (b.fixed) push_b(b, c, image_shift_of(d.cell, c));
     if (!c.a_is_plane && whole.bodies[c.a].fixed) push_a(whole.bodies[c.a], c);
-    if (periodic)
-      add_virial(virial, c.force, virial_branch(whole.bodies, c, shift));
-    stats.elastic_energy += c.elastic;
-    ++stats.contacts;
-    if (c.a_is_plane || whole.bodies[c.a].fixed || b.fixed) ++stats.wall_contacts;
-    whole.work.contacts.push_back(c);
-    whole.work.keys.push_back(r.key);
+    sums.add(contact_term(r.key, c, whole.bodies, whole.planes, whole.results.motion_frames, d.cell, d.cell_rate));
+    whole.results.contacts.push_back(c);
+    whole.results.keys.push_back(r.key);
   }
+  StepStats stats = sums.stats();
   // The bonds' energy, as step.cpp adds it: summed in bond order, then
   // added to the contacts' (a bond broken or not found counts 0).
   whole.bonds = d.bonds;  // every rank's copy agrees (sync_bonds)
@@ -244,57 +245,27 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
       if (whole.bonds[k].intact) sum += energy[k];
     stats.elastic_energy += sum;
   }
-  stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power)
+  stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power), the sums' the same
   whole.stats = stats;
   whole.cell = d.cell;
   whole.cell_rate = d.cell_rate;
   whole.search.cell = d.search.cell;
   whole.search.renew_cell = d.search.renew_cell;
-  if (periodic)
-    for (int k = 0; k < 6; ++k) whole.cell_stress[k] = virial[k] / cell_volume(whole.cell);
+  if (d.cell.active()) whole.cell_stress = sums.cell_stress(whole.cell);
   whole.work.candidates_current = false;
 }
 
 Real whole_wall_power(const World& d, DomainTransport& t) {
-  const bool deforming = d.settings.cell_control.deforms();
-  std::vector<PowerTerm> terms;
-  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
-    const StepContact& c = d.work.contacts[k];
-    if (!c.active) continue;
-    const std::uint32_t motion_a = c.a_is_plane ? d.planes[c.a].motion : d.bodies[c.a].motion;
-    const std::uint32_t motion_b = d.bodies[c.b].motion;
-    const bool image = deforming && c.image != kNoImage;  // (a fixed cell's images add a zero)
-    if (!motion_a && !motion_b && !image) continue;
-    PowerTerm p{d.work.keys[k]};
-    if (image) p.on_image = dot(c.force, affine_velocity(d.cell_rate, image_shift_of(d.cell, c))), p.driven |= 4;
-    if (motion_a) p.on_a = driven_power(d.work.motion_frames[motion_a - 1], c.force, c.torque), p.driven |= 1;
-    if (motion_b) p.on_b = driven_power(d.work.motion_frames[motion_b - 1], c.force, c.torque), p.driven |= 2;
-    terms.push_back(p);
-  }
-  Real power = 0;  // as step.cpp sums it: contact by contact, the image's share, a's, then b's
-  for (const PowerTerm& p : gather_sorted(t, std::move(terms), [](const PowerTerm& p) { return p.key; })) {
-    if (p.driven & 4) power -= p.on_image;
-    if (p.driven & 1) power += p.on_a;
-    if (p.driven & 2) power -= p.on_b;
-  }
-  return power;
+  constexpr std::uint8_t kPowered = kTermImage | kTermDrivenA | kTermDrivenB;
+  return gathered_sums(d, t, [](const ContactTerm& x) { return (x.holds & kPowered) != 0; }).stats().wall_power;
 }
 
 CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
-  std::vector<VirialTerm> terms;
-  for (std::size_t k = 0; k < d.work.contacts.size(); ++k) {
-    const StepContact& c = d.work.contacts[k];
-    if (!c.active) continue;
-    terms.push_back({d.work.keys[k], c.force, virial_branch(d.bodies, c, image_shift_of(d.cell, c))});
-  }
-  CellTensor virial{};
-  for (const VirialTerm& v : gather_sorted(t, std::move(terms), [](const VirialTerm& v) { return v.key; }))
-    add_virial(virial, v.force, v.branch);
-  for (Real& s : virial) s /= cell_volume(d.cell);
-  const std::string said = all_gather(t, std::string(reinterpret_cast<const char*>(virial.data()), sizeof virial))[0];
-  if (said.size() != sizeof virial) throw std::runtime_error("the cell's stress came damaged");
-  std::memcpy(virial.data(), said.data(), sizeof virial);
-  return virial;
+  CellTensor stress = gathered_sums(d, t, [](const ContactTerm&) { return true; }).cell_stress(d.cell);
+  const std::string said = all_gather(t, std::string(reinterpret_cast<const char*>(stress.data()), sizeof stress))[0];
+  if (said.size() != sizeof stress) throw std::runtime_error("the cell's stress came damaged");
+  std::memcpy(stress.data(), said.data(), sizeof stress);
+  return stress;
 }
 
 void add_field_work(World& d, DomainRole& role, DomainTransport& t) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "gjkdem/dem/world.hpp"
 #include "gjkdem/math/real.hpp"
 
 namespace gjkdem::dem {
@@ -58,26 +57,6 @@ MotionFrame motion_frame(const PrescribedMotion& m, Real t) noexcept {
   f.center = m.center + f.displacement;
   f.velocity_at_origin = f.velocity - cross(f.spin, f.center);
   return f;
-}
-
-void place_driven(World& w) {
-  std::vector<MotionFrame>& frames = w.work.motion_frames;
-  frames.resize(w.motions.size());
-  for (std::size_t k = 0; k < w.motions.size(); ++k) frames[k] = motion_frame(w.motions[k], w.time);
-  for (const DrivenBody& d : w.driven) {
-    Body& b = w.bodies[d.body];
-    const MotionFrame& f = frames[b.motion - 1];
-    const PrescribedMotion& m = w.motions[b.motion - 1];
-    b.position = moved_point(f, m, d.position);
-    b.orientation = normalized(f.rotation * d.orientation);
-    b.velocity = point_velocity(f, b.position);
-  }
-  for (PlaneWall& p : w.planes) {
-    if (p.motion == 0) continue;
-    const MotionFrame& f = frames[p.motion - 1];
-    p.point = moved_point(f, w.motions[p.motion - 1], p.given_point);
-    p.normal = normalized(rotate(f.rotation, p.given_normal));
-  }
 }
 
 }  // namespace gjkdem::dem

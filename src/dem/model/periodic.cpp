@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <tuple>
 
-#include "gjkdem/dem/world.hpp"
+#include "gjkdem/dem/boxes.hpp"
+#include "gjkdem/dem/step_context.hpp"
+#include "gjkdem/dem/step_workspace.hpp"
 
 namespace gjkdem::dem {
 
@@ -194,19 +196,6 @@ Real cell_drift(const PeriodicCell& now, const PeriodicCell& searched) noexcept 
   for (int a = 0; a < 3; ++a)
     if (now.axes[a]) drift += length(cell_edge(now, a) - cell_edge(searched, a));
   return drift;
-}
-
-Real largest_reach(const World& w, const DomainRole* domain) noexcept {
-  Real reach = domain ? domain->whole_reach : 0;  // of moving bodies, and of those inflows will insert
-  for (const Body& b : w.bodies)
-    if (!b.fixed) reach = std::fmax(reach, w.templates[b.shape].reach);
-  for (const Inflow& f : w.inflows)
-    for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
-  return reach;
-}
-
-Real shortest_period(const World& w, const DomainRole* domain) noexcept {
-  return 4 * largest_reach(w, domain) * (1 + w.settings.box_skin);
 }
 
 void find_periodic_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell& cell,

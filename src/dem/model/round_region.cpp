@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "gjkdem/dem/world_builder.hpp"
+#include "gjkdem/dem/build_error.hpp"
 
 namespace gjkdem::dem {
 namespace {

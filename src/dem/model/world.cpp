@@ -107,4 +107,37 @@ Real critical_time_step(const World& w) {
   return std::fmin(best, bond_time_step(w.bonds, w.bodies, {w.templates, w.materials}));
 }
 
+Real largest_reach(const World& w, const DomainRole* domain) noexcept {
+  Real reach = domain ? domain->whole_reach : 0;  // of moving bodies, and of those inflows will insert
+  for (const Body& b : w.bodies)
+    if (!b.fixed) reach = std::fmax(reach, w.templates[b.shape].reach);
+  for (const Inflow& f : w.inflows)
+    for (const std::uint32_t t : f.templates) reach = std::fmax(reach, w.templates[t].reach);
+  return reach;
+}
+
+Real shortest_period(const World& w, const DomainRole* domain) noexcept {
+  return 4 * largest_reach(w, domain) * (1 + w.settings.box_skin);
+}
+
+void place_driven(World& w) {
+  std::vector<MotionFrame>& frames = w.results.motion_frames;
+  frames.resize(w.motions.size());
+  for (std::size_t k = 0; k < w.motions.size(); ++k) frames[k] = motion_frame(w.motions[k], w.time);
+  for (const DrivenBody& d : w.driven) {
+    Body& b = w.bodies[d.body];
+    const MotionFrame& f = frames[b.motion - 1];
+    const PrescribedMotion& m = w.motions[b.motion - 1];
+    b.position = moved_point(f, m, d.position);
+    b.orientation = normalized(f.rotation * d.orientation);
+    b.velocity = point_velocity(f, b.position);
+  }
+  for (PlaneWall& p : w.planes) {
+    if (p.motion == 0) continue;
+    const MotionFrame& f = frames[p.motion - 1];
+    p.point = moved_point(f, w.motions[p.motion - 1], p.given_point);
+    p.normal = normalized(rotate(f.rotation, p.given_normal));
+  }
+}
+
 }  // namespace gjkdem::dem

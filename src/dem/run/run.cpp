@@ -47,7 +47,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
   Real smallest = std::numeric_limits<Real>::infinity();
   for (const Body& b : w.bodies)
     if (!b.fixed) smallest = std::fmin(smallest, w.templates[b.shape].reach);
-  if (std::isfinite(smallest) && w.work.motion_frames.size() == w.motions.size()) {
+  if (std::isfinite(smallest) && w.results.motion_frames.size() == w.motions.size()) {
     const auto too_fast = [&](Real speed, const std::string& who) -> std::string {
       const Real travel = speed * state.dt;
       if (!(travel > g.max_travel * smallest)) return "";
@@ -57,7 +57,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
     };
     for (const Body& b : w.bodies) {
       if (!b.motion) continue;
-      const MotionFrame& f = w.work.motion_frames[b.motion - 1];
+      const MotionFrame& f = w.results.motion_frames[b.motion - 1];
       const std::string m = too_fast(length(b.velocity) + length(f.spin) * w.templates[b.shape].reach,
                                      "driven body " + std::to_string(b.id));
       if (!m.empty()) return m;
@@ -65,7 +65,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
     for (std::size_t p = 0; p < w.planes.size(); ++p) {
       const PlaneWall& plane = w.planes[p];
       if (!plane.motion) continue;
-      const MotionFrame& f = w.work.motion_frames[plane.motion - 1];
+      const MotionFrame& f = w.results.motion_frames[plane.motion - 1];
       const std::string m = too_fast(std::fabs(dot(point_velocity(f, plane.point), plane.normal)),
                                      "driven plane wall " + std::to_string(p));
       if (!m.empty()) return m;

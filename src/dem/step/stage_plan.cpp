@@ -72,7 +72,7 @@ StepReport find_candidates(ForceEvaluation& e) {
 
 StepReport list_contacts(ForceEvaluation& e) {
   World& w = e.world;
-  detail::list_contacts(w.bodies, w.templates, w.planes, w.search.boxes.boxes, w.cell, e.domain, w.work);
+  detail::list_contacts(w.bodies, w.templates, w.planes, w.search.boxes.boxes, w.cell, e.domain, w.work, w.results);
   return {};
 }
 
@@ -80,18 +80,18 @@ StepReport surface_patches(ForceEvaluation& e) {
   World& w = e.world;
   if (w.work.kinds.surface_grains)
     detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell, w.settings.model, w.pairs, e.threads,
-                                    w.work);
+                                    w.results, w.work);
   return {};
 }
 
 StepReport align_pairs(ForceEvaluation& e) {
-  align_pair_states(e.world.work.keys, e.world.pairs);
+  align_pair_states(e.world.results.keys, e.world.pairs);
   return {};
 }
 
 StepReport narrow_phase(ForceEvaluation& e) {
   World& w = e.world;
-  std::vector<StepContact>& contacts = w.work.contacts;
+  std::vector<StepContact>& contacts = w.results.contacts;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
   const ContactModel model = w.settings.model;
   e.bonds_held = any_intact(w.bonds);
@@ -127,7 +127,7 @@ StepReport narrow_phase(ForceEvaluation& e) {
 // The first contact (in list order) the model could not take or found past holding.
 StepReport geometry_checks(ForceEvaluation& e) {
   const World& w = e.world;
-  for (const StepContact& c : w.work.contacts) {
+  for (const StepContact& c : w.results.contacts) {
     if (c.geometry.status == GeometryStatus::Unsupported)
       return {StepStatus::UnsupportedPair, c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, w.bodies[c.b].id};
     if (c.geometry.status == GeometryStatus::Through)
@@ -141,20 +141,20 @@ StepReport geometry_checks(ForceEvaluation& e) {
 StepReport wall_crossing(ForceEvaluation& e) {
   const World& w = e.world;
   if (!w.work.kinds.wall_faces) return {};
-  return detail::find_wall_crossing(w.bodies, w.templates, w.work.motion_frames, w.cell, w.work.contacts, e.dt);
+  return detail::find_wall_crossing(w.bodies, w.templates, w.results.motion_frames, w.cell, w.results.contacts, e.dt);
 }
 
 StepReport merge_walls(ForceEvaluation& e) {
   World& w = e.world;
-  if (w.settings.model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, w.work.contacts);
+  if (w.settings.model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, w.results.contacts);
   return {};
 }
 
 StepReport contact_laws(ForceEvaluation& e) {
   World& w = e.world;
-  std::vector<StepContact>& contacts = w.work.contacts;
+  std::vector<StepContact>& contacts = w.results.contacts;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
-  const detail::SideSources sources{{w.templates, w.materials}, w.work.motion_frames, w.cell_rate};
+  const detail::SideSources sources{{w.templates, w.materials}, w.results.motion_frames, w.cell_rate};
 #pragma omp parallel for num_threads(e.threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
@@ -177,17 +177,17 @@ StepReport contact_laws(ForceEvaluation& e) {
 
 StepReport sum_forces(ForceEvaluation& e) {
   World& w = e.world;
-  w.stats = detail::sum_forces(w.work.contacts, w.bodies, w.pairs, w.planes, w.work.motion_frames, w.cell,
-                               w.cell_rate, w.cell_stress);
+  w.stats = detail::sum_forces(w.results.contacts, w.results.keys, w.bodies, w.pairs, w.planes, w.results.motion_frames,
+                               w.cell, w.cell_rate, w.cell_stress);
   w.stats.box_updates = static_cast<int>(e.box_updates);
   return {};
 }
 
 StepReport bond_forces(ForceEvaluation& e) {
   World& w = e.world;
-  w.work.bond_energies.assign(w.bonds.size(), 0);  // a broken bond holds none
+  w.results.bond_energies.assign(w.bonds.size(), 0);  // a broken bond holds none
   if (e.bonds_held) {
-    const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time, w.work.bond_energies);
+    const BondSums bonds = add_bond_forces(w.bonds, w.bodies, {w.templates, w.materials}, w.time, w.results.bond_energies);
     w.stats.elastic_energy += bonds.elastic;
     w.stats.bonds_broken = bonds.broke;
   }

@@ -24,13 +24,13 @@ namespace gjkdem::dem::detail {
 void find_candidates(std::span<const Body> bodies, std::span<const Aabb> boxes, const PeriodicCell* periodic,
                      bool any_driven, int threads, StepWorkspace& work);
 
-/// contacts/contact_list.cpp: the contact list (work.contacts and work.keys) in
+/// contacts/contact_list.cpp: the contact list (results.contacts and results.keys) in
 /// pair-key order from the candidates and the plane walls the boxes reach,
 /// a contact per pair of compound parts whose bounding spheres meet; a
 /// domain (`domain` not null) lists only pairs with a body it owns.
 void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                    std::span<const PlaneWall> planes, std::span<const Aabb> boxes, const PeriodicCell& cell,
-                   const DomainRole* domain, StepWorkspace& work);
+                   const DomainRole* domain, const StepWorkspace& work, StepResults& results);
 
 /// contacts/surface_patch_stage.cpp: each listed contact of a surface grain replaced by
 /// one per patch (its geometry found, its slot matched against `last`, the
@@ -39,7 +39,8 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
 /// status. Nothing happens in a world without surface grains.
 void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
                              std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
-                             std::span<const PairState> last, int threads, StepWorkspace& work);
+                             std::span<const PairState> last, int threads, StepResults& results,
+                             StepWorkspace& work);
 
 /// contacts/wall_crossing.cpp: the first listed contact (in list order) of a moving
 /// body with a mesh wall piece whose triangle (ShapeTemplate::wall_face) the
@@ -68,13 +69,14 @@ ContactSide side_of(const SideSources& sources, const Body& body, std::uint32_t 
 
 /// contacts/force_sums.cpp: the contacts' forces and torques added to their bodies
 /// in the fixed order of the contact list (the same bits for any thread
-/// count), the pairs' springs kept or forgotten (`pairs` aligned with
-/// `contacts`); returns the stats (the driven walls' power included, but
-/// for box_updates). In a periodic world (`cell` active) the contacts'
-/// stress is written to `cell_stress` and the deforming cell's power
-/// (`cell_rate`) counted.
-StepStats sum_forces(std::span<const StepContact> contacts, std::span<Body> bodies, std::span<PairState> pairs,
-                     std::span<const PlaneWall> planes, std::span<const MotionFrame> motion_frames,
-                     const PeriodicCell& cell, const CellTensor& cell_rate, CellTensor& cell_stress);
+/// count), the pairs' springs kept or forgotten (`pairs` and `keys`
+/// aligned with `contacts`); returns the stats (contacts/contact_sums.hpp:
+/// the driven walls' power included, but for box_updates). In a periodic
+/// world (`cell` active) the contacts' stress is written to `cell_stress`
+/// and the deforming cell's power (`cell_rate`) counted.
+StepStats sum_forces(std::span<const StepContact> contacts, std::span<const PairKey> keys, std::span<Body> bodies,
+                     std::span<PairState> pairs, std::span<const PlaneWall> planes,
+                     std::span<const MotionFrame> motion_frames, const PeriodicCell& cell, const CellTensor& cell_rate,
+                     CellTensor& cell_stress);
 
 }  // namespace gjkdem::dem::detail
