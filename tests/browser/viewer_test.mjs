@@ -366,6 +366,19 @@ async function runAddress(url, errors) {
   await byTime.close();
 }
 
+// Serves run folder `dir` (liveServer) and opens the page on it, its first
+// frame drawn; page errors go to `errors` under `label`.
+async function openRun(dir, label, errors) {
+  const s = serve(dir);
+  liveServer = s.proc;
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.on('pageerror', (e) => errors.push(`${label} page error: ${e.message}`));
+  await page.goto(await s.url);
+  await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
+  await page.evaluate(() => window.gjkdemViewer.ready);
+  return page;
+}
+
 // 7. A periodic world: its cell is drawn, as run.json's scene gives it.
 async function runPeriodic(errors) {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'gjkdem_periodic_'));
@@ -373,13 +386,7 @@ async function runPeriodic(errors) {
     const started = spawnSync(args.gjkdem, ['run', args['periodic-scene'], '--out', dir, '--quiet', '--stop-after', '10']);
     check(started.status === 130, `the periodic run starts (exit ${started.status})`);
     const periodic = JSON.parse(fs.readFileSync(path.join(dir, 'run.json'), 'utf8')).scene.simulation.periodic;
-    const s = serve(dir);
-    liveServer = s.proc;
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    page.on('pageerror', (e) => errors.push(`periodic page error: ${e.message}`));
-    await page.goto(await s.url);
-    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
-    await page.evaluate(() => window.gjkdemViewer.ready);
+    const page = await openRun(dir, 'periodic', errors);
     const drawn = await page.evaluate(() => window.gjkdemViewer.periodicCell);
     const matches = drawn && ['x', 'y', 'z'].every((axis, a) =>
       !periodic[axis] || (Math.abs(drawn.min[a] - periodic[axis][0]) < 1e-6 && Math.abs(drawn.max[a] - periodic[axis][1]) < 1e-6));
@@ -400,13 +407,7 @@ async function runBreakage(errors) {
   try {
     const stopped = spawnSync(args.gjkdem, ['run', args['breakage-scene'], '--out', dir, '--quiet', '--stop-after', '120']);
     check(stopped.status === 130, `the press stops after 120 steps (exit ${stopped.status})`);
-    const s = serve(dir);
-    liveServer = s.proc;
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    page.on('pageerror', (e) => errors.push(`breakage page error: ${e.message}`));
-    await page.goto(await s.url);
-    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
-    await page.evaluate(() => window.gjkdemViewer.ready);
+    const page = await openRun(dir, 'breakage', errors);
     const templatesBefore = await page.evaluate(() => window.gjkdemViewer.templateCount);
     const resumed = spawnSync(args.gjkdem, ['run', '--resume', dir, '--quiet']);
     check(resumed.status === 0, `the press resumes to its end (exit ${resumed.status})`);
@@ -433,13 +434,7 @@ async function runBonded(errors) {
     const done = spawnSync(args.gjkdem, ['run', args['bonded-scene'], '--out', dir, '--quiet']);
     check(done.status === 0, `the bonded drop runs (exit ${done.status})`);
     const info = JSON.parse(fs.readFileSync(path.join(dir, 'run.json'), 'utf8'));
-    const s = serve(dir);
-    liveServer = s.proc;
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    page.on('pageerror', (e) => errors.push(`bonded page error: ${e.message}`));
-    await page.goto(await s.url);
-    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
-    await page.evaluate(() => window.gjkdemViewer.ready);
+    const page = await openRun(dir, 'bonded', errors);
     await page.evaluate((n) => window.gjkdemViewer.setFrame(n - 1), info.frames);
     const shown = await page.evaluate(() => window.gjkdemViewer.bondsShown);
     check(shown !== null && shown.broken === info.bonds_broken && shown.holding + shown.broken === info.bonds &&
@@ -464,13 +459,7 @@ async function runChannels(errors) {
   try {
     const done = spawnSync(args.gjkdem, ['run', args['channel-scene'], '--out', dir, '--quiet']);
     check(done.status === 0, `the pulled ball runs (exit ${done.status})`);
-    const s = serve(dir);
-    liveServer = s.proc;
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    page.on('pageerror', (e) => errors.push(`channels page error: ${e.message}`));
-    await page.goto(await s.url);
-    await page.waitForFunction(() => window.gjkdemViewer !== undefined, null, { timeout: 20_000 });
-    await page.evaluate(() => window.gjkdemViewer.ready);
+    const page = await openRun(dir, 'channels', errors);
     const offered = await page.evaluate(() => [...document.getElementById('color-mode').options].map((o) => o.value));
     check(offered.includes('channel:applied_force') && offered.includes('channel:applied_torque'),
       `the frame's channels are colouring modes (${offered.join(', ')})`);
