@@ -143,6 +143,15 @@ void CsvLog::resume(const fs::path& file, std::uint64_t bytes) {
   if (!out_) throw std::runtime_error("cannot open " + file.string());
 }
 
+void CsvLog::rewrite(const std::string& text) {
+  if (out_.is_open()) out_.close();
+  write_file_atomically(file_, text);
+  out_.clear();
+  out_.open(file_, std::ios::binary | std::ios::app);
+  if (!out_) throw std::runtime_error("cannot open " + file_.string());
+  bytes_ = text.size();
+}
+
 void CsvLog::append(const std::string& rows) {
   out_ << rows;
   out_.flush();
@@ -162,9 +171,20 @@ void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
 }
 
 void EnergyWriter::take_applied_work() {
-  if (applied || bytes() != energy_header(false).size()) return;
+  if (applied) return;
   applied = true;
-  start(file(), energy_header(true));
+  if (bytes() == energy_header(false).size()) return start(file(), energy_header(true));
+  const std::optional<std::string> text = read_file(file());
+  if (!text || text->size() != bytes() || !text->starts_with(energy_header(false)))
+    throw std::runtime_error(file().string() + " is not the energy log this run wrote: the run folder was changed");
+  std::string with = energy_header(true);
+  for (std::size_t at = energy_header(false).size(); at < text->size();) {
+    const std::size_t end = text->find('\n', at);
+    if (end == std::string::npos) break;  // (every row ends with its newline)
+    with.append(*text, at, end - at).append(",0\n");
+    at = end + 1;
+  }
+  rewrite(with);
 }
 
 void CellWriter::on_output(const dem::World& w, const dem::RunState&) {

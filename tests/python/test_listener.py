@@ -107,6 +107,29 @@ def test_drag_from_python_resumes_to_the_same_bytes(repo, tmp_path):
     assert (plain / "trace.csv").read_bytes() != (whole / "trace.csv").read_bytes()  # the drag acted
 
 
+def test_a_run_resumed_with_a_listener_gains_the_applied_work_column(repo, tmp_path):
+    """A run stopped without applied loads and resumed with a drag: energy.csv
+    gains the applied_work column, 0 on the rows before (no load did work),
+    the drag's work after; the run stops and resumes again from there."""
+    src = repo / "tests" / "data" / "scenes"
+    for name in ("small_pour.toml", "chute.obj"):
+        shutil.copy(src / name, tmp_path / name)
+    scene, out = str(tmp_path / "small_pour.toml"), tmp_path / "out"
+    assert gjkdem.SceneRun(scene, out=str(out), threads=1).run(stop_after=200) == "stopped"
+    before = (out / "energy.csv").read_text().splitlines()
+    assert not before[0].endswith(",applied_work")
+    assert gjkdem.SceneRun.resume(str(out), threads=1).run(listener=drag(0.01), stop_after=400) == "stopped"
+    assert gjkdem.SceneRun.resume(str(out), threads=1).run(listener=drag(0.01)) == "completed"
+    rows = [line.split(",") for line in (out / "energy.csv").read_text().splitlines()]
+    assert rows[0] == before[0].split(",") + ["applied_work"]
+    assert all(len(r) == len(rows[0]) for r in rows)
+    assert [",".join(r[:-1]) for r in rows[1:len(before)]] == before[1:]
+    assert all(r[-1] == "0" for r in rows[1:len(before)])
+    assert float(rows[-1][-1]) < 0  # the drag took energy out
+    times = [float(r[0]) for r in rows[1:]]
+    assert times == sorted(times) and len(set(times)) == len(times)
+
+
 def test_bad_listeners_are_refused_and_a_listeners_exception_is_raised():
     w = lone_grain()
     with pytest.raises(TypeError, match="listener"):

@@ -71,6 +71,8 @@ class CsvLog : public dem::RunObserver {
   /// A new log with its header, or (resume) the existing file cut to `bytes`.
   void start(const std::filesystem::path& file, const std::string& header);
   void resume(const std::filesystem::path& file, std::uint64_t bytes);
+  /// The whole log replaced by `text` (written atomically), appended to from there.
+  void rewrite(const std::string& text);
   std::uint64_t bytes() const { return bytes_; }
   const std::filesystem::path& file() const { return file_; }
 
@@ -99,8 +101,10 @@ class TraceWriter : public CsvLog {
 class EnergyWriter : public CsvLog {
  public:
   void on_output(const dem::World& world, const dem::RunState& state) override;
-  /// The applied_work column from now, when no row is written yet (a run
-  /// with loads from its start); a log with rows keeps its columns.
+  /// The applied_work column from now on: a log without rows starts again
+  /// with it; a resumed log without it (a run that had no applied loads,
+  /// resumed with a listener) gets it on every row so far, 0 (no load did
+  /// any work before).
   void take_applied_work();
   bool applied = false;
 };
