@@ -56,6 +56,12 @@ export function parseFrame(buffer) {
     o += count * Type.BYTES_PER_ELEMENT;
     return a;
   };
+  const pad = () => { // to a multiple of 4 over zero bytes, as the writer pads
+    const end = align4(o);
+    if (end > buffer.byteLength) throw new Error('frame: cut short in its padding');
+    for (let i = o; i < end; i++) if (dv.getUint8(i) !== 0) throw new Error('frame: padding that is not zero');
+    o = end;
+  };
   const f = {
     n, m, p,
     time: dv.getFloat64(24, true),
@@ -69,7 +75,7 @@ export function parseFrame(buffer) {
     id: take(Uint32Array, n),
     flags: take(Uint8Array, n),
   };
-  o = align4(o);
+  pad();
   f.contactFirst = take(Uint32Array, m); // body index, or PLANE_BIT + plane
   f.contactSecond = take(Uint32Array, m);
   f.contactPoint = take(Float32Array, 3 * m);
@@ -89,7 +95,7 @@ export function parseFrame(buffer) {
   // (docs/view-format.md), each {unit, components, values: Float32Array}.
   f.channels = Object.create(null); // no prototype: a channel may have any name
   if (version >= 4) {
-    o = align4(o);
+    pad();
     const count = take(Uint32Array, 1)[0];
     for (let c = 0; c < count; c++) {
       if (o + 12 > buffer.byteLength) throw new Error(`frame: channel ${c} runs past the end`);
@@ -101,7 +107,8 @@ export function parseFrame(buffer) {
       const unit = String.fromCharCode(...new Uint8Array(buffer, o + nameBytes, unitBytes));
       if (!/^[a-z0-9_]+$/.test(name) || Object.hasOwn(f.channels, name)) throw new Error(`frame: channel ${c} has a bad or repeated name`);
       if (!/^[\x20-\x7e]*$/.test(unit)) throw new Error(`frame: channel ${name} has a unit that is not printable ASCII`);
-      o = align4(o + nameBytes + unitBytes);
+      o += nameBytes + unitBytes;
+      pad();
       if (o + 4 * components * n > buffer.byteLength) throw new Error(`frame: channel ${name} runs past the end`);
       f.channels[name] = { unit, components, values: take(Float32Array, components * n) };
     }

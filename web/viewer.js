@@ -490,21 +490,27 @@ function setDraw(mode) {
   return redraw();
 }
 
-// Each channel of a frame's channel block becomes a colouring mode, once.
-function offerChannels(frame) {
-  const select = $('color-mode');
-  for (const name of Object.keys(frame.channels)) {
-    const value = CHANNEL_MODE + name;
-    if ([...select.options].some((o) => o.value === value)) continue;
-    const option = document.createElement('option');
-    option.value = value;
-    option.textContent = name.replaceAll('_', ' ');
-    select.append(option);
-  }
+// A channel's colouring mode in the menu, once.
+function offerChannel(name) {
+  const select = $('color-mode'), value = CHANNEL_MODE + name;
+  if ([...select.options].some((o) => o.value === value)) return;
+  const option = document.createElement('option');
+  option.value = value;
+  option.textContent = name.replaceAll('_', ' ');
+  select.append(option);
 }
 
+// Each channel of a frame's channel block becomes a colouring mode.
+function offerChannels(frame) {
+  for (const name of Object.keys(frame.channels)) offerChannel(name);
+}
+
+// A channel may be asked for before a frame that has it is shown (an
+// address, a run that gains it later): its mode shows zeros until then.
 function setColorMode(mode) {
-  if (!modeInfo(mode, state.frame)) throw new Error(`unknown colour mode ${mode}`);
+  const channel = mode.startsWith(CHANNEL_MODE) && /^[a-z0-9_]+$/.test(mode.slice(CHANNEL_MODE.length));
+  if (!modeInfo(mode, state.frame) && !channel) throw new Error(`unknown colour mode ${mode}`);
+  if (channel) offerChannel(mode.slice(CHANNEL_MODE.length));
   state.mode = $('color-mode').value = mode;
   paintLegendBar();
   return redraw();

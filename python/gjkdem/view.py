@@ -47,7 +47,12 @@ class _Cursor:
         return a.reshape(-1, cols) if cols else a
 
     def pad4(self):
-        self.at += -self.at % 4
+        end = self.at + -self.at % 4
+        if end > len(self.data):
+            raise ViewFormatError(f"{self.what} is cut short")
+        if any(self.data[self.at:end]):
+            raise ViewFormatError(f"{self.what} has padding that is not zero")
+        self.at = end
 
     def end(self):
         if self.at != len(self.data):

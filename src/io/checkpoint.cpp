@@ -551,6 +551,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.cell = cell;
   w.cell_rate = rate;
   w.cell_stress = stress;
+  w.results = {};  // the last evaluation's were the old state's: found again at the next
   w.work = {};
   w.search = {};  // a checkpoint without anchors leaves none of the world's old ones
   dem::place_driven(w);  // planes and motion frames (driven bodies come back as saved)

@@ -170,10 +170,13 @@ void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
   append(energy_row(w.time, e, w.stats.contacts, applied));
 }
 
-void EnergyWriter::take_applied_work() {
-  if (applied) return;
+bool EnergyWriter::take_applied_work() {
+  if (applied) return false;
   applied = true;
-  if (bytes() == energy_header(false).size()) return start(file(), energy_header(true));
+  if (bytes() == energy_header(false).size()) {
+    start(file(), energy_header(true));
+    return true;
+  }
   const std::optional<std::string> text = read_file(file());
   if (!text || text->size() != bytes() || !text->starts_with(energy_header(false)))
     throw std::runtime_error(file().string() + " is not the energy log this run wrote: the run folder was changed");
@@ -185,6 +188,11 @@ void EnergyWriter::take_applied_work() {
     at = end + 1;
   }
   rewrite(with);
+  return true;
+}
+
+void RunFolderWriters::take_applied_work(const dem::World& world, const dem::RunState& state) {
+  if (energy_.take_applied_work() && resumed_) checkpoints_.save_now(world, state);
 }
 
 void CellWriter::on_output(const dem::World& w, const dem::RunState&) {
@@ -281,6 +289,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
                    restored ? restored->logs.wall_seconds : 0),
       info_(folder.run_json(), options.info_json, checkpoints_) {
   energy_.applied = world.applied_loads;
+  resumed_ = restored != nullptr;
   if (restored) {
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);

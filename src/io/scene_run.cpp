@@ -225,7 +225,7 @@ dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const st
                               dem::DomainTransport* transport, std::span<dem::StepListener* const> listeners) {
   const bool domains = transport && transport->size() > 1;
   if (!listeners.empty()) scene.world.applied_loads = true;
-  if (scene.world.applied_loads && writers_) writers_->take_applied_work();
+  if (scene.world.applied_loads && writers_) writers_->take_applied_work(scene.world, state);
   if (!writers_) {  // a follower: its own stop request counts too (a signal may reach it alone)
     if (!domains) throw std::logic_error("SceneRun: a follower runs only on domains");
     const auto asked = [&] { return stop && !stop().empty(); };

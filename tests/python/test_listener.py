@@ -130,6 +130,26 @@ def test_a_run_resumed_with_a_listener_gains_the_applied_work_column(repo, tmp_p
     assert times == sorted(times) and len(set(times)) == len(times)
 
 
+def test_a_log_that_gained_the_column_is_checkpointed_at_once(repo, tmp_path):
+    """The column's rewrite is checkpointed when it happens: a run that fails
+    before its next checkpoint resumes with energy.csv whole, every row as
+    wide as the header."""
+    src = repo / "tests" / "data" / "scenes"
+    for name in ("small_pour.toml", "chute.obj"):
+        shutil.copy(src / name, tmp_path / name)
+    scene, out = str(tmp_path / "small_pour.toml"), tmp_path / "out"
+    assert gjkdem.SceneRun(scene, out=str(out), threads=1).run(stop_after=200) == "stopped"
+
+    def fail(world, state):
+        raise RuntimeError("an observer fails")
+
+    with pytest.raises(Exception, match="an observer fails"):
+        gjkdem.SceneRun.resume(str(out), threads=1).run(listener=drag(0.01), observer=fail)
+    assert gjkdem.SceneRun.resume(str(out), threads=1).run() == "completed"
+    rows = [line.split(",") for line in (out / "energy.csv").read_text().splitlines()]
+    assert rows[0][-1] == "applied_work" and all(len(r) == len(rows[0]) for r in rows)
+
+
 def test_bad_listeners_are_refused_and_a_listeners_exception_is_raised():
     w = lone_grain()
     with pytest.raises(TypeError, match="listener"):

@@ -111,14 +111,17 @@ inline constexpr std::array kBodyChannels{
 };
 
 /// Whether the table keeps its own rules: 1 to kMaxChannelComponents
-/// components; a name as kMaxChannelNameBytes says; a computed channel is only read; a viewed one names its
+/// components; a name as kMaxChannelNameBytes says, a unit as long at most
+/// and printable ASCII (as the view frames' readers check them); a computed channel is only read; a viewed one names its
 /// view; a traced one names its columns and is always present; one name
 /// each.
 constexpr bool body_channels_well_formed() noexcept {
   for (std::size_t i = 0; i < kBodyChannels.size(); ++i) {
     const BodyChannel& c = kBodyChannels[i];
     if (c.components < 1 || c.components > kMaxChannelComponents) return false;
-    if (c.name.empty() || c.name.size() > kMaxChannelNameBytes) return false;
+    if (c.name.empty() || c.name.size() > kMaxChannelNameBytes || c.unit.size() > kMaxChannelNameBytes) return false;
+    for (const char ch : c.unit)
+      if (ch < 0x20 || ch > 0x7e) return false;
     for (const char ch : c.name)
       if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_')) return false;
     if (c.compute && (c.use & (kChannelSaved | kChannelViewed | kChannelWritable | kChannelRequired))) return false;

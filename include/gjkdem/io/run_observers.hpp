@@ -104,8 +104,8 @@ class EnergyWriter : public CsvLog {
   /// The applied_work column from now on: a log without rows starts again
   /// with it; a resumed log without it (a run that had no applied loads,
   /// resumed with a listener) gets it on every row so far, 0 (no load did
-  /// any work before).
-  void take_applied_work();
+  /// any work before). Returns whether it changed the file.
+  bool take_applied_work();
   bool applied = false;
 };
 
@@ -125,6 +125,8 @@ class Checkpointer : public dem::RunObserver {
                const CsvLog& trace, const CsvLog& energy, const CsvLog& cell, double wall_before);
   void on_output(const dem::World& world, const dem::RunState& state) override;
   void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
+  /// A checkpoint now, whatever the output count.
+  void save_now(const dem::World& world, const dem::RunState& state) { save(world, state); }
   /// Called after each checkpoint (run.json then records how far the run got).
   std::function<void(const dem::World&, const dem::RunState&)> saved;
   /// Wall time of the run so far (s), earlier sessions included.
@@ -192,8 +194,10 @@ class RunFolderWriters {
   std::vector<dem::RunObserver*> observers() { return {&frames_, &view_, &trace_, &energy_, &cell_, &checkpoints_, &info_}; }
   RunInfoWriter& info() { return info_; }
   double wall_seconds() const { return checkpoints_.wall_seconds(); }
-  /// energy.csv counts the applied loads' work (EnergyWriter::take_applied_work).
-  void take_applied_work() { energy_.take_applied_work(); }
+  /// energy.csv counts the applied loads' work (EnergyWriter::take_applied_work)
+  /// from `world` at `state` on; a resumed run's changed log is checkpointed
+  /// at once (the checkpoint's byte counts name the log as it is now).
+  void take_applied_work(const dem::World& world, const dem::RunState& state);
 
  private:
   RunFolderWriters(const RunPaths& folder, const dem::World& world, const RunWriterOptions& options,
@@ -206,6 +210,7 @@ class RunFolderWriters {
   CellWriter cell_;
   Checkpointer checkpoints_;
   RunInfoWriter info_;
+  bool resumed_ = false;  ///< made from a checkpoint (its logs resumed)
 };
 
 /// A run folder that cannot be used (refused before a run starts).
