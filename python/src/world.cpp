@@ -584,7 +584,7 @@ void bind_world(py::module_& m) {
   for (const dem::BodyChannel& ch : dem::kBodyChannels) {
     if (!(ch.use & dem::kChannelViewed)) continue;
     const bool writable = ch.use & dem::kChannelWritable;
-    const bool applied = writable && ch.name.starts_with("applied_");  // a load may be written: count it
+    const bool applied = writable && (ch.use & dem::kChannelLoad);  // a load may be written: count it
     const std::size_t offset = ch.offset;
     const py::ssize_t cols = ch.components == 1 ? 0 : ch.components;
     world.def_property_readonly(

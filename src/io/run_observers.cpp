@@ -192,7 +192,7 @@ bool EnergyWriter::take_applied_work() {
 }
 
 void RunFolderWriters::take_applied_work(const dem::World& world, const dem::RunState& state) {
-  if (energy_.take_applied_work() && resumed_) checkpoints_.save_now(world, state);
+  if (energy_.take_applied_work()) checkpoints_.save_again(world, state);
 }
 
 void CellWriter::on_output(const dem::World& w, const dem::RunState&) {
@@ -213,6 +213,11 @@ void Checkpointer::save(const dem::World& w, const dem::RunState& state) {
   c.run = state;
   c.logs = {trace_.bytes(), energy_.bytes(), cell_.bytes(), wall_seconds(), frames_.frames};
   save_checkpoint(file_, w, c, fingerprint_);
+}
+
+void Checkpointer::save_again(const dem::World& w, const dem::RunState& state) {
+  std::error_code ec;
+  if (fs::exists(file_, ec)) save(w, state);
 }
 
 void Checkpointer::on_output(const dem::World& w, const dem::RunState& state) {
@@ -289,7 +294,6 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
                    restored ? restored->logs.wall_seconds : 0),
       info_(folder.run_json(), options.info_json, checkpoints_) {
   energy_.applied = world.applied_loads;
-  resumed_ = restored != nullptr;
   if (restored) {
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);

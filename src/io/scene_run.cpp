@@ -224,6 +224,8 @@ double SceneRun::wall_seconds() const { return writers_ ? writers_->wall_seconds
 dem::RunOutcome SceneRun::run(std::span<dem::RunObserver* const> extra, const std::function<std::string()>& stop,
                               dem::DomainTransport* transport, std::span<dem::StepListener* const> listeners) {
   const bool domains = transport && transport->size() > 1;
+  // A run with listeners has applied loads, set here before energy.csv
+  // takes their column (a checkpoint written then must say so).
   if (!listeners.empty()) scene.world.applied_loads = true;
   if (scene.world.applied_loads && writers_) writers_->take_applied_work(scene.world, state);
   if (!writers_) {  // a follower: its own stop request counts too (a signal may reach it alone)

@@ -260,18 +260,16 @@ ViewFrame decode_view_frame(const std::string& bytes) {
       ViewChannel c;
       c.components = r.get<std::uint32_t>();
       const std::uint32_t name_bytes = r.get<std::uint32_t>(), unit_bytes = r.get<std::uint32_t>();
-      if (c.components < 1 || c.components > kViewChannelComponents || name_bytes < 1 ||
-          name_bytes > kViewChannelNameBytes || unit_bytes > kViewChannelNameBytes)
+      if (c.components < 1 || c.components > dem::kMaxChannelComponents || name_bytes < 1 ||
+          name_bytes > dem::kMaxChannelNameBytes || unit_bytes > dem::kMaxChannelNameBytes)
         r.fail("has channel " + std::to_string(k) + " with a size, a name or a unit length it cannot have");
       std::vector<char> text;
       r.get_array(text, name_bytes + unit_bytes);
       c.name.assign(text.begin(), text.begin() + name_bytes);
       c.unit.assign(text.begin() + name_bytes, text.end());
-      for (const char ch : c.name)
-        if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_'))
-          r.fail("has channel " + std::to_string(k) + " whose name is not lower case letters, digits and _");
-      for (const char ch : c.unit)
-        if (ch < 0x20 || ch > 0x7e) r.fail("has channel '" + c.name + "' whose unit is not printable ASCII");
+      if (!dem::channel_name_ok(c.name))
+        r.fail("has channel " + std::to_string(k) + " whose name is not lower case letters, digits and _");
+      if (!dem::channel_unit_ok(c.unit)) r.fail("has channel '" + c.name + "' whose unit is not printable ASCII");
       for (const ViewChannel& before : f.channels)
         if (before.name == c.name) r.fail("has the channel '" + c.name + "' twice");
       r.skip_pad4();

@@ -25,6 +25,7 @@ enum BodyChannelUse : unsigned {
   kChannelVtk = 32,       ///< the VTK frames' cell data have it (single precision)
   kChannelFramed = 64,    ///< the view frames' channel block has it (single precision)
   kChannelExported = 128, ///< the scene export writes it as a free body's key of that name (the scene reader's)
+  kChannelLoad = 256,     ///< a load from outside: a world whose view of it is written counts loads (World::applied_loads)
 };
 
 struct World;
@@ -65,7 +66,6 @@ struct BodyChannel {
 
 inline constexpr unsigned kSavedViewed = kChannelSaved | kChannelViewed;
 inline constexpr unsigned kSavedWritable = kChannelSaved | kChannelViewed | kChannelWritable;
-inline constexpr unsigned kState = kChannelRequired;
 
 /// The computed channels' values and the features' presence tests
 /// (src/dem/model/body_channels.cpp).
@@ -74,35 +74,35 @@ void angular_velocity_channel(const World& w, const Body& b, Real* out) noexcept
 bool applied_loads_on(const World& w) noexcept;
 
 inline constexpr std::array kBodyChannels{
-    BodyChannel{"position", "positions", "m", 3, offsetof(Body, position), kSavedViewed | kState | kChannelTraced,
+    BodyChannel{"position", "positions", "m", 3, offsetof(Body, position), kSavedViewed | kChannelRequired | kChannelTraced,
                 "Centres of mass (N, 3), read-only view; set_positions changes them.", "x,y,z"},
-    BodyChannel{"orientation", "orientations", "1", 4, offsetof(Body, orientation), kSavedViewed | kState,
+    BodyChannel{"orientation", "orientations", "1", 4, offsetof(Body, orientation), kSavedViewed | kChannelRequired,
                 "Principal frames [w, x, y, z] (N, 4), read-only view; set_orientations changes them."},
     BodyChannel{"frame_orientation", "", "1", 4, 0, kChannelTraced,
                 "The orientation of the frame the scene gave the shape in [w, x, y, z]: the principal frame "
                 "composed with the template's shape frame.",
                 "qw,qx,qy,qz", frame_orientation_channel},
     BodyChannel{"velocity", "velocities", "m/s", 3, offsetof(Body, velocity),
-                kSavedWritable | kState | kChannelTraced | kChannelVtk | kChannelExported,
+                kSavedWritable | kChannelRequired | kChannelTraced | kChannelVtk | kChannelExported,
                 "Velocities of the centres of mass (N, 3), writable view (fixed bodies ignore theirs).", "vx,vy,vz"},
     BodyChannel{"angular_momentum", "angular_momenta", "kg m^2/s", 3, offsetof(Body, angular_momentum),
-                kSavedWritable | kState,
+                kSavedWritable | kChannelRequired,
                 "Angular momenta about the centres of mass, world frame (N, 3), writable view: the integrator's "
                 "state."},
     BodyChannel{"angular_velocity", "", "rad/s", 3, 0, kChannelTraced | kChannelVtk | kChannelExported,
                 "Angular velocities, world frame: the angular momentum through the inverse world inertia.",
                 "wx,wy,wz", angular_velocity_channel},
-    BodyChannel{"force", "forces", "N", 3, offsetof(Body, force), kSavedViewed | kState,
+    BodyChannel{"force", "forces", "N", 3, offsetof(Body, force), kSavedViewed | kChannelRequired,
                 "Forces of the last evaluation (N, 3), read-only view."},
-    BodyChannel{"torque", "torques", "N m", 3, offsetof(Body, torque), kSavedViewed | kState,
+    BodyChannel{"torque", "torques", "N m", 3, offsetof(Body, torque), kSavedViewed | kChannelRequired,
                 "Torques about the centres of mass (N, 3), read-only view."},
     BodyChannel{"applied_force", "applied_forces", "N", 3, offsetof(Body, applied_force),
-                kSavedWritable | kChannelFramed | kChannelExported,
+                kSavedWritable | kChannelFramed | kChannelExported | kChannelLoad,
                 "Forces applied from outside (N, 3), writable view: added to every force evaluation from the next "
                 "on, until changed (a listener's to set each step: run(listener=...)).",
                 {}, nullptr, applied_loads_on},
     BodyChannel{"applied_torque", "applied_torques", "N m", 3, offsetof(Body, applied_torque),
-                kSavedWritable | kChannelFramed | kChannelExported,
+                kSavedWritable | kChannelFramed | kChannelExported | kChannelLoad,
                 "Torques applied from outside, about the centres of mass (N, 3), writable view (as applied_forces).",
                 {}, nullptr, applied_loads_on},
     BodyChannel{"applied_work", "applied_work", "J", 1, offsetof(Body, applied_work), kSavedViewed,
@@ -110,20 +110,32 @@ inline constexpr std::array kBodyChannels{
                 "sums it)."},
 };
 
+/// A channel's name as files and Python take it: 1 to kMaxChannelNameBytes
+/// lower case letters, digits and _.
+constexpr bool channel_name_ok(std::string_view name) noexcept {
+  if (name.empty() || name.size() > kMaxChannelNameBytes) return false;
+  for (const char ch : name)
+    if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_')) return false;
+  return true;
+}
+/// A channel's unit: at most kMaxChannelNameBytes of printable ASCII.
+constexpr bool channel_unit_ok(std::string_view unit) noexcept {
+  if (unit.size() > kMaxChannelNameBytes) return false;
+  for (const char ch : unit)
+    if (ch < 0x20 || ch > 0x7e) return false;
+  return true;
+}
+
 /// Whether the table keeps its own rules: 1 to kMaxChannelComponents
-/// components; a name as kMaxChannelNameBytes says, a unit as long at most
-/// and printable ASCII (as the view frames' readers check them); a computed channel is only read; a viewed one names its
+/// components; its name and unit as channel_name_ok and channel_unit_ok
+/// say (as the view frames' readers check them); a computed channel is only read; a viewed one names its
 /// view; a traced one names its columns and is always present; one name
 /// each.
 constexpr bool body_channels_well_formed() noexcept {
   for (std::size_t i = 0; i < kBodyChannels.size(); ++i) {
     const BodyChannel& c = kBodyChannels[i];
     if (c.components < 1 || c.components > kMaxChannelComponents) return false;
-    if (c.name.empty() || c.name.size() > kMaxChannelNameBytes || c.unit.size() > kMaxChannelNameBytes) return false;
-    for (const char ch : c.unit)
-      if (ch < 0x20 || ch > 0x7e) return false;
-    for (const char ch : c.name)
-      if (!((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_')) return false;
+    if (!channel_name_ok(c.name) || !channel_unit_ok(c.unit)) return false;
     if (c.compute && (c.use & (kChannelSaved | kChannelViewed | kChannelWritable | kChannelRequired))) return false;
     if ((c.use & kChannelViewed) && c.view.empty()) return false;
     if (c.use & kChannelTraced) {  // trace.csv's columns are the same all run: always present

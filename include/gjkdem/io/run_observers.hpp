@@ -125,8 +125,9 @@ class Checkpointer : public dem::RunObserver {
                const CsvLog& trace, const CsvLog& energy, const CsvLog& cell, double wall_before);
   void on_output(const dem::World& world, const dem::RunState& state) override;
   void on_stop(const dem::World& world, const dem::RunState& state, const dem::RunOutcome& outcome) override;
-  /// A checkpoint now, whatever the output count.
-  void save_now(const dem::World& world, const dem::RunState& state) { save(world, state); }
+  /// A checkpoint again now, when one is on disk: a log it counts the bytes
+  /// of changed other than by appending (EnergyWriter::take_applied_work).
+  void save_again(const dem::World& world, const dem::RunState& state);
   /// Called after each checkpoint (run.json then records how far the run got).
   std::function<void(const dem::World&, const dem::RunState&)> saved;
   /// Wall time of the run so far (s), earlier sessions included.
@@ -195,8 +196,8 @@ class RunFolderWriters {
   RunInfoWriter& info() { return info_; }
   double wall_seconds() const { return checkpoints_.wall_seconds(); }
   /// energy.csv counts the applied loads' work (EnergyWriter::take_applied_work)
-  /// from `world` at `state` on; a resumed run's changed log is checkpointed
-  /// at once (the checkpoint's byte counts name the log as it is now).
+  /// from `world` at `state` on; a changed log is checkpointed at once when
+  /// a checkpoint is on disk (its byte counts name the log as it is now).
   void take_applied_work(const dem::World& world, const dem::RunState& state);
 
  private:
@@ -210,7 +211,6 @@ class RunFolderWriters {
   CellWriter cell_;
   Checkpointer checkpoints_;
   RunInfoWriter info_;
-  bool resumed_ = false;  ///< made from a checkpoint (its logs resumed)
 };
 
 /// A run folder that cannot be used (refused before a run starts).

@@ -23,10 +23,6 @@ inline constexpr std::uint32_t kOldestViewVersion = 2;
 /// A contact's first side with this bit set is plane wall (side - kViewPlaneSide).
 inline constexpr std::uint32_t kViewPlaneSide = 0x80000000u;
 inline constexpr std::uint8_t kViewFixed = 1, kViewDriven = 2;
-/// A frame channel's most components and longest name (bytes), as readers
-/// check them: the table's own limits.
-inline constexpr std::uint32_t kViewChannelComponents = dem::kMaxChannelComponents;
-inline constexpr std::uint32_t kViewChannelNameBytes = dem::kMaxChannelNameBytes;
 
 struct ViewFormatError : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -29,7 +29,7 @@ enum ContactTermHolds : std::uint8_t {
 
 /// A touching contact's share of the sums.
 struct ContactTerm {
-  PairKey key;
+  PairKey key;                            ///< set where terms are sorted (domains)
   Real elastic = 0;                       ///< energy stored in it (J)
   Real on_image = 0, on_a = 0, on_b = 0;  ///< power of the cell through b's image, of a's motion, of b's (W)
   Vec3 force{}, branch{};                 ///< the virial's (a periodic cell)
@@ -37,16 +37,16 @@ struct ContactTerm {
 };
 static_assert(std::is_trivially_copyable_v<ContactTerm>);
 
-/// The share of touching contact `c` (keyed `key`) of bodies `bodies`.
-inline ContactTerm contact_term(const PairKey& key, const StepContact& c, std::span<const Body> bodies,
+/// The share of touching contact `c` of bodies `bodies`, b at its image
+/// moved by `shift` (image_shift_of).
+inline ContactTerm contact_term(const StepContact& c, const Vec3& shift, std::span<const Body> bodies,
                                 std::span<const PlaneWall> planes, std::span<const MotionFrame> motion_frames,
                                 const PeriodicCell& cell, const CellTensor& cell_rate) noexcept {
-  ContactTerm t{key};
+  ContactTerm t;
   t.elastic = c.elastic;
   const Body& b = bodies[c.b];
   if (c.a_is_plane || bodies[c.a].fixed || b.fixed) t.holds |= kTermWall;
   if (cell.active()) {
-    const Vec3 shift = image_shift_of(cell, c);
     t.holds |= kTermPeriodic;
     t.force = c.force, t.branch = virial_branch(bodies, c, shift);
     // A deforming cell works on the bodies through the images' motion.

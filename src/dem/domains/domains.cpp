@@ -51,8 +51,9 @@ ContactSums gathered_sums(const World& d, DomainTransport& t, Wanted wanted) {
   for (std::size_t k = 0; k < d.results.contacts.size(); ++k) {
     const StepContact& c = d.results.contacts[k];
     if (!c.active) continue;
-    const ContactTerm term =
-        contact_term(d.results.keys[k], c, d.bodies, d.planes, d.results.motion_frames, d.cell, d.cell_rate);
+    ContactTerm term =
+        contact_term(c, image_shift_of(d.cell, c), d.bodies, d.planes, d.results.motion_frames, d.cell, d.cell_rate);
+    term.key = d.results.keys[k];
     if (wanted(term)) terms.push_back(term);
   }
   ContactSums sums;
@@ -226,9 +227,10 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
     c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
-    if (b.fixed) push_b(b, c, image_shift_of(d.cell, c));
+    const Vec3 shift = image_shift_of(d.cell, c);
+    if (b.fixed) push_b(b, c, shift);
     if (!c.a_is_plane && whole.bodies[c.a].fixed) push_a(whole.bodies[c.a], c);
-    sums.add(contact_term(r.key, c, whole.bodies, whole.planes, whole.results.motion_frames, d.cell, d.cell_rate));
+    sums.add(contact_term(c, shift, whole.bodies, whole.planes, whole.results.motion_frames, d.cell, d.cell_rate));
     whole.results.contacts.push_back(c);
     whole.results.keys.push_back(r.key);
   }

@@ -177,8 +177,8 @@ StepReport contact_laws(ForceEvaluation& e) {
 
 StepReport sum_forces(ForceEvaluation& e) {
   World& w = e.world;
-  w.stats = detail::sum_forces(w.results.contacts, w.results.keys, w.bodies, w.pairs, w.planes, w.results.motion_frames,
-                               w.cell, w.cell_rate, w.cell_stress);
+  w.stats = detail::sum_forces(w.results.contacts, w.bodies, w.pairs, w.planes, w.results.motion_frames, w.cell,
+                               w.cell_rate, w.cell_stress);
   w.stats.box_updates = static_cast<int>(e.box_updates);
   return {};
 }

@@ -69,14 +69,13 @@ ContactSide side_of(const SideSources& sources, const Body& body, std::uint32_t 
 
 /// contacts/force_sums.cpp: the contacts' forces and torques added to their bodies
 /// in the fixed order of the contact list (the same bits for any thread
-/// count), the pairs' springs kept or forgotten (`pairs` and `keys`
-/// aligned with `contacts`); returns the stats (contacts/contact_sums.hpp:
+/// count), the pairs' springs kept or forgotten (`pairs` aligned with
+/// `contacts`); returns the stats (contacts/contact_sums.hpp:
 /// the driven walls' power included, but for box_updates). In a periodic
 /// world (`cell` active) the contacts' stress is written to `cell_stress`
 /// and the deforming cell's power (`cell_rate`) counted.
-StepStats sum_forces(std::span<const StepContact> contacts, std::span<const PairKey> keys, std::span<Body> bodies,
-                     std::span<PairState> pairs, std::span<const PlaneWall> planes,
-                     std::span<const MotionFrame> motion_frames, const PeriodicCell& cell, const CellTensor& cell_rate,
-                     CellTensor& cell_stress);
+StepStats sum_forces(std::span<const StepContact> contacts, std::span<Body> bodies, std::span<PairState> pairs,
+                     std::span<const PlaneWall> planes, std::span<const MotionFrame> motion_frames,
+                     const PeriodicCell& cell, const CellTensor& cell_rate, CellTensor& cell_stress);
 
 }  // namespace gjkdem::dem::detail

@@ -29,9 +29,6 @@ void SceneReader::read_body(TableReader& r) {
     r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0; give it a 'motion')");
   d.applied_force = r.vec3("applied_force").value_or(Vec3{});
   d.applied_torque = r.vec3("applied_torque").value_or(Vec3{});
-  if (d.fixed && (length(d.applied_force) > 0 || length(d.applied_torque) > 0))
-    r.fail(length(d.applied_force) > 0 ? "applied_force" : "applied_torque",
-           "is for free bodies (a fixed body takes no applied load)");
   Json motion_json;
   if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
   d.motion = read_motion(r, motion_json);
