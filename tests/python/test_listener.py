@@ -148,6 +148,16 @@ def test_a_log_that_gained_the_column_is_checkpointed_at_once(repo, tmp_path):
     assert gjkdem.SceneRun.resume(str(out), threads=1).run() == "completed"
     rows = [line.split(",") for line in (out / "energy.csv").read_text().splitlines()]
     assert rows[0][-1] == "applied_work" and all(len(r) == len(rows[0]) for r in rows)
+    # The same for a run stopped and run again from Python without a resume.
+    again = tmp_path / "again"
+    r = gjkdem.SceneRun(scene, out=str(again), threads=1)
+    assert r.run(stop_after=200) == "stopped"
+    with pytest.raises(Exception, match="an observer fails"):
+        r.run(listener=drag(0.01), observer=fail)
+    del r  # lets go of the folder's lock
+    assert gjkdem.SceneRun.resume(str(again), threads=1).run() == "completed"
+    rows = [line.split(",") for line in (again / "energy.csv").read_text().splitlines()]
+    assert rows[0][-1] == "applied_work" and all(len(r) == len(rows[0]) for r in rows)
 
 
 def test_bad_listeners_are_refused_and_a_listeners_exception_is_raised():
