@@ -184,20 +184,20 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     body.insert("material", w.materials[b.material].name);
     body.insert("position", array_of(pose.translation));
     body.insert("rotation", array_of(quat_from_matrix(pose.rotation)));
-    if (b.fixed) {
-      body.insert("fixed", true);
-    } else {
-      Real values[dem::kMaxChannelComponents];
-      for (const dem::BodyChannel& ch : dem::kBodyChannels) {
-        if (!(ch.use & dem::kChannelExported) || !ch.in_outputs_of(w)) continue;
-        ch.read(w, b, values);
-        if (ch.components == 1) {
-          body.insert(ch.name, values[0]);
-        } else {
-          toml::array a;
-          for (std::uint32_t k = 0; k < ch.components; ++k) a.push_back(values[k]);
-          body.insert(ch.name, std::move(a));
-        }
+    if (b.fixed) body.insert("fixed", true);
+    // A fixed body keeps only the given channels that are not motion or loads.
+    const unsigned fixed_takes = dem::kChannelGiven;
+    Real values[dem::kMaxChannelComponents];
+    for (const dem::BodyChannel& ch : dem::kBodyChannels) {
+      if (!(ch.use & dem::kChannelExported) || !ch.in_outputs_of(w)) continue;
+      if (b.fixed && (!(ch.use & fixed_takes) || (ch.use & dem::kChannelLoad))) continue;
+      ch.read(w, b, values);
+      if (ch.components == 1) {
+        body.insert(ch.name, values[0]);
+      } else {
+        toml::array a;
+        for (std::uint32_t k = 0; k < ch.components; ++k) a.push_back(values[k]);
+        body.insert(ch.name, std::move(a));
       }
     }
     bodies.push_back(std::move(body));

@@ -11,6 +11,9 @@
 //   same bits; a listener called every 5 steps is called at steps 0, 5, 10;
 // - a listener's exception fails the run with its message; loads a listener
 //   sets at the start of a world run again act in its first kick;
+// - loads given to the builder (BodyDef::given) are placed as given and turn
+//   the world's applied loads on; a channel that is not given, one given
+//   twice, a value that is not finite or a load on a fixed body is refused;
 // - a world without applied loads (World::applied_loads off) has no
 //   applied work, whatever its bodies' fields hold.
 #include <gtest/gtest.h>
@@ -20,6 +23,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/run.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/shape/shape_factories.hpp"
@@ -206,6 +210,38 @@ TEST(AppliedLoads, AWorldWithoutAppliedLoadsIgnoresTheFields) {
   EXPECT_EQ(w.bodies[0].velocity, Vec3{});
   EXPECT_EQ(w.bodies[0].applied_work, 0);
   EXPECT_EQ(energy_balance(w, 0).applied_work, 0);
+}
+
+TEST(AppliedLoads, GivenLoadsArePlacedAsGivenAndBadOnesRefused) {
+  const BodyChannel* force = find_body_channel("applied_force");
+  const BodyChannel* torque = find_body_channel("applied_torque");
+  ASSERT_TRUE(force && torque);
+  const auto build = [&](std::vector<GivenChannel> given, bool fixed = false) {
+    WorldBuilder b{WorldSettings{}};
+    const std::uint32_t m = b.add_material({"m", 2000, 1e7, 0.3, 0.5, 0.4});
+    b.add_body({.shape = {make_sphere(0.1), {}}, .material = m, .given = std::move(given), .fixed = fixed,
+                .label = "grain"});
+    return b.build();
+  };
+  const World w = build({{force, {1, -2, 3}}, {torque, {0, 0, 0.5}}});
+  EXPECT_TRUE(w.applied_loads);
+  EXPECT_EQ(w.bodies[0].applied_force, (Vec3{1, -2, 3}));
+  EXPECT_EQ(w.bodies[0].applied_torque, (Vec3{0, 0, 0.5}));
+  EXPECT_FALSE(build({{force, {0, 0, 0}}}).applied_loads);  // a zero load is none
+  EXPECT_FALSE(build({{force, {0, 0, 0}}}, true).applied_loads);  // nor on a fixed body
+  const auto refused = [&](std::vector<GivenChannel> given, bool fixed, const std::string& says) {
+    try {
+      build(std::move(given), fixed);
+      ADD_FAILURE() << "accepted; should say " << says;
+    } catch (const BuildError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused({{find_body_channel("position"), {1, 2, 3}}}, false, "'position' is not one a body is given");
+  refused({{nullptr, {}}}, false, "a null channel");
+  refused({{force, {1, 0, 0}}, {force, {2, 0, 0}}}, false, "applied_force is given twice");
+  refused({{torque, {0, std::nan(""), 0}}}, false, "applied_torque must be finite");
+  refused({{torque, {0, 1, 0}}}, true, "a fixed body takes no applied load (applied_torque");
 }
 
 }  // namespace

@@ -74,6 +74,7 @@ TEST(Breakage, ASplitKeepsMassMomentaAndEnergyAndCutsAlongThePress) {
   for (int k = 0; k < 200 && w.stats.contacts < 2; ++k) ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
   ASSERT_EQ(w.stats.contacts, 2);
   const Totals before = totals(w);
+  w.bodies[0].applied_force = {0.3, -0.6, 0.9}, w.bodies[0].applied_work = 2;  // shared by mass (their rows)
   const Body parent = w.bodies[0];
   w.materials[0].strength.mean = 1;  // now the stress is past any draw
   ASSERT_EQ(break_grains(w), 1);
@@ -96,6 +97,18 @@ TEST(Breakage, ASplitKeepsMassMomentaAndEnergyAndCutsAlongThePress) {
     EXPECT_LT(t.reach, w.templates[0].reach);
   }
   EXPECT_TRUE(w.pairs.empty());  // the cube's springs are forgotten
+  // Each fragment takes its share by volume of the grain's applied load and
+  // its work; the last evaluation's force and torque are found again.
+  const Real volume = w.templates[1].unit_mass.volume + w.templates[2].unit_mass.volume;
+  for (const Body& b : w.bodies) {
+    const Real share = w.templates[b.shape].unit_mass.volume / volume;
+    EXPECT_GT(share, 0.1);
+    EXPECT_LT(length(b.applied_force - parent.applied_force * share), 1e-15);
+    EXPECT_DOUBLE_EQ(b.applied_work, parent.applied_work * share);
+    EXPECT_EQ(b.force, Vec3{});
+    EXPECT_EQ(b.torque, Vec3{});
+  }
+  EXPECT_DOUBLE_EQ(w.bodies[0].applied_work + w.bodies[1].applied_work, parent.applied_work);
   // Pressed along z, the cube splits on a plane holding z (but for the
   // friction of its slide and spin): the fragments' centres lie side by side.
   const Vec3 a = w.bodies[0].position, c = w.bodies[1].position;

@@ -11,6 +11,7 @@
 #include <vector>
 #include <type_traits>
 
+#include "gjkdem/dem/body_channel_rows.hpp"
 #include "gjkdem/dem/material.hpp"
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
@@ -185,6 +186,11 @@ constexpr ContactRoute plane_route(PartKind b) noexcept {
 /// met by.
 bool holds_surface(const ShapeTemplate& t) noexcept;
 
+/// A body: who it is (constant, by hand here) and what it holds (its
+/// channels, one member per row of body_channel_rows.hpp, in row order:
+/// position, orientation, velocity, angular_momentum, force and torque of
+/// the last evaluation, applied_force, applied_torque, applied_work; each
+/// row says what it is, in which unit, and who takes it).
 struct Body {
   std::uint64_t id = 0;          ///< global id, stable across domains and restarts
   std::uint32_t shape = 0;       ///< index into World::templates
@@ -192,19 +198,11 @@ struct Body {
   std::uint32_t group = 0;       ///< > 0: a piece of a wall (contacts with one group are merged)
   std::uint16_t fixed = 0;       ///< 1: not moved by forces (walls, obstacles)
   std::uint16_t motion = 0;      ///< > 0: a fixed body moved by World::motions[motion - 1]
-  Vec3 position;                 ///< centre of mass, world (m)
-  Quat orientation;              ///< principal frame -> world
-  Vec3 velocity;                 ///< m/s (of a driven body, set by its motion)
-  Vec3 angular_momentum;         ///< world frame, about the centre of mass (kg m^2/s)
-  Vec3 force, torque;            ///< of the last force evaluation (N, N m about the centre of mass)
-  /// Load from outside the engine (a fluid's drag, a field, a user's push):
-  /// added to the force and torque of every evaluation until changed (a step
-  /// listener's or Python's to set, run.hpp); kept by checkpoints, moved
-  /// with the body between domains, shared by mass between fragments.
-  Vec3 applied_force, applied_torque;  ///< N, N m about the centre of mass
-  /// Work the applied load did on the body so far (J): the kinetic energy
-  /// each kick gave it (World::applied_loads), in the energy balance.
-  Real applied_work = 0;
+#define GJKDEM_BODY_MEMBER(name, Type, ...) Type name{};
+#define GJKDEM_BODY_NO_MEMBER(...)
+  GJKDEM_BODY_CHANNEL_ROWS(GJKDEM_BODY_MEMBER, GJKDEM_BODY_NO_MEMBER)
+#undef GJKDEM_BODY_MEMBER
+#undef GJKDEM_BODY_NO_MEMBER
 };
 static_assert(std::is_trivially_copyable_v<Body> && std::is_standard_layout_v<Body>);
 

@@ -5,7 +5,8 @@
 // (named columns: a reader finds them by name), Python's World views,
 // trace.csv's columns, the VTK frames' cell data, the view frames' channel
 // block (docs/view-format.md) and the scene export's body keys. A new
-// per-body quantity is a member of Body and a row here.
+// per-body quantity is a row of body_channel_rows.hpp, which makes both the
+// Body member and the channel.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -26,7 +27,23 @@ enum BodyChannelUse : unsigned {
   kChannelFramed = 64,    ///< the view frames' channel block has it (single precision)
   kChannelExported = 128, ///< the scene export writes it as a free body's key of that name (the scene reader's)
   kChannelLoad = 256,     ///< a load from outside: a world whose view of it is written counts loads (World::applied_loads)
+  kChannelGiven = 512,    ///< a scene's [[body]] (BodyDef::given) may give its value, placed as given (a free body's, for a load)
 };
+
+/// What each fragment of a split grain takes of the grain's value.
+enum class ChannelSplit : std::uint8_t {
+  Kinematic,  ///< the split's own: the fragment's place and motion (split_body.hpp)
+  Zeroed,     ///< nothing: the last evaluation's, found again for the fragments
+  ByMass,     ///< its share by mass (an extensive quantity: a load, a work)
+  Copied,     ///< the same value (an intensive quantity: a temperature)
+};
+
+/// How many reals a channel of type T has (Real, Vec3, Quat).
+template <class T>
+constexpr std::uint32_t components_of() noexcept {
+  static_assert(sizeof(T) % sizeof(Real) == 0 && alignof(T) == alignof(Real), "a channel is a row of reals");
+  return static_cast<std::uint32_t>(sizeof(T) / sizeof(Real));
+}
 
 struct World;
 
@@ -51,6 +68,7 @@ struct BodyChannel {
   std::string_view columns = {};  ///< trace.csv's column names, comma-separated (kChannelTraced)
   void (*compute)(const World&, const Body&, Real* out) = nullptr;  ///< a computed channel's values
   bool (*present)(const World&) = nullptr;  ///< null: always; else outputs hold it only while true
+  ChannelSplit split = ChannelSplit::Copied;  ///< a held channel's: what a fragment takes (apply_splits)
 
   Real* in(Body& b) const noexcept { return reinterpret_cast<Real*>(reinterpret_cast<char*>(&b) + offset); }
   const Real* in(const Body& b) const noexcept {
@@ -73,42 +91,15 @@ void frame_orientation_channel(const World& w, const Body& b, Real* out) noexcep
 void angular_velocity_channel(const World& w, const Body& b, Real* out) noexcept;
 bool applied_loads_on(const World& w) noexcept;
 
-inline constexpr std::array kBodyChannels{
-    BodyChannel{"position", "positions", "m", 3, offsetof(Body, position), kSavedViewed | kChannelRequired | kChannelTraced,
-                "Centres of mass (N, 3), read-only view; set_positions changes them.", "x,y,z"},
-    BodyChannel{"orientation", "orientations", "1", 4, offsetof(Body, orientation), kSavedViewed | kChannelRequired,
-                "Principal frames [w, x, y, z] (N, 4), read-only view; set_orientations changes them."},
-    BodyChannel{"frame_orientation", "", "1", 4, 0, kChannelTraced,
-                "The orientation of the frame the scene gave the shape in [w, x, y, z]: the principal frame "
-                "composed with the template's shape frame.",
-                "qw,qx,qy,qz", frame_orientation_channel},
-    BodyChannel{"velocity", "velocities", "m/s", 3, offsetof(Body, velocity),
-                kSavedWritable | kChannelRequired | kChannelTraced | kChannelVtk | kChannelExported,
-                "Velocities of the centres of mass (N, 3), writable view (fixed bodies ignore theirs).", "vx,vy,vz"},
-    BodyChannel{"angular_momentum", "angular_momenta", "kg m^2/s", 3, offsetof(Body, angular_momentum),
-                kSavedWritable | kChannelRequired,
-                "Angular momenta about the centres of mass, world frame (N, 3), writable view: the integrator's "
-                "state."},
-    BodyChannel{"angular_velocity", "", "rad/s", 3, 0, kChannelTraced | kChannelVtk | kChannelExported,
-                "Angular velocities, world frame: the angular momentum through the inverse world inertia.",
-                "wx,wy,wz", angular_velocity_channel},
-    BodyChannel{"force", "forces", "N", 3, offsetof(Body, force), kSavedViewed | kChannelRequired,
-                "Forces of the last evaluation (N, 3), read-only view."},
-    BodyChannel{"torque", "torques", "N m", 3, offsetof(Body, torque), kSavedViewed | kChannelRequired,
-                "Torques about the centres of mass (N, 3), read-only view."},
-    BodyChannel{"applied_force", "applied_forces", "N", 3, offsetof(Body, applied_force),
-                kSavedWritable | kChannelFramed | kChannelExported | kChannelLoad,
-                "Forces applied from outside (N, 3), writable view: added to every force evaluation from the next "
-                "on, until changed (a listener's to set each step: run(listener=...)).",
-                {}, nullptr, applied_loads_on},
-    BodyChannel{"applied_torque", "applied_torques", "N m", 3, offsetof(Body, applied_torque),
-                kSavedWritable | kChannelFramed | kChannelExported | kChannelLoad,
-                "Torques applied from outside, about the centres of mass (N, 3), writable view (as applied_forces).",
-                {}, nullptr, applied_loads_on},
-    BodyChannel{"applied_work", "applied_work", "J", 1, offsetof(Body, applied_work), kSavedViewed,
-                "Work the applied loads did on each body so far (N,), read-only view (energies()' applied_work "
-                "sums it)."},
-};
+#define GJKDEM_HELD_CHANNEL(name_, Type, view_, unit_, use_, split_, present_, doc_, columns_)                       \
+  BodyChannel{#name_, view_, unit_, components_of<Type>(), offsetof(Body, name_), use_, doc_, columns_, nullptr, \
+              present_, ChannelSplit::split_},
+#define GJKDEM_COMPUTED_CHANNEL(name_, Type, unit_, use_, doc_, columns_, compute_) \
+  BodyChannel{#name_, "", unit_, components_of<Type>(), 0, use_, doc_, columns_, compute_},
+/// The table, made from body_channel_rows.hpp in its order.
+inline constexpr std::array kBodyChannels{GJKDEM_BODY_CHANNEL_ROWS(GJKDEM_HELD_CHANNEL, GJKDEM_COMPUTED_CHANNEL)};
+#undef GJKDEM_HELD_CHANNEL
+#undef GJKDEM_COMPUTED_CHANNEL
 
 /// A channel's name as files and Python take it: 1 to kMaxChannelNameBytes
 /// lower case letters, digits and _.
@@ -129,8 +120,9 @@ constexpr bool channel_unit_ok(std::string_view unit) noexcept {
 /// Whether the table keeps its own rules: 1 to kMaxChannelComponents
 /// components; its name and unit as channel_name_ok and channel_unit_ok
 /// say (as the view frames' readers check them); a computed channel is only read; a viewed one names its
-/// view; a traced one names its columns and is always present; one name
-/// each.
+/// view; a traced one names its columns and is always present; a given one
+/// is held and exported; the kinematic ones are the four a split sets; one
+/// name each.
 constexpr bool body_channels_well_formed() noexcept {
   for (std::size_t i = 0; i < kBodyChannels.size(); ++i) {
     const BodyChannel& c = kBodyChannels[i];
@@ -144,12 +136,26 @@ constexpr bool body_channels_well_formed() noexcept {
       for (const char ch : c.columns) commas += ch == ',';
       if (c.columns.empty() || commas + 1 != c.components) return false;
     }
+    // A given channel is held and exported (an exported scene gives it back).
+    if ((c.use & kChannelGiven) && (c.compute || !(c.use & kChannelExported))) return false;
+    // apply_splits sets the kinematic ones itself: the place and the motion.
+    const bool kinematic = !c.compute && c.split == ChannelSplit::Kinematic;
+    const bool moves = c.name == "position" || c.name == "orientation" || c.name == "velocity" ||
+                       c.name == "angular_momentum";
+    if (kinematic != moves) return false;
     for (std::size_t j = 0; j < i; ++j)
       if (kBodyChannels[j].name == c.name) return false;
   }
   return true;
 }
 static_assert(body_channels_well_formed(), "kBodyChannels breaks its own rules (see body_channels_well_formed)");
+
+/// A value a scene gives one of a body's channels (kChannelGiven rows):
+/// the builder places it on the body as it is.
+struct GivenChannel {
+  const BodyChannel* channel = nullptr;  ///< into kBodyChannels
+  std::array<Real, kMaxChannelComponents> values{};  ///< its first `components`
+};
 
 /// The channel named `name`, or null.
 constexpr const BodyChannel* find_body_channel(std::string_view name) noexcept {

@@ -20,6 +20,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/build_error.hpp"
 #include "gjkdem/dem/world.hpp"
 
@@ -96,10 +97,11 @@ struct BodyDef {
   Quat rotation{};              ///< of the body's frame, world
   Vec3 velocity{};              ///< of the centre of mass (m/s)
   Vec3 angular_velocity{};      ///< world (rad/s)
-  /// Loads from outside, constant unless a listener changes them (Body::
-  /// applied_force, applied_torque; N, N m about the centre of mass, world).
-  /// Any nonzero turns World::applied_loads on. Free bodies only.
-  Vec3 applied_force{}, applied_torque{};
+  /// Values of its channels given as they are (kChannelGiven rows of
+  /// body_channel_rows.hpp; each channel once, finite): the applied loads
+  /// (constant unless a listener changes them; any nonzero turns
+  /// World::applied_loads on; free bodies only), a feature's own.
+  std::vector<GivenChannel> given{};
   bool fixed = false;           ///< not moved by forces; must have no velocity
   std::uint32_t motion = 0;     ///< > 0: a fixed body moved by this motion (add_motion)
   std::string label{};          ///< names the body in messages, e.g. "body[2]"; empty: its name, else "body N"

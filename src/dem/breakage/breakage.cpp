@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/boxes.hpp"
 #include "gjkdem/dem/break_criterion.hpp"
 #include "gjkdem/dem/split_body.hpp"
@@ -140,11 +141,13 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
       b.shape = first + static_cast<std::uint32_t>(f);
       b.position = piece.position, b.orientation = piece.orientation;
       b.velocity = piece.velocity, b.angular_momentum = piece.angular_momentum;
-      b.force = {}, b.torque = {};
-      // The applied load and its work so far are shared by mass (one density).
+      // The other channels as their rows say (ByMass: by volume, one density).
       const Real share = w.templates[b.shape].unit_mass.volume / volumes;
-      b.applied_force = parent.applied_force * share, b.applied_torque = parent.applied_torque * share;
-      b.applied_work = parent.applied_work * share;
+      for (const BodyChannel& c : kBodyChannels) {
+        if (c.compute || c.split == ChannelSplit::Kinematic || c.split == ChannelSplit::Copied) continue;
+        Real* v = c.in(b);
+        for (std::uint32_t k = 0; k < c.components; ++k) v[k] = c.split == ChannelSplit::Zeroed ? Real(0) : v[k] * share;
+      }
       if (f == 0) {
         w.bodies[i] = b;
       } else {

@@ -19,6 +19,34 @@ namespace gjkdem::dem {
 using detail::boundary_surface;
 using detail::number_text;
 
+namespace {
+
+// Refuses a body's given channel values that break their rules (a channel
+// that is not given, given twice, not finite, a load on a fixed body);
+// whether any load is nonzero.
+bool check_given(const BodyDef& d, const std::string& label) {
+  bool loaded = false;
+  for (std::size_t i = 0; i < d.given.size(); ++i) {
+    const BodyChannel* c = d.given[i].channel;
+    if (!c || !(c->use & kChannelGiven))
+      throw BuildError(label + ": " + (c ? "channel '" + std::string(c->name) + "'" : std::string("a null channel")) +
+                       " is not one a body is given (kChannelGiven)");
+    for (std::size_t j = 0; j < i; ++j)
+      if (d.given[j].channel == c) throw BuildError(label + ": " + std::string(c->name) + " is given twice");
+    bool nonzero = false;
+    for (std::uint32_t k = 0; k < c->components; ++k) {
+      if (!std::isfinite(d.given[i].values[k])) throw BuildError(label + ": " + std::string(c->name) + " must be finite");
+      nonzero = nonzero || d.given[i].values[k] != 0;
+    }
+    if (!(c->use & kChannelLoad) || !nonzero) continue;
+    if (d.fixed) throw BuildError(label + ": a fixed body takes no applied load (" + std::string(c->name) + " is for free bodies)");
+    loaded = true;
+  }
+  return loaded;
+}
+
+}  // namespace
+
 WorldBuilder::WorldBuilder(const WorldSettings& settings) : settings_(settings) {
   check_settings(settings);
   world_.settings = settings;
@@ -193,14 +221,11 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     if (names_.count(d.name)) throw BuildError(label + ": two bodies are named '" + d.name + "'");
   }
   check_material(d.material, label);
-  for (const Vec3& v : {d.position, d.velocity, d.angular_velocity, d.applied_force, d.applied_torque})
-    if (!is_finite(v))
-      throw BuildError(label + ": position, velocity, angular velocity and applied loads must be finite");
+  for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
+    if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     throw BuildError(label + ": a fixed body cannot move (velocity and angular_velocity must be 0)");
-  const bool loaded = length(d.applied_force) > 0 || length(d.applied_torque) > 0;
-  if (d.fixed && loaded)
-    throw BuildError(label + ": a fixed body takes no applied load (applied_force and applied_torque are for free bodies)");
+  const bool loaded = check_given(d, label);
   check_motion_number(d.motion, label);
   if (d.motion && !d.fixed) throw BuildError(label + ": a motion is for fixed bodies (forces move the others)");
   Body b;
@@ -220,7 +245,7 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
     b.shape = add_template(d.shape, d.fixed, label);
     place(b, d.shape, d.position, d.rotation, d.velocity, d.angular_velocity);
   }
-  b.applied_force = d.applied_force, b.applied_torque = d.applied_torque;
+  for (const GivenChannel& g : d.given) std::copy_n(g.values.begin(), g.channel->components, g.channel->in(b));
   world_.applied_loads = world_.applied_loads || loaded;
   world_.bodies.push_back(b);
   labels_.push_back(label);

@@ -8,13 +8,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 
 #include "domains/domain_records.hpp"
-#include "gjkdem/dem/breakage.hpp"
-#include "gjkdem/dem/domains.hpp"
+#include "gjkdem/dem/domain_couplings.hpp"
 #include "run/run_guard.hpp"
 
 namespace gjkdem::dem {
@@ -102,24 +102,6 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   RunOutcome outcome;
   detail::GuardCheck check;
   DomainReport::Rank& mine = rank.measured;
-  // Driven walls and bodies, a deforming cell on domains: rank 0 makes the
-  // whole world's power and work of a step again from every domain's
-  // contacts (each domain's own sums are partial), and every rank takes the
-  // whole stress a servo reads. `step`: after a step from `work_before`
-  // (else the first force evaluation).
-  const bool deforming = whole.settings.cell_control.deforms();
-  const bool driven = !whole.motions.empty() || deforming;
-  const bool servo = whole.settings.cell_control.servo();
-  const bool breaks = world_breaks(whole);
-  auto settle_wall_power = [&](Real work_before, bool step) {
-    if (!rank.split()) return;
-    if (servo) stepped.cell_stress = whole_cell_stress(stepped, t);
-    if (!driven) return;
-    const Real power = whole_wall_power(stepped, t);
-    if (!root) return;
-    stepped.stats.wall_power = power;
-    if (step) stepped.wall_work = work_before + 0.5 * state.dt * (ctx.power_before + power);
-  };
   auto finish = [&](RunStatus status, std::string error = {}) {
     rank.gather(state.step);
     outcome = {status, std::move(error)};
@@ -219,12 +201,29 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     return verdict;
   };
 
-  // After each force evaluation on domains, the bonds broken in it told to
-  // every rank (a whole world's copy is the one copy).
-  const bool bonded = !whole.bonds.empty();
-  auto tell_bonds = [&] {
-    if (rank.split() && bonded) sync_bonds(stepped, *ctx.domain, t);
-  };
+  // The domain couplings this world needs (domain_couplings.hpp), walked
+  // at their points by every rank together, failed or not; none on one
+  // rank. Returns the first id the inflows inserted (all ones: none).
+  constexpr std::uint64_t kNoneInserted = ~std::uint64_t{0};
+  std::vector<const DomainCoupling*> couplings;
+  if (rank.split())
+    for (const DomainCoupling& c : domain_couplings())
+      if (c.needed(whole)) couplings.push_back(&c);
+  std::function<std::uint64_t(CouplingPoint, std::string&, bool, Real)> couple =
+      [&](CouplingPoint point, std::string& failed, bool ends_step, Real work_before) {
+        if (couplings.empty()) return kNoneInserted;
+        CouplingContext c{.world = stepped, .role = *ctx.domain, .layout = rank.layout(), .transport = t,
+                          .step = ctx, .failed = failed, .ends_step = ends_step, .work_before = work_before,
+                          .first_inserted = kNoneInserted, .evaluate_again = {}};
+        c.evaluate_again = [&] {
+          rank.exchange();
+          if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+          couple(CouplingPoint::AfterEvaluation, failed, false, stepped.wall_work);
+        };
+        for (const DomainCoupling* k : couplings)
+          if (k->point == point) k->run(c);
+        return c.first_inserted;
+      };
   // The step listeners due before the forces at the end of step `step`
   // (0: the start), on each rank's own bodies before the exchange hands
   // them to the others as ghosts; a listener's exception as a message.
@@ -248,9 +247,8 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   if (fresh) {
     std::string failed = listened;
     if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
-    tell_bonds();
+    couple(CouplingPoint::AfterEvaluation, failed, false, 0);
     failed = agree(t, failed);
-    settle_wall_power(Real(0), false);
     if (failed.empty()) failed = output(true);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));
   } else {
@@ -285,14 +283,7 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
     rank.moved_on();
     auto t0 = Clock::now();
     std::string failed = failure_of(stepped, [&] { return begin_step(stepped, ctx); });
-    std::uint64_t first_new = ~std::uint64_t{0};
-    if (rank.split()) {
-      // The work of a deforming cell's field on the bodies in begin_step
-      // (its change, the wraps), summed again on rank 0; the inflows'
-      // bodies, placed as a whole world places them.
-      if (deforming) add_field_work(stepped, *ctx.domain, t);
-      first_new = insert_inflow_bodies(stepped, ctx, rank.layout(), t);
-    }
+    const std::uint64_t first_new = couple(CouplingPoint::AfterBeginStep, failed, false, 0);
     // Every rank's listeners are called, failed or not: a coupling may hold
     // collectives of its own.
     if (!listeners.empty()) {
@@ -305,28 +296,14 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
       // Every body took its first half kick where it was owned, but those
       // inserted now, which start with their velocity.
       ctx.kicked_bodies =
-          first_new != ~std::uint64_t{0} ? detail::count_ids_below(stepped.bodies, first_new) : stepped.bodies.size();
+          first_new != kNoneInserted ? detail::count_ids_below(stepped.bodies, first_new) : stepped.bodies.size();
     }
     t0 = Clock::now();
     const Real work_before = stepped.wall_work;
     if (failed.empty()) failed = failure_of(stepped, [&] { return finish_step(stepped, ctx); });
-    tell_bonds();
+    couple(CouplingPoint::AfterEvaluation, failed, true, work_before);
+    couple(CouplingPoint::AfterStep, failed, false, 0);
     mine.step_seconds += seconds_since(t0);
-    settle_wall_power(work_before, true);
-    // Domains break their grains together, on the step's contacts (a whole
-    // world does at the end of finish_step); after splits they exchange, so
-    // that each holds the fragments near it (a fragment's box can reach
-    // where its grain's did not), and find the fragments' forces at once.
-    if (rank.split() && breaks) {
-      const int broken = break_domain_grains(stepped, *ctx.domain, t, failed.empty());
-      if (broken > 0) {
-        rank.exchange();
-        if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
-        tell_bonds();
-        settle_wall_power(stepped.wall_work, false);
-      }
-      stepped.stats.broken = broken;
-    }
     ++rank.steps;
     failed = agree(t, failed);
     if (!failed.empty()) return finish(RunStatus::Failed, std::move(failed));

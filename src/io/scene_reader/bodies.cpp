@@ -27,8 +27,7 @@ void SceneReader::read_body(TableReader& r) {
   d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0; give it a 'motion')");
-  d.applied_force = r.vec3("applied_force").value_or(Vec3{});
-  d.applied_torque = r.vec3("applied_torque").value_or(Vec3{});
+  read_given_channels(r, d);
   Json motion_json;
   if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
   d.motion = read_motion(r, motion_json);
@@ -39,11 +38,32 @@ void SceneReader::read_body(TableReader& r) {
   Json j = {{"shape", "(as given)"}, {"material", r.required_string("material")},
             {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
             {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
-  if (length(d.applied_force) > 0 || length(d.applied_torque) > 0)
-    j["applied_force"] = to_json(d.applied_force), j["applied_torque"] = to_json(d.applied_torque);
+  for (const dem::GivenChannel& g : d.given)
+    j[std::string(g.channel->name)] = g.channel->components == 1 ? Json(g.values[0])
+                                      : Json(std::vector<Real>(g.values.begin(), g.values.begin() + g.channel->components));
   if (name) j["name"] = *name;
   if (d.motion) j["motion"] = motion_json["motion"];
   resolved_["body"].push_back(j);
+}
+
+// The body's given channels (kChannelGiven), each under its name; the
+// builder checks their rules.
+void SceneReader::read_given_channels(TableReader& r, dem::BodyDef& d) {
+  for (const dem::BodyChannel& c : dem::kBodyChannels) {
+    if (!(c.use & dem::kChannelGiven)) continue;
+    const std::string key(c.name);
+    dem::GivenChannel g{.channel = &c};
+    if (c.components == 1) {
+      const std::optional<Real> v = r.number(key);
+      if (!v) continue;
+      g.values[0] = *v;
+    } else {
+      const std::vector<Real> v = r.numbers(key, c.components);
+      if (v.empty()) continue;
+      std::copy(v.begin(), v.end(), g.values.begin());
+    }
+    d.given.push_back(g);
+  }
 }
 
 void SceneReader::read_bonded_body(TableReader& r, const toml::table& table) {

@@ -175,6 +175,7 @@ class SceneReader {
   // A body whose shape is { type = "bonded", shape = SHAPE, pieces = N,
   // seed, relaxations }: a bonded assembly of N pieces (docs/breakage.md).
   void read_bonded_body(TableReader& r, const toml::table& table);
+  void read_given_channels(TableReader& r, dem::BodyDef& d);
 
   // A region { min, max } of a generator or an inflow; `strict`: max must
   // exceed min on every axis (an inflow may be a plane or a point).
