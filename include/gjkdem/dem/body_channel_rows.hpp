@@ -22,7 +22,8 @@
 //   out from the world by `compute` (body_channels.cpp), only read.
 //
 // Rows appear in outputs in this order (trace.csv's columns, the frames'
-// channels, the checkpoint's columns): a new row goes last to keep theirs.
+// channels, the checkpoint's columns): a new row goes last to keep theirs,
+// above the closing comment, so that adding it changes no other line.
 #define GJKDEM_BODY_CHANNEL_ROWS(HELD, COMPUTED)                                                                      \
   HELD(position, Vec3, "positions", "m", kSavedViewed | kChannelRequired | kChannelTraced, Kinematic, nullptr,        \
        "Centres of mass (N, 3), read-only view; set_positions changes them.", "x,y,z")                                 \
@@ -53,4 +54,5 @@
        kSavedWritable | kChannelFramed | kChannelGiven | kChannelExported | kChannelLoad, ByMass, applied_loads_on,    \
        "Torques applied from outside, about the centres of mass (N, 3), writable view (as applied_forces).", "")      \
   HELD(applied_work, Real, "applied_work", "J", kSavedViewed, ByMass, nullptr,                                         \
-       "Work the applied loads did on each body so far (N,), read-only view (energies()' applied_work sums it).", "")
+       "Work the applied loads did on each body so far (N,), read-only view (energies()' applied_work sums it).", "") \
+  /* the end of the rows: a new row goes above this line */
