@@ -185,12 +185,11 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
     body.insert("position", array_of(pose.translation));
     body.insert("rotation", array_of(quat_from_matrix(pose.rotation)));
     if (b.fixed) body.insert("fixed", true);
-    // A fixed body keeps only the given channels that are not motion or loads.
-    const unsigned fixed_takes = dem::kChannelGiven;
     Real values[dem::kMaxChannelComponents];
     for (const dem::BodyChannel& ch : dem::kBodyChannels) {
       if (!(ch.use & dem::kChannelExported) || !ch.in_outputs_of(w)) continue;
-      if (b.fixed && (!(ch.use & fixed_takes) || (ch.use & dem::kChannelLoad))) continue;
+      // A fixed body takes no motion or load: only its other given channels.
+      if (b.fixed && (!(ch.use & dem::kChannelGiven) || (ch.use & dem::kChannelLoad))) continue;
       ch.read(w, b, values);
       if (ch.components == 1) {
         body.insert(ch.name, values[0]);
