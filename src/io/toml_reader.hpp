@@ -1,17 +1,24 @@
 #pragma once
 // Typed reading of one TOML table for the scene reader (scene_reader/):
 // getters that refuse a wrong type or a non-finite number with the key's
-// line, and finish(), which refuses the keys nobody asked for. Internal to
-// src/io; toml++ is included by the scene reader and, to write scenes,
-// scene_export.cpp.
+// line, and finish(), which refuses the keys nobody asked for. Each reader
+// also keeps the table's echo, the resolved scene (Scene::resolved_json):
+// every key read with the value read, or the default a `_or` getter or a
+// fallback gave. The echo is made by the reads, so it cannot drift from
+// what the reader takes. Internal to src/io; toml++ is included by the
+// scene reader and, to write scenes, scene_export.cpp.
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "gjkdem/io/scene.hpp"
@@ -20,6 +27,33 @@
 #include "gjkdem/tolerances.hpp"
 
 namespace gjkdem::io::detail {
+
+using Json = nlohmann::ordered_json;
+
+inline Json to_json(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
+inline Json to_json(const Quat& q) { return Json::array({q.w, q.x, q.y, q.z}); }
+
+// A TOML value as it is written: tables, arrays, numbers, strings and
+// booleans as themselves, a date or time as its TOML text.
+inline Json to_json(const toml::node& n) {
+  if (const toml::table* t = n.as_table()) {
+    Json j = Json::object();
+    for (const auto& [k, v] : *t) j[std::string(k.str())] = to_json(v);
+    return j;
+  }
+  if (const toml::array* a = n.as_array()) {
+    Json j = Json::array();
+    for (const toml::node& e : *a) j.push_back(to_json(e));
+    return j;
+  }
+  if (const auto i = n.value_exact<std::int64_t>()) return *i;
+  if (const auto d = n.value_exact<double>()) return *d;
+  if (const auto b = n.value_exact<bool>()) return *b;
+  if (const auto s = n.value_exact<std::string>()) return *s;
+  std::ostringstream text;
+  n.visit([&](const auto& v) { text << v; });
+  return text.str();
+}
 
 // A TOML number as a double: integers of any size convert (rounded to the
 // nearest double), so 9007199254740993 is read, not refused obscurely.
@@ -83,10 +117,21 @@ inline std::string line_of(const toml::node& n) {
   return line > 0 ? " (line " + std::to_string(line) + ")" : "";
 }
 
-// Reads one table: typed getters, then finish() refuses the keys nobody asked for.
+// Reads one table: typed getters, then finish() refuses the keys nobody
+// asked for and completes the echo. A getter records the value it returns:
+// the optional ones a value given, the `_or` ones and those with a fallback
+// the default too (a getter's sentinel, as `number(k).value_or(-1)` for a
+// required key, is not a default and is not recorded).
 class TableReader {
  public:
   TableReader(const toml::table& t, std::string where) : table_(t), where_(std::move(where)) {}
+  /// A sub-table's reader: finish() puts its echo into `parent`'s under
+  /// `key` (appended to an array there for an array of tables).
+  enum class Echo { Under, Appended };
+  TableReader(const toml::table& t, std::string where, TableReader& parent, std::string key, Echo how = Echo::Under)
+      : table_(t), where_(std::move(where)), parent_(&parent), key_in_parent_(std::move(key)), how_(how) {}
+  TableReader(const TableReader&) = delete;
+  TableReader& operator=(const TableReader&) = delete;
 
   const std::string& where() const { return where_; }
   const toml::node* find(const std::string& key) {
@@ -100,6 +145,12 @@ class TableReader {
     throw SceneError(where_ + "." + key + ": " + what + (n ? line_of(*n) : line_of(table_)));
   }
   bool has(const std::string& key) const { return table_.contains(key); }
+  [[noreturn]] void missing(const std::string& key) const {
+    throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+  }
+
+  /// Puts a value the reader worked out into the echo (a resolved "auto").
+  void record(const std::string& key, Json value) { echo_[key] = std::move(value); }
 
   std::optional<Real> number(const std::string& key) {
     const toml::node* n = find(key);
@@ -107,17 +158,19 @@ class TableReader {
     if (!n->is_number()) fail(key, "must be a number");
     const Real v = as_real(*n);
     if (!std::isfinite(v)) fail(key, "must be finite");
+    record(key, v);
     return v;
   }
+  Real number_or(const std::string& key, Real fallback) { return recorded(key, number(key), fallback); }
   Real required_number(const std::string& key) {
     const auto v = number(key);
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    if (!v) missing(key);
     return *v;
   }
   Real positive(const std::string& key, std::optional<Real> fallback = std::nullopt) {
     const auto v = number(key);
-    if (!v && fallback) return *fallback;
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    if (!v && fallback) return recorded(key, v, *fallback);
+    if (!v) missing(key);
     if (!(*v > 0)) fail(key, "must be > 0");
     return *v;
   }
@@ -125,24 +178,35 @@ class TableReader {
     const toml::node* n = find(key);
     if (!n) return std::nullopt;
     if (!n->is_integer()) fail(key, "must be an integer");
-    return n->value<std::int64_t>().value();
+    const std::int64_t v = n->value<std::int64_t>().value();
+    record(key, v);
+    return v;
+  }
+  std::int64_t integer_or(const std::string& key, std::int64_t fallback) {
+    return recorded(key, integer(key), fallback);
   }
   std::optional<std::string> string(const std::string& key) {
     const toml::node* n = find(key);
     if (!n) return std::nullopt;
     if (!n->is_string()) fail(key, "must be a string");
-    return n->value<std::string>().value();
+    std::string v = n->value<std::string>().value();
+    record(key, v);
+    return v;
+  }
+  std::string string_or(const std::string& key, const std::string& fallback) {
+    return recorded(key, string(key), fallback);
   }
   std::string required_string(const std::string& key) {
     const auto v = string(key);
-    if (!v) throw SceneError(where_ + ": missing required key '" + key + "'" + line_of(table_));
+    if (!v) missing(key);
     return *v;
   }
   bool boolean(const std::string& key, bool fallback) {
     const toml::node* n = find(key);
-    if (!n) return fallback;
-    if (!n->is_boolean()) fail(key, "must be true or false");
-    return n->value<bool>().value();
+    if (n && !n->is_boolean()) fail(key, "must be true or false");
+    const bool v = n ? n->value<bool>().value() : fallback;
+    record(key, v);
+    return v;
   }
   std::vector<Real> numbers(const std::string& key, std::size_t count) {
     const toml::node* n = find(key);
@@ -156,6 +220,7 @@ class TableReader {
       out.push_back(as_real(e));
       if (!std::isfinite(out.back())) fail(key, "must be finite");
     }
+    record(key, out);
     return out;
   }
   // An array of rows of `width` finite numbers, e.g. [time, x, y, z] (empty
@@ -176,6 +241,7 @@ class TableReader {
         if (!std::isfinite(out.back().back())) fail(key, "must be finite");
       }
     }
+    record(key, out);
     return out;
   }
   std::optional<Vec3> vec3(const std::string& key) {
@@ -183,6 +249,7 @@ class TableReader {
     if (v.empty()) return std::nullopt;
     return Vec3{v[0], v[1], v[2]};
   }
+  Vec3 vec3_or(const std::string& key, const Vec3& fallback) { return recorded(key, vec3(key), fallback); }
   std::optional<Quat> rotation(const std::string& key) {
     const auto v = numbers(key, 4);
     if (v.empty()) return std::nullopt;
@@ -191,6 +258,7 @@ class TableReader {
     if (std::fabs(norm - 1) > kUnitQuaternionTol) fail(key, "must be a unit quaternion [w, x, y, z]");
     return normalized(q);
   }
+  Quat rotation_or(const std::string& key, const Quat& fallback) { return recorded(key, rotation(key), fallback); }
   const toml::table& table_node() const { return table_; }
   const toml::table* table(const std::string& key) {
     const toml::node* n = find(key);
@@ -198,16 +266,40 @@ class TableReader {
     if (!n->is_table()) fail(key, "must be a table, e.g. { type = \"box\", ... }");
     return n->as_table();
   }
-  void finish() const {
-    for (const auto& [k, v] : table_)
-      if (!used_.count(std::string(k.str())))
-        throw SceneError(where_ + ": unknown key '" + std::string(k.str()) + "'" + line_of(v));
+  /// Refuses the keys nobody asked for; echoes the keys asked for that no
+  /// getter recorded (a SHAPE table, a list of parts) as they are written,
+  /// and hands the echo to the parent reader, if any.
+  void finish() {
+    for (const auto& [k, v] : table_) {
+      const std::string key(k.str());
+      if (!used_.count(key)) throw SceneError(where_ + ": unknown key '" + key + "'" + line_of(v));
+      if (!echo_.contains(key)) echo_[key] = to_json(v);
+    }
+    if (!parent_) return;
+    if (how_ == Echo::Appended) parent_->echo_[key_in_parent_].push_back(std::move(echo_));
+    else parent_->echo_[key_in_parent_] = std::move(echo_);
+    echo_ = Json::object();
   }
+  /// The echo so far (the whole of it once finish() ran), for a reader
+  /// without a parent.
+  Json take_echo() { return std::exchange(echo_, Json::object()); }
 
  private:
+  template <class T>
+  T recorded(const std::string& key, const std::optional<T>& given, const T& fallback) {
+    if (given) return *given;
+    if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, Quat>) record(key, to_json(fallback));
+    else record(key, fallback);
+    return fallback;
+  }
+
   const toml::table& table_;
   std::string where_;
   std::set<std::string> used_;
+  Json echo_ = Json::object();
+  TableReader* parent_ = nullptr;
+  std::string key_in_parent_;
+  Echo how_ = Echo::Under;
 };
 
 }  // namespace gjkdem::io::detail

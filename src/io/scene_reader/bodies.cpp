@@ -21,29 +21,19 @@ void SceneReader::read_body(TableReader& r) {
     if (shared < 0) shared = building(r.table_node(), [&] { return builder_->add_shape(d.shape, d.label, d.fixed); });
     d.shared_shape = shared;
   }
-  d.position = r.vec3("position").value_or(Vec3{});
-  d.rotation = r.rotation("rotation").value_or(Quat{});
-  d.velocity = r.vec3("velocity").value_or(Vec3{});
-  d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
+  d.position = r.vec3_or("position", Vec3{});
+  d.rotation = r.rotation_or("rotation", Quat{});
+  d.velocity = r.vec3_or("velocity", Vec3{});
+  d.angular_velocity = r.vec3_or("angular_velocity", Vec3{});
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     r.fail("velocity", "a fixed body cannot move (velocity and angular_velocity must be 0; give it a 'motion')");
   read_given_channels(r, d);
-  Json motion_json;
   if (r.has("motion") && !d.fixed) r.fail("motion", "is for fixed bodies (set fixed = true)");
-  d.motion = read_motion(r, motion_json);
+  d.motion = read_motion(r);
   if (name && name->empty()) r.fail("name", "must not be empty (leave it out for an untraced body)");
   if (name) d.name = *name;  // the builder checks it (unique, a CSV field)
   const std::uint32_t index = building(r.table_node(), [&] { return builder_->add_body(d); });
   body_lines_[index] = r.table_node().source().begin.line;
-  Json j = {{"shape", "(as given)"}, {"material", r.required_string("material")},
-            {"position", to_json(d.position)}, {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
-            {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", d.fixed}};
-  for (const dem::GivenChannel& g : d.given)
-    j[std::string(g.channel->name)] = g.channel->components == 1 ? Json(g.values[0])
-                                      : Json(std::vector<Real>(g.values.begin(), g.values.begin() + g.channel->components));
-  if (name) j["name"] = *name;
-  if (d.motion) j["motion"] = motion_json["motion"];
-  resolved_["body"].push_back(j);
 }
 
 // The body's given channels (kChannelGiven), each under its name; the
@@ -67,7 +57,7 @@ void SceneReader::read_given_channels(TableReader& r, dem::BodyDef& d) {
 }
 
 void SceneReader::read_bonded_body(TableReader& r, const toml::table& table) {
-  TableReader b(table, r.where() + ".shape");
+  TableReader b(table, r.where() + ".shape", r, "shape");
   b.required_string("type");
   dem::BondedDef d;
   d.label = r.where();
@@ -77,35 +67,28 @@ void SceneReader::read_bonded_body(TableReader& r, const toml::table& table) {
   d.material = material_of(r);
   for (const char* key : {"name", "fixed", "motion"})
     if (r.has(key)) r.fail(key, "is not for a bonded assembly (its pieces move, each a body of its own)");
-  d.position = r.vec3("position").value_or(Vec3{});
-  d.rotation = r.rotation("rotation").value_or(Quat{});
-  d.velocity = r.vec3("velocity").value_or(Vec3{});
-  d.angular_velocity = r.vec3("angular_velocity").value_or(Vec3{});
+  d.position = r.vec3_or("position", Vec3{});
+  d.rotation = r.rotation_or("rotation", Quat{});
+  d.velocity = r.vec3_or("velocity", Vec3{});
+  d.angular_velocity = r.vec3_or("angular_velocity", Vec3{});
   const std::vector<std::uint32_t> indices = building(r.table_node(), [&] { return builder_->add_bonded(d); });
   for (const std::uint32_t index : indices) body_lines_[index] = r.table_node().source().begin.line;
-  resolved_["body"].push_back(
-      Json{{"shape", {{"type", "bonded"}, {"shape", "(as given)"}, {"pieces", d.pieces}, {"seed", d.seed},
-                      {"relaxations", d.relaxations}}},
-           {"material", r.required_string("material")}, {"position", to_json(d.position)},
-           {"rotation", to_json(d.rotation)}, {"velocity", to_json(d.velocity)},
-           {"angular_velocity", to_json(d.angular_velocity)}, {"fixed", false}});
 }
 
 SceneReader::Region SceneReader::read_region(TableReader& r, bool flat) {
   const toml::table* t = r.table("region");
   if (!t) throw SceneError(r.where() + ": missing required key 'region'" + line_of(r.table_node()));
-  TableReader region(*t, r.where() + ".region");
-  const std::string type = region.string("type").value_or("box");
+  TableReader region(*t, r.where() + ".region", r, "region");
+  const std::string type = region.string_or("type", "box");
   Region g;
   if (type == "box") {
     std::tie(g.lo, g.hi) = read_box_region(region, *t, !flat);
-    g.resolved = {{"min", to_json(g.lo)}, {"max", to_json(g.hi)}};
     return g;
   }
   dem::RoundRegion round;
   if (type == "cylinder") {
-    round.base = region.vec3("base").value_or(Vec3{});
-    round.axis = region.vec3("axis").value_or(Vec3{0, 0, 1});
+    round.base = region.vec3_or("base", Vec3{});
+    round.axis = region.vec3_or("axis", Vec3{0, 0, 1});
     if (!(length(round.axis) > 0)) region.fail("axis", "must not be zero");
     round.radius = region.positive("radius");
     if (flat) {
@@ -114,15 +97,12 @@ SceneReader::Region SceneReader::read_region(TableReader& r, bool flat) {
     } else {
       round.height = region.positive("height");
     }
-    g.resolved = {{"type", type}, {"base", to_json(round.base)}, {"axis", to_json(round.axis)},
-                  {"radius", round.radius}, {"height", round.height}};
   } else if (type == "sphere") {
     round.kind = dem::RoundRegion::Kind::Ball;
     const std::optional<Vec3> centre = region.vec3("centre");
     if (!centre) throw SceneError(region.where() + ": a sphere region needs 'centre'" + line_of(*t));
     round.base = *centre;
     round.radius = region.positive("radius");
-    g.resolved = {{"type", type}, {"centre", to_json(round.base)}, {"radius", round.radius}};
   } else {
     region.fail("type", "must be \"box\", \"cylinder\" or \"sphere\", not \"" + type + "\"");
   }
@@ -144,7 +124,7 @@ std::pair<Vec3, Vec3> SceneReader::read_box_region(TableReader& region, const to
 PolyhedronSpec SceneReader::read_polyhedron_spec(TableReader& s, const toml::table& t, bool sized_by_table) {
   s.required_string("type");
   PolyhedronSpec p;
-  p.vertices = s.integer("vertices").value_or(12);
+  p.vertices = s.integer_or("vertices", 12);
   if (p.vertices < 4 || p.vertices > 10000) s.fail("vertices", "must be between 4 and 10000");
   if (const toml::node* n = s.find("size"); n && n->is_number()) {
     p.size_lo = p.size_hi = s.positive("size");
@@ -168,13 +148,13 @@ bool SceneReader::is_random_polyhedron(const toml::table& t) {
 SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::mt19937_64& rng) {
   Mix mix;
   if (!r.has("sizes") && !r.has("shapes")) {  // one shape, equal variants (as before tables existed)
-    const std::int64_t variants = r.integer("variants").value_or(std::min<std::int64_t>(count, 50));
+    const std::int64_t variants = r.integer_or("variants", std::min<std::int64_t>(count, 50));
     if (variants <= 0 || variants > std::min<std::int64_t>(count, kMaxVariants))
       r.fail("variants", "must be a positive integer up to the count and " + std::to_string(kMaxVariants));
     const toml::table* st = shape_table_at(r, "shape");
     if (!st) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
     if (is_random_polyhedron(*st)) {
-      TableReader s(*st, r.where() + ".shape");
+      TableReader s(*st, r.where() + ".shape", r, "shape");
       const PolyhedronSpec p = read_polyhedron_spec(s, *st, false);
       if (p.vertices * variants > kMaxGeneratorVertices)
         s.fail("vertices", "times the variants must stay under " + std::to_string(kMaxGeneratorVertices) +
@@ -182,14 +162,8 @@ SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::
       std::uniform_real_distribution<double> draw(p.size_lo, p.size_hi);
       for (std::int64_t k = 0; k < variants; ++k)
         mix.variants.push_back({random_polyhedron(static_cast<int>(p.vertices), draw(rng), rng), {}});
-      mix.resolved = {{"shape", {{"type", "random_polyhedron"}, {"vertices", p.vertices},
-                                 {"size", {p.size_lo, p.size_hi}}, {"variants", variants}}},
-                      {"variants", variants}};
     } else {
       mix.variants.push_back(read_shape(r, "shape"));
-      std::ostringstream json;
-      json << toml::json_formatter{*st};
-      mix.resolved = {{"shape", Json::parse(json.str())}, {"variants", variants}};
     }
     return mix;
   }
@@ -206,7 +180,8 @@ SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::
     if (!a || a->empty() || !a->is_array_of_tables())
       r.fail("shapes", "must be an array of { shape = SHAPE, fraction = f } tables");
     for (std::size_t k = 0; k < a->size(); ++k) {
-      TableReader part(*(*a)[k].as_table(), r.where() + ".shapes[" + std::to_string(k) + "]");
+      TableReader part(*(*a)[k].as_table(), r.where() + ".shapes[" + std::to_string(k) + "]", r, "shapes",
+                       TableReader::Echo::Appended);
       const toml::table* shape = shape_table_at(part, "shape");
       if (!shape) throw SceneError(part.where() + ": missing required key 'shape'" + line_of(*(*a)[k].as_table()));
       const Real f = part.number("fraction").value_or(-1);
@@ -220,7 +195,7 @@ SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::
     if (!shape) throw SceneError(r.where() + ": missing required key 'shape'" + line_of(r.table_node()));
     parts.push_back({shape, r.where() + ".shape", 1});
   }
-  const std::string fractions = r.string("fractions").value_or("number");
+  const std::string fractions = r.string_or("fractions", "number");
   if (fractions != "number" && fractions != "mass") r.fail("fractions", "must be \"number\" or \"mass\"");
   std::vector<SizeClass> classes;
   const std::string sieve_row = "[min_size, max_size, mass_fraction] (a sieve table)";
@@ -237,12 +212,11 @@ SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::
   }
   const bool sized = !classes.empty();
   const std::size_t class_count = sized ? classes.size() : 1;
-  const std::int64_t per_group = r.integer("variants").value_or(sized ? 10 : 1);
+  const std::int64_t per_group = r.integer_or("variants", sized ? 10 : 1);
   if (per_group <= 0 || per_group * static_cast<std::int64_t>(parts.size() * class_count) > kMaxVariants)
     r.fail("variants", "must be a positive integer (variants per shape and size class), all of them up to " +
                            std::to_string(kMaxVariants));
   std::vector<MixPart> mix_parts;
-  Json resolved_parts = Json::array();
   for (const Part& part : parts) {
     TableReader s(*part.table, part.where);
     MixPart m;
@@ -266,19 +240,10 @@ SceneReader::Mix SceneReader::read_mix(TableReader& r, std::int64_t count, std::
       if (!(m.base_size > 0)) throw SceneError(part.where + ": a shape without size cannot be sized by the table");
     }
     mix_parts.push_back(std::move(m));
-    std::ostringstream json;
-    json << toml::json_formatter{*part.table};
-    resolved_parts.push_back({{"shape", Json::parse(json.str())}, {"fraction", part.fraction}});
   }
   SampledMix sampled = sample_mix(mix_parts, classes, per_group, fractions == "mass", rng);
   mix.variants = std::move(sampled.variants);
   mix.weights = std::move(sampled.weights);
-  mix.resolved = {{"shapes", resolved_parts}, {"fractions", fractions}, {"variants", per_group}};
-  if (sized) {
-    Json table = Json::array();
-    for (const SizeClass& c : classes) table.push_back({c.lo, c.hi, c.mass_fraction});
-    mix.resolved["sizes"] = table;
-  }
   return mix;
 }
 
@@ -291,7 +256,7 @@ void SceneReader::read_generator(TableReader& r) {
   fill.material = material_of(r);
   const Region region = read_region(r, false);
   fill.lo = region.lo, fill.hi = region.hi, fill.round = region.round;
-  fill.velocity = r.vec3("velocity").value_or(Vec3{});
+  fill.velocity = r.vec3_or("velocity", Vec3{});
   fill.fixed = r.boolean("fixed", false);
   std::mt19937_64 rng(dem::derived_seed(scene_.seed, generator_count_++));
   const toml::table* bonded = bonded_table(r);
@@ -300,11 +265,6 @@ void SceneReader::read_generator(TableReader& r) {
   fill.weights = std::move(mix.weights);
   const std::vector<std::uint32_t> placed = building(*r.table("region"), [&] { return builder_->fill_region(fill, rng); });
   warn_of_bodies_outside_containers(r.where(), placed);
-  Json j = {{"count", count}, {"material", r.required_string("material")},
-            {"region", region.resolved}, {"velocity", to_json(fill.velocity)}};
-  if (fill.fixed) j["fixed"] = true;
-  j.update(mix.resolved);
-  resolved_["generator"].push_back(j);
 }
 
 const toml::table* SceneReader::bonded_table(TableReader& r) {
@@ -319,18 +279,14 @@ SceneReader::Mix SceneReader::read_bonded_mix(TableReader& r, const toml::table&
     if (r.has(key))
       r.fail(key, "is not for a generator of bonded assemblies (one shape, each assembly cut anew from its seed)");
   if (fill.fixed) r.fail("fixed", "bonded assemblies move: they cannot be fixed");
-  TableReader b(table, r.where() + ".shape");
+  TableReader b(table, r.where() + ".shape", r, "shape");
   b.required_string("type");
   Mix mix;
   mix.variants.push_back(read_shape(b, "shape"));
   dem::BondedDef cut;
   read_bonded_cut(b, cut);
-  std::ostringstream json;
-  json << toml::json_formatter{*shape_table_at(b, "shape")};
   b.finish();
   fill.pieces = cut.pieces, fill.pieces_seed = cut.seed, fill.relaxations = cut.relaxations;
-  mix.resolved = {{"shape", {{"type", "bonded"}, {"shape", Json::parse(json.str())}, {"pieces", cut.pieces},
-                             {"seed", cut.seed}, {"relaxations", cut.relaxations}}}};
   return mix;
 }
 
@@ -339,10 +295,10 @@ void SceneReader::read_bonded_cut(TableReader& b, dem::BondedDef& d) {
   if (pieces < 2 || pieces > dem::kMaxBondedPieces)
     b.fail("pieces", "must be given, between 2 and " + std::to_string(dem::kMaxBondedPieces));
   d.pieces = static_cast<std::uint32_t>(pieces);
-  const std::int64_t seed = b.integer("seed").value_or(1);
+  const std::int64_t seed = b.integer_or("seed", 1);
   if (seed < 0) b.fail("seed", "must be >= 0");
   d.seed = static_cast<std::uint64_t>(seed);
-  const std::int64_t relaxations = b.integer("relaxations").value_or(3);
+  const std::int64_t relaxations = b.integer_or("relaxations", 3);
   if (relaxations < 0 || relaxations > 100) b.fail("relaxations", "must be between 0 and 100");
   d.relaxations = static_cast<int>(relaxations);
 }
@@ -353,7 +309,7 @@ void SceneReader::read_inflow(TableReader& r) {
   d.material = material_of(r);
   const Region region = read_region(r, true);
   d.lo = region.lo, d.hi = region.hi, d.round = region.round;
-  d.velocity = r.vec3("velocity").value_or(Vec3{});
+  d.velocity = r.vec3_or("velocity", Vec3{});
   const std::optional<Real> rate = r.number("rate"), mass_rate = r.number("mass_rate");
   if (rate.has_value() == mass_rate.has_value())
     throw SceneError(r.where() + ": give one of 'rate' (bodies per second) and 'mass_rate' (kg per second)" +
@@ -362,11 +318,11 @@ void SceneReader::read_inflow(TableReader& r) {
   if (mass_rate && !(*mass_rate > 0)) r.fail("mass_rate", "must be > 0");
   d.rate = rate.value_or(0);
   d.mass_rate = mass_rate.value_or(0);
-  d.start = r.number("start").value_or(0);
+  d.start = r.number_or("start", 0);
   if (!(d.start >= 0)) r.fail("start", "must be >= 0");
-  d.stop = r.number("stop").value_or(scene_.duration);
+  d.stop = r.number_or("stop", scene_.duration);
   if (!(d.stop > d.start)) r.fail("stop", "must come after the start");
-  const std::int64_t count = r.integer("count").value_or(0);
+  const std::int64_t count = r.integer_or("count", 0);  // 0: no limit
   if (count < 0 || count > static_cast<std::int64_t>(dem::kMaxInflowBodies))
     r.fail("count", "must be a positive integer up to " + std::to_string(dem::kMaxInflowBodies));
   d.count = static_cast<std::uint64_t>(count);
@@ -377,14 +333,6 @@ void SceneReader::read_inflow(TableReader& r) {
   d.weights = std::move(mix.weights);
   building(r.table_node(), [&] { return builder_->add_inflow(d); });
   ++inflow_count_;
-  Json j = {{"material", r.required_string("material")},
-            {"region", region.resolved}, {"velocity", to_json(d.velocity)},
-            {"start", d.start}, {"stop", d.stop}};
-  if (rate) j["rate"] = *rate;
-  if (mass_rate) j["mass_rate"] = *mass_rate;
-  if (count > 0) j["count"] = count;
-  j.update(mix.resolved);
-  resolved_["inflow"].push_back(j);
 }
 
 }  // namespace gjkdem::io::detail

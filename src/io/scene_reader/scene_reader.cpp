@@ -46,9 +46,10 @@ Scene SceneReader::build(const toml::table& root) {
     throw SceneError(source_ + ": " + e.what() + (lines.empty() ? "" : lines + ")"));
   }
   if (scene_.dt_auto) scene_.dt = dem::critical_time_step(scene_.world);
-  resolved_["simulation"]["dt"] = scene_.dt;
-  resolved_["simulation"]["dt_auto"] = scene_.dt_auto;
-  scene_.resolved_json = resolved_.dump(2);
+  Json resolved = top.take_echo();
+  resolved["simulation"]["dt"] = scene_.dt;  // "auto" resolved
+  resolved["simulation"]["dt_auto"] = scene_.dt_auto;
+  scene_.resolved_json = resolved.dump(2);
   return std::move(scene_);
 }
 
@@ -62,7 +63,7 @@ const toml::table* SceneReader::sub_table(TableReader& top, const std::string& k
 void SceneReader::read_simulation(TableReader& top) {
   const toml::table* t = sub_table(top, "simulation");
   if (!t) throw SceneError(source_ + ": missing the [simulation] table (it needs 'duration')");
-  TableReader r(*t, "simulation");
+  TableReader r(*t, "simulation", top, "simulation");
   scene_.duration = r.positive("duration");
   if (const toml::node* n = r.find("dt")) {
     if (n->is_string()) {
@@ -72,24 +73,23 @@ void SceneReader::read_simulation(TableReader& top) {
       scene_.dt = r.positive("dt");
     }
   }
-  settings_.gravity = r.vec3("gravity").value_or(dem::WorldSettings{}.gravity);
-  const std::int64_t threads = r.integer("threads").value_or(0);  // a scene's default: every core
+  settings_.gravity = r.vec3_or("gravity", dem::WorldSettings{}.gravity);
+  const std::int64_t threads = r.integer_or("threads", 0);  // a scene's default: every core
   settings_.threads = clamped_int(threads);
-  const std::string overlaps = r.string("initial_overlaps").value_or("refuse");
+  const std::string overlaps = r.string_or("initial_overlaps", "refuse");
   if (overlaps != "refuse" && overlaps != "accept")
     r.fail("initial_overlaps", "must be \"refuse\" or \"accept\", not \"" + overlaps + "\"");
   accept_overlaps_ = overlaps == "accept";
-  const std::string guards = r.string("guards").value_or("stop");
+  const std::string guards = r.string_or("guards", "stop");
   if (guards == "stop") scene_.guards.action = dem::GuardAction::Stop;
   else if (guards == "warn") scene_.guards.action = dem::GuardAction::Warn;
   else if (guards == "off") scene_.guards.action = dem::GuardAction::Off;
   else r.fail("guards", "must be \"stop\", \"warn\" or \"off\", not \"" + guards + "\"");
-  const std::int64_t seed = r.integer("seed").value_or(1);
+  const std::int64_t seed = r.integer_or("seed", static_cast<std::int64_t>(scene_.seed));
   if (seed < 0) r.fail("seed", "must be >= 0");
   scene_.seed = static_cast<std::uint64_t>(seed);
-  Json periodic = Json::object();
   if (const toml::table* periodic_table = r.table("periodic")) {
-    TableReader p(*periodic_table, r.where() + ".periodic");
+    TableReader p(*periodic_table, r.where() + ".periodic", r, "periodic");
     const char* names[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a) {
       const std::vector<Real> range = p.numbers(names[a], 2);
@@ -97,7 +97,6 @@ void SceneReader::read_simulation(TableReader& top) {
       settings_.periodic.axes[a] = true;
       settings_.periodic.lo[a] = range[0];
       settings_.periodic.hi[a] = range[1];
-      periodic[names[a]] = {range[0], range[1]};
     }
     if (!settings_.periodic.active()) r.fail("periodic", "needs at least one axis, e.g. { x = [0.0, 0.1] }");
     // How the cell deforms: per component a strain rate or a target stress.
@@ -105,8 +104,8 @@ void SceneReader::read_simulation(TableReader& top) {
     const auto components = [&](const char* key, dem::CellMode mode, const char* example) {
       const toml::table* given_table = p.table(key);
       if (!given_table) return;
-      TableReader q(*given_table, p.where() + "." + key);
-      Json given = Json::object();
+      TableReader q(*given_table, p.where() + "." + key, p, key);
+      bool given = false;
       for (int k = 0; k < 6; ++k) {
         const char* name = dem::kCellComponents[k];
         const std::optional<Real> v = q.number(name);
@@ -115,70 +114,51 @@ void SceneReader::read_simulation(TableReader& top) {
           q.fail(name, "a component takes either a strain rate or a stress, not both");
         control.mode[k] = mode;
         control.value[k] = *v;
-        given[name] = *v;
+        given = true;
       }
       q.finish();
-      if (given.empty()) p.fail(key, std::string("needs at least one component, e.g. ") + example);
-      periodic[key] = given;
+      if (!given) p.fail(key, std::string("needs at least one component, e.g. ") + example);
     };
     components("strain_rate", dem::CellMode::StrainRate, "{ z = -0.1 } or { xz = 1.0 }");
     components("stress", dem::CellMode::Stress, "{ x = 1.0e4, y = 1.0e4, z = 1.0e4 }");
-    if (const std::optional<Real> rate = p.number("max_strain_rate")) {
-      control.max_strain_rate = *rate;
-      periodic["max_strain_rate"] = *rate;
-    }
+    if (const std::optional<Real> rate = p.number("max_strain_rate")) control.max_strain_rate = *rate;
     p.finish();
   }
   r.finish();
   building(r, [&] { dem::check_settings(settings_); });
-  resolved_["simulation"] = {{"duration", scene_.duration}, {"gravity", to_json(settings_.gravity)},
-                             {"threads", threads}, {"seed", seed}, {"guards", guards},
-                             {"initial_overlaps", overlaps}};
-  if (!periodic.empty()) resolved_["simulation"]["periodic"] = periodic;
 }
 
 void SceneReader::read_output(TableReader& top) {
-  scene_.output_every = scene_.duration / 100;
-  if (const toml::table* t = sub_table(top, "output")) {
-    TableReader r(*t, "output");
-    scene_.output_dir = r.string("dir").value_or("out");
-    if (scene_.output_dir.empty()) r.fail("dir", "must not be empty");
-    scene_.output_every = r.positive("every", scene_.output_every);
-    scene_.overwrite = r.boolean("overwrite", false);
-    const std::int64_t every = r.integer("checkpoint_every").value_or(kDefaultCheckpointEvery);
-    if (every < 0) r.fail("checkpoint_every", "must be >= 0 (0: no checkpoints)");
-    scene_.checkpoint_every = static_cast<int>(every);
-    scene_.write_frames = r.boolean("frames", true);
-    scene_.write_view = r.boolean("view", true);
-    r.finish();
-  }
-  resolved_["output"] = {{"dir", scene_.output_dir}, {"every", scene_.output_every},
-                         {"overwrite", scene_.overwrite}, {"checkpoint_every", scene_.checkpoint_every},
-                         {"frames", scene_.write_frames}, {"view", scene_.write_view}};
+  const toml::table none, *t = sub_table(top, "output");  // absent: all its defaults (Scene's)
+  TableReader r(t ? *t : none, "output", top, "output");
+  scene_.output_dir = r.string_or("dir", scene_.output_dir);
+  if (scene_.output_dir.empty()) r.fail("dir", "must not be empty");
+  scene_.output_every = r.positive("every", scene_.duration / 100);
+  scene_.overwrite = r.boolean("overwrite", scene_.overwrite);
+  const std::int64_t every = r.integer_or("checkpoint_every", scene_.checkpoint_every);
+  if (every < 0) r.fail("checkpoint_every", "must be >= 0 (0: no checkpoints)");
+  scene_.checkpoint_every = static_cast<int>(every);
+  scene_.write_frames = r.boolean("frames", scene_.write_frames);
+  scene_.write_view = r.boolean("view", scene_.write_view);
+  r.finish();
 }
 
 void SceneReader::read_contact(TableReader& top) {
   dem::WorldSettings& w = settings_;
-  std::string model = dem::name_of(w.model), form = dem::name_of(w.volume_form);
-  if (const toml::table* t = sub_table(top, "contact")) {
-    TableReader r(*t, "contact");
-    model = r.string("model").value_or(model);
-    if (const auto m = dem::contact_model_named(model)) w.model = *m;
-    else r.fail("model", std::string("must be ") + dem::kContactModelNames + ", not \"" + model + "\"");
-    w.volume_stiffness = r.number("volume_stiffness").value_or(w.volume_stiffness);
-    form = r.string("volume_form").value_or(form);
-    if (const auto f = dem::volume_form_named(form)) w.volume_form = *f;
-    else r.fail("volume_form", std::string("must be ") + dem::kVolumeFormNames + ", not \"" + form + "\"");
-    w.linear_stiffness = r.number("linear_stiffness").value_or(w.linear_stiffness);
-    w.rocking_resistance = r.boolean("rocking_resistance", w.rocking_resistance);
-    w.tessellation = clamped_int(r.integer("tessellation").value_or(w.tessellation));
-    building(r, [&] { dem::check_contact_settings(w); });
-    r.finish();
-  }
-  resolved_["contact"] = {{"model", model}, {"volume_form", form},
-                          {"rocking_resistance", w.rocking_resistance}, {"tessellation", w.tessellation}};
-  if (w.volume_stiffness > 0) resolved_["contact"]["volume_stiffness"] = w.volume_stiffness;
-  if (w.linear_stiffness > 0) resolved_["contact"]["linear_stiffness"] = w.linear_stiffness;
+  const toml::table none, *t = sub_table(top, "contact");  // absent: all its defaults
+  TableReader r(t ? *t : none, "contact", top, "contact");
+  const std::string model = r.string_or("model", dem::name_of(w.model));
+  if (const auto m = dem::contact_model_named(model)) w.model = *m;
+  else r.fail("model", std::string("must be ") + dem::kContactModelNames + ", not \"" + model + "\"");
+  w.volume_stiffness = r.number_or("volume_stiffness", w.volume_stiffness);
+  const std::string form = r.string_or("volume_form", dem::name_of(w.volume_form));
+  if (const auto f = dem::volume_form_named(form)) w.volume_form = *f;
+  else r.fail("volume_form", std::string("must be ") + dem::kVolumeFormNames + ", not \"" + form + "\"");
+  w.linear_stiffness = r.number_or("linear_stiffness", w.linear_stiffness);
+  w.rocking_resistance = r.boolean("rocking_resistance", w.rocking_resistance);
+  w.tessellation = clamped_int(r.integer_or("tessellation", w.tessellation));
+  building(r, [&] { dem::check_contact_settings(w); });
+  r.finish();
 }
 
 void SceneReader::read_material(TableReader& r) {
@@ -189,35 +169,21 @@ void SceneReader::read_material(TableReader& r) {
   for (auto [key, value] : {std::pair{"poisson_ratio", &m.poisson_ratio}, {"restitution", &m.restitution},
                             {"friction", &m.friction}, {"rolling_friction", &m.rolling_friction},
                             {"rolling_damping", &m.rolling_damping}})
-    *value = r.number(key).value_or(*value);
+    *value = r.number_or(key, *value);
   dem::Strength& st = m.strength;  // breakage (docs/breakage.md)
   for (auto [key, value] : {std::pair{"strength", &st.mean}, {"weibull_modulus", &st.weibull_modulus},
                             {"strength_size", &st.reference_size}, {"unbreakable_below", &st.smallest}})
-    *value = r.number(key).value_or(*value);
-  if (const std::optional<std::int64_t> seed = r.integer("strength_seed")) {
-    if (*seed < 0) r.fail("strength_seed", "must be >= 0");
-    st.seed = static_cast<std::uint64_t>(*seed);
-  }
+    *value = r.number_or(key, *value);
+  const std::int64_t strength_seed = r.integer_or("strength_seed", static_cast<std::int64_t>(st.seed));
+  if (strength_seed < 0) r.fail("strength_seed", "must be >= 0");
+  st.seed = static_cast<std::uint64_t>(strength_seed);
   dem::Glue& g = m.glue;  // bonded assemblies (docs/breakage.md)
   for (auto [key, value] : {std::pair{"bond_tensile_strength", &g.tensile_strength},
                             {"bond_shear_strength", &g.shear_strength}, {"bond_moment_strength", &g.moment_strength},
                             {"bond_normal_stiffness", &g.normal_stiffness},
                             {"bond_shear_stiffness", &g.shear_stiffness}, {"bond_damping", &g.damping}})
-    *value = r.number(key).value_or(*value);
+    *value = r.number_or(key, *value);
   building(r, [&] { return builder_->add_material(m); });
-  Json& resolved = resolved_["material"].emplace_back(
-      Json{{"name", m.name}, {"density", m.density}, {"youngs_modulus", m.youngs_modulus},
-                     {"poisson_ratio", m.poisson_ratio}, {"restitution", m.restitution}, {"friction", m.friction},
-                     {"rolling_friction", m.rolling_friction}, {"rolling_damping", m.rolling_damping}});
-  if (st.mean > 0)
-    resolved.update({{"strength", st.mean}, {"weibull_modulus", st.weibull_modulus},
-                     {"strength_size", st.reference_size}, {"unbreakable_below", st.smallest},
-                     {"strength_seed", st.seed}});
-  if (g.tensile_strength > 0)
-    resolved.update({{"bond_tensile_strength", g.tensile_strength}, {"bond_shear_strength", g.shear_strength},
-                     {"bond_moment_strength", g.moment_strength},
-                     {"bond_normal_stiffness", g.normal_stiffness}, {"bond_shear_stiffness", g.shear_stiffness},
-                     {"bond_damping", g.damping}});
 }
 
 std::uint32_t SceneReader::material_of(TableReader& r) {

@@ -1,6 +1,7 @@
 #pragma once
 // The scene reader (docs/scenes.md): a scene file's tables, read with
-// toml++, into a WorldBuilder's calls and the resolved echo. Every key is
+// toml++, into a WorldBuilder's calls and the resolved echo (made by the
+// reads: toml_reader.hpp). Every key is
 // checked: unknown keys, wrong types and out-of-range values are refused
 // with the key's line, before anything runs. One class, its methods by job:
 // scene_reader.cpp the whole and its settings (simulation, output, contact,
@@ -43,8 +44,6 @@ namespace gjkdem::io::detail {
 // past any generator's.
 inline constexpr std::uint64_t kInflowStreams = 500009;
 
-using Json = nlohmann::ordered_json;
-
 // Limits of generators, checked before anything is drawn: each body costs
 // about 0.5 KB with its contacts, each variant's vertex 24 bytes and more.
 inline constexpr std::int64_t kMaxVariants = 100'000;
@@ -55,9 +54,6 @@ inline constexpr std::int64_t kMaxGeneratorVertices = 10'000'000;
 inline int clamped_int(std::int64_t v) {
   return static_cast<int>(std::clamp<std::int64_t>(v, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
 }
-
-inline Json to_json(const Vec3& v) { return Json::array({v.x, v.y, v.z}); }
-inline Json to_json(const Quat& q) { return Json::array({q.w, q.x, q.y, q.z}); }
 
 // A shape read from a SHAPE table, in its body's frame.
 using ShapeSpec = dem::BodyShape;
@@ -81,7 +77,7 @@ class SceneReader {
     if (!a || !a->is_array_of_tables()) top.fail(key, "must be an array of tables: write [[" + key + "]]");
     int index = 0;
     for (const toml::node& e : *a) {
-      TableReader r(*e.as_table(), key + "[" + std::to_string(index++) + "]");
+      TableReader r(*e.as_table(), key + "[" + std::to_string(index++) + "]", top, key, TableReader::Echo::Appended);
       read(r);
       r.finish();
     }
@@ -185,7 +181,6 @@ class SceneReader {
   struct Region {
     Vec3 lo, hi;
     std::optional<dem::RoundRegion> round;
-    Json resolved;
   };
   Region read_region(TableReader& r, bool flat);
   std::pair<Vec3, Vec3> read_box_region(TableReader& region, const toml::table& t, bool strict);
@@ -195,7 +190,6 @@ class SceneReader {
   struct Mix {
     std::vector<dem::BodyShape> variants;
     std::vector<Real> weights;
-    Json resolved;
   };
 
   // `size` of a random polyhedron: a number or [min, max]; absent when a
@@ -220,8 +214,8 @@ class SceneReader {
 
   // Walls and motions (walls.cpp).
   // The optional `motion` table of a wall or fixed body: its number for the
-  // builder (0: none), its resolved form added to `j`.
-  std::uint32_t read_motion(TableReader& owner, Json& j);
+  // builder (0: none).
+  std::uint32_t read_motion(TableReader& owner);
   void read_wall(TableReader& r);
   void warn_of_bodies_outside_containers(const std::string& who, const std::vector<std::uint32_t>& placed);
 
@@ -230,7 +224,6 @@ class SceneReader {
   Scene scene_;
   dem::WorldSettings settings_;
   std::optional<dem::WorldBuilder> builder_;
-  Json resolved_;
   std::map<std::pair<std::string, Real>, std::shared_ptr<const Surface>> surfaces_;  ///< by file and scale
   std::map<std::string, NamedShape> named_shapes_;  ///< the [shapes] table, by name
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line

@@ -181,7 +181,6 @@ void SceneReader::read_named_shapes(TableReader& top) {
     NamedShape& named = named_shapes_[name];
     named.table = node.as_table();
     if (!is_random_polyhedron(*named.table)) named.spec = read_shape_table(*named.table, where);
-    resolved_["shapes"].push_back(name);
   }
 }
 
@@ -206,12 +205,12 @@ ShapeSpec SceneReader::read_shape_table(const toml::table& table, const std::str
   } else if (type == "surface") {
     const Real scale = r.positive("scale", 1.0);
     s.surface = mesh_surface(r, scale);
-    s.pose = Transform::from(r.vec3("center").value_or(Vec3{}), r.rotation("rotation").value_or(Quat{}));
+    s.pose = Transform::from(r.vec3_or("center", Vec3{}), r.rotation_or("rotation", Quat{}));
     r.finish();
   } else if (type == "shell") {
     const Real scale = r.positive("scale", 1.0);
     s.shell = mesh_shell(r, scale);
-    s.pose = Transform::from(r.vec3("center").value_or(Vec3{}), r.rotation("rotation").value_or(Quat{}));
+    s.pose = Transform::from(r.vec3_or("center", Vec3{}), r.rotation_or("rotation", Quat{}));
     r.finish();
   } else if (type == "compound") {
     read_compound_parts(r, *t, s);
