@@ -602,18 +602,18 @@ void bind_world(py::module_& m) {
           [](const World& w) {
             idle(w);
             py::dict d;
-            if (!w.cell.active()) return d;
+            if (!w.cell.now.active()) return d;
             const auto tensor = [](const dem::CellTensor& t) {
               py::dict out;
               for (int k = 0; k < 6; ++k) out[dem::kCellComponents[k]] = t[k];
               return out;
             };
-            d["lo"] = py::make_tuple(w.cell.lo.x, w.cell.lo.y, w.cell.lo.z);
-            d["hi"] = py::make_tuple(w.cell.hi.x, w.cell.hi.y, w.cell.hi.z);
-            d["tilt"] = py::make_tuple(w.cell.tilt.x, w.cell.tilt.y, w.cell.tilt.z);
-            d["volume"] = dem::cell_volume(w.cell);
-            d["strain_rate"] = tensor(w.cell_rate);
-            d["stress"] = tensor(w.cell_stress);
+            d["lo"] = py::make_tuple(w.cell.now.lo.x, w.cell.now.lo.y, w.cell.now.lo.z);
+            d["hi"] = py::make_tuple(w.cell.now.hi.x, w.cell.now.hi.y, w.cell.now.hi.z);
+            d["tilt"] = py::make_tuple(w.cell.now.tilt.x, w.cell.now.tilt.y, w.cell.now.tilt.z);
+            d["volume"] = dem::cell_volume(w.cell.now);
+            d["strain_rate"] = tensor(w.cell.rate);
+            d["stress"] = tensor(w.cell.stress);
             return d;
           },
           "The periodic cell now ({} without one): lo, hi, tilt (xy, xz, yz), volume, and the velocity gradient and "

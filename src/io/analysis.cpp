@@ -62,12 +62,12 @@ std::vector<dem::MeasuredContact> load_frame(dem::World& w, const ViewFrame& f) 
   w.time = f.time;
   // A periodic cell as the frame has it (a deforming one moved since the start).
   for (int a = 0; a < 3; ++a)
-    if (w.cell.axes[a] != ((f.cell_axes >> a & 1) != 0))
+    if (w.cell.now.axes[a] != ((f.cell_axes >> a & 1) != 0))
       throw ViewFormatError("frame at t = " + std::to_string(f.time) + " has other periodic axes than the run's scene");
   if (f.cell_axes) {
-    w.cell.lo = {f.cell[0], f.cell[1], f.cell[2]};
-    w.cell.hi = {f.cell[3], f.cell[4], f.cell[5]};
-    w.cell.tilt = {f.cell[6], f.cell[7], f.cell[8]};
+    w.cell.now.lo = {f.cell[0], f.cell[1], f.cell[2]};
+    w.cell.now.hi = {f.cell[3], f.cell[4], f.cell[5]};
+    w.cell.now.tilt = {f.cell[6], f.cell[7], f.cell[8]};
   }
   std::vector<dem::MeasuredContact> contacts(f.contact_count());
   for (std::size_t c = 0; c < contacts.size(); ++c) {

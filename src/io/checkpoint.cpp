@@ -227,9 +227,9 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   o.real(w.stats.wall_power), o.real(w.wall_work), o.u8(w.applied_loads ? 1 : 0);
   o.end(s);
   s = o.begin("CELL");
-  o.vec(w.cell.lo), o.vec(w.cell.hi), o.vec(w.cell.tilt);
-  for (const Real v : w.cell_rate) o.real(v);
-  for (const Real v : w.cell_stress) o.real(v);
+  o.vec(w.cell.now.lo), o.vec(w.cell.now.hi), o.vec(w.cell.now.tilt);
+  for (const Real v : w.cell.rate) o.real(v);
+  for (const Real v : w.cell.stress) o.real(v);
   o.vec(w.search.cell.lo), o.vec(w.search.cell.hi), o.vec(w.search.cell.tilt);
   o.end(s);
   const std::size_t built = dem::built_templates(w);
@@ -548,9 +548,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
     for (dem::Body& b : w.bodies) b.applied_work = 0;  // the loads stay, their work starts again
     c.logs = {};
   }
-  w.cell = cell;
-  w.cell_rate = rate;
-  w.cell_stress = stress;
+  w.cell.now = cell;
+  w.cell.rate = rate;
+  w.cell.stress = stress;
   w.results = {};  // the last evaluation's were the old state's: found again at the next
   w.work = {};
   w.search = {};  // a checkpoint without anchors leaves none of the world's old ones

@@ -196,7 +196,7 @@ void RunFolderWriters::take_applied_work(const dem::World& world, const dem::Run
 }
 
 void CellWriter::on_output(const dem::World& w, const dem::RunState&) {
-  if (w.cell.active()) append(cell_row(w));
+  if (w.cell.now.active()) append(cell_row(w));
 }
 
 Checkpointer::Checkpointer(fs::path file, int every, std::uint64_t fingerprint, const FrameWriter& frames,
@@ -298,11 +298,11 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);
     energy_.resume(folder.energy(), restored->logs.energy_bytes);
-    if (world.cell.active()) cell_.resume(folder.cell(), restored->logs.cell_bytes);
+    if (world.cell.now.active()) cell_.resume(folder.cell(), restored->logs.cell_bytes);
   } else {
     trace_.start(folder.trace(), trace_header());
     energy_.start(folder.energy(), energy_header(energy_.applied));
-    if (world.cell.active()) cell_.start(folder.cell(), cell_header());
+    if (world.cell.now.active()) cell_.start(folder.cell(), cell_header());
   }
   // After a kill, run.json tells how far the last checkpoint got.
   checkpoints_.saved = [this](const dem::World& w, const dem::RunState& s) { info_.started(w, s); };

@@ -259,7 +259,7 @@ std::string cell_header() {
 }
 
 std::string cell_row(const dem::World& w) {
-  const dem::PeriodicCell& c = w.cell;
+  const dem::PeriodicCell& c = w.cell.now;
   const Vec3 size = c.hi - c.lo;
   std::string s;
   append_number(s, w.time);
@@ -267,7 +267,7 @@ std::string cell_row(const dem::World& w) {
     s += ',';
     append_number(s, v);
   }
-  for (const dem::CellTensor* t : {&w.cell_rate, &w.cell_stress})
+  for (const dem::CellTensor* t : {&w.cell.rate, &w.cell.stress})
     for (const Real v : *t) {
       s += ',';
       append_number(s, v);

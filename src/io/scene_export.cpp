@@ -152,15 +152,15 @@ std::string export_scene(std::string_view scene_text, const fs::path& base_dir, 
   // A bed in contact overlaps its neighbours and walls a little: that is its start.
   if (toml::table* simulation = scene["simulation"].as_table()) simulation->insert_or_assign("initial_overlaps", "accept");
 
-  if (w.cell.active()) {
-    if (w.cell.tilt.x != 0 || w.cell.tilt.y != 0 || w.cell.tilt.z != 0)
-      throw SceneError("a sheared periodic cell (tilt " + std::to_string(w.cell.tilt.x) + ", " +
-                       std::to_string(w.cell.tilt.y) + ", " + std::to_string(w.cell.tilt.z) +
+  if (w.cell.now.active()) {
+    if (w.cell.now.tilt.x != 0 || w.cell.now.tilt.y != 0 || w.cell.now.tilt.z != 0)
+      throw SceneError("a sheared periodic cell (tilt " + std::to_string(w.cell.now.tilt.x) + ", " +
+                       std::to_string(w.cell.now.tilt.y) + ", " + std::to_string(w.cell.now.tilt.z) +
                        ") cannot be a scene's start yet");
     toml::table* periodic = scene["simulation"]["periodic"].as_table();
     const char* names[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a)
-      if (w.cell.axes[a] && periodic) periodic->insert_or_assign(names[a], toml::array{w.cell.lo[a], w.cell.hi[a]});
+      if (w.cell.now.axes[a] && periodic) periodic->insert_or_assign(names[a], toml::array{w.cell.now.lo[a], w.cell.now.hi[a]});
   }
 
   toml::table* named = scene["shapes"].as_table();

@@ -133,8 +133,8 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
     put_vec(f.contact_forces, c.force);
   }
   for (const dem::PlaneWall& p : w.planes) put_vec(f.plane_points, p.point), put_vec(f.plane_normals, p.normal);
-  for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.axes[a] ? 1u << a : 0u;
-  const Vec3 cell[3] = {w.cell.lo, w.cell.hi, w.cell.tilt};
+  for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.now.axes[a] ? 1u << a : 0u;
+  const Vec3 cell[3] = {w.cell.now.lo, w.cell.now.hi, w.cell.now.tilt};
   for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? static_cast<float>(cell[k / 3][k % 3]) : 0.0f;
   for (const dem::Bond& bond : w.bonds) {
     const std::size_t a = dem::index_of_body(w.bodies, bond.a), b = dem::index_of_body(w.bodies, bond.b);

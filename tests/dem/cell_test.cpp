@@ -86,14 +86,14 @@ TEST_P(ServoedBox, ComesToRestAtTheAppliedPressure) {
   World w = loose_box(120, 0.06, isotropic(kPressure, 1.0), friction, model);
   RunState run = plan_run(2.0, critical_time_step(w), 0.5);
   ASSERT_EQ(dem::run(w, run, {}).status, RunStatus::Completed);
-  EXPECT_LT(w.cell.hi.x - w.cell.lo.x, 0.05) << "compressed from 0.06";
+  EXPECT_LT(w.cell.now.hi.x - w.cell.now.lo.x, 0.05) << "compressed from 0.06";
   EXPECT_LT(kinetic_energy(w), 1e-4 * w.stats.elastic_energy) << "at rest";
   // The stress as dem::measure sums it (contact points, nearest images):
   // every grain is in a region larger than the cell, so scale its volume.
-  const MeasureRegion region{w.cell.lo - Vec3{0.1, 0.1, 0.1}, w.cell.hi + Vec3{0.1, 0.1, 0.1}};
+  const MeasureRegion region{w.cell.now.lo - Vec3{0.1, 0.1, 0.1}, w.cell.now.hi + Vec3{0.1, 0.1, 0.1}};
   MeasureWorkspace work;
   const Measures m = measure(w, touching_contacts(w), region, work);
-  const Real scale = region.volume() / cell_volume(w.cell);
+  const Real scale = region.volume() / cell_volume(w.cell.now);
   EXPECT_EQ(m.grains, w.bodies.size());
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -105,7 +105,7 @@ TEST_P(ServoedBox, ComesToRestAtTheAppliedPressure) {
       }
       // The servo's own sum (branch vectors between centres) agrees.
       const int k = i == j ? i : i + j == 1 ? kXY : i + j == 2 ? kXZ : kYZ;
-      EXPECT_NEAR(s, w.cell_stress[k], 1e-6 * kPressure);
+      EXPECT_NEAR(s, w.cell.stress[k], 1e-6 * kPressure);
     }
 }
 
@@ -115,7 +115,7 @@ TEST(DeformingCell, AStretchedCellMovesItsFacesAndGivesTheGrainsItsField) {
   World w = loose_box(4, 0.06, c, 0.3);
   std::vector<Body> before = w.bodies;
   const Real dt = 1e-4, start_energy = kinetic_energy(w);
-  const Vec3 centre = cell_centre(w.cell);
+  const Vec3 centre = cell_centre(w.cell.now);
   ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
   // The field's velocity 0.5 (x - centre) joins each grain's own.
   Real expected_work = 0;
@@ -129,19 +129,19 @@ TEST(DeformingCell, AStretchedCellMovesItsFacesAndGivesTheGrainsItsField) {
   EXPECT_NEAR(w.wall_work, expected_work, 1e-15);
   EXPECT_NEAR(kinetic_energy(w) - start_energy, expected_work, 1e-12);
   for (int k = 1; k < 2000; ++k) ASSERT_EQ(step(w, dt).status, StepStatus::Ok);
-  EXPECT_NEAR(w.cell.hi.x - w.cell.lo.x, 0.06 * std::pow(1 + 0.5 * dt, 2000), 1e-12);
-  EXPECT_NEAR(cell_centre(w.cell).x, 0.03, 1e-12);
-  EXPECT_EQ(w.cell.hi.y - w.cell.lo.y, 0.06);
+  EXPECT_NEAR(w.cell.now.hi.x - w.cell.now.lo.x, 0.06 * std::pow(1 + 0.5 * dt, 2000), 1e-12);
+  EXPECT_NEAR(cell_centre(w.cell.now).x, 0.03, 1e-12);
+  EXPECT_EQ(w.cell.now.hi.y - w.cell.now.lo.y, 0.06);
   // Frames carry the cell as it is now (the viewer and gjkdem analyze read it).
   const io::ViewFrame frame = io::decode_view_frame(io::encode(io::view_frame(w, 2000)));
   EXPECT_EQ(frame.cell_axes, 7u);
-  EXPECT_EQ(frame.cell[3], static_cast<float>(w.cell.hi.x));
-  EXPECT_EQ(frame.cell[0], static_cast<float>(w.cell.lo.x));
+  EXPECT_EQ(frame.cell[3], static_cast<float>(w.cell.now.hi.x));
+  EXPECT_EQ(frame.cell[0], static_cast<float>(w.cell.now.lo.x));
   // A grain crossing a face takes the field's difference with it: its
   // velocity stays the field's at its new place plus its own.
   for (const Body& b : w.bodies) {
-    EXPECT_GE(b.position.x, w.cell.lo.x);
-    EXPECT_LT(b.position.x, w.cell.hi.x);
+    EXPECT_GE(b.position.x, w.cell.now.lo.x);
+    EXPECT_LT(b.position.x, w.cell.now.hi.x);
   }
 }
 
@@ -165,9 +165,9 @@ TEST(DeformingCell, ASimpleShearWithoutWallsFollowsItsRate) {
     void on_step(const World& w, const RunState&) override {
       for (const Body& b : w.bodies) {
         // In the tilted cell: z in [lo, hi), x within the leaning faces.
-        const Real f = (b.position.z - w.cell.lo.z) / (w.cell.hi.z - w.cell.lo.z);
-        const Real x = b.position.x - w.cell.lo.x - f * w.cell.tilt.y;
-        if (f < 0 || f >= 1 || x < -1e-12 || x >= w.cell.hi.x - w.cell.lo.x + 1e-12) ++outside;
+        const Real f = (b.position.z - w.cell.now.lo.z) / (w.cell.now.hi.z - w.cell.now.lo.z);
+        const Real x = b.position.x - w.cell.now.lo.x - f * w.cell.now.tilt.y;
+        if (f < 0 || f >= 1 || x < -1e-12 || x >= w.cell.now.hi.x - w.cell.now.lo.x + 1e-12) ++outside;
       }
     }
   } watch;
@@ -177,13 +177,13 @@ TEST(DeformingCell, ASimpleShearWithoutWallsFollowsItsRate) {
   // Tilt: rate * side * t, taken back by one edge past half of it.
   Real tilt = rate * side * w.time;
   while (tilt > side / 2) tilt -= side;
-  EXPECT_NEAR(w.cell.tilt.y, tilt, 1e-3 * side);
-  EXPECT_EQ(w.cell.tilt.x, 0);
-  EXPECT_EQ(w.cell.tilt.z, 0);
+  EXPECT_NEAR(w.cell.now.tilt.y, tilt, 1e-3 * side);
+  EXPECT_EQ(w.cell.now.tilt.x, 0);
+  EXPECT_EQ(w.cell.now.tilt.z, 0);
   // The grains' mean velocity along x grows with z at the shear rate.
   Real sz = 0, szz = 0, sv = 0, svz = 0;
   for (const Body& b : w.bodies) {
-    const Real z = b.position.z - cell_centre(w.cell).z;
+    const Real z = b.position.z - cell_centre(w.cell.now).z;
     sz += z, szz += z * z, sv += b.velocity.x, svz += b.velocity.x * z;
   }
   const Real n = static_cast<Real>(w.bodies.size());
@@ -257,7 +257,7 @@ TEST(DeformingCell, AServoedShearingCellContinuesFromACheckpointBitForBit) {
   const RunState plan = plan_run(0.25, critical_time_step(straight), 0.05);
   RunState run = plan;
   ASSERT_EQ(dem::run(straight, run, {}).status, RunStatus::Completed);
-  EXPECT_LT(straight.cell.tilt.y, 0) << "the tilt was taken back";
+  EXPECT_LT(straight.cell.now.tilt.y, 0) << "the tilt was taken back";
 
   World first = fresh();
   RunState part = plan;
@@ -269,8 +269,8 @@ TEST(DeformingCell, AServoedShearingCellContinuesFromACheckpointBitForBit) {
   ASSERT_EQ(dem::run(resumed, rest, {}).status, RunStatus::Completed);
   for (std::size_t i = 0; i < straight.bodies.size(); ++i)
     ASSERT_EQ(std::memcmp(&straight.bodies[i], &resumed.bodies[i], sizeof(Body)), 0) << "body " << i;
-  EXPECT_EQ(std::memcmp(&straight.cell, &resumed.cell, sizeof(PeriodicCell)), 0);
-  EXPECT_EQ(straight.cell_rate, resumed.cell_rate);
+  EXPECT_EQ(std::memcmp(&straight.cell.now, &resumed.cell.now, sizeof(PeriodicCell)), 0);
+  EXPECT_EQ(straight.cell.rate, resumed.cell.rate);
   EXPECT_EQ(straight.wall_work, resumed.wall_work);
 }
 
@@ -296,7 +296,7 @@ TEST(DeformingCell, TheEnergyOfGrainsWrappingInADeformingCellIsCounted) {
     RunObserver* observers[] = {&watch};
     ASSERT_EQ(dem::run(w, run, observers).status, RunStatus::Completed);
     if (shear) {
-      EXPECT_LT(w.cell.tilt.y, 0) << "the tilt was taken back";
+      EXPECT_LT(w.cell.now.tilt.y, 0) << "the tilt was taken back";
     }
     EXPECT_GT(watch.least_dissipated, -1e-6 * w.wall_work) << (shear ? "shearing" : "squeezed");
     EXPECT_GT(energy_balance(w, run.initial_energy).dissipated, 0) << (shear ? "shearing" : "squeezed");

@@ -342,7 +342,7 @@ TEST(Domains, APeriodicCellGivesTheSerialBits) {
     ASSERT_EQ(split.outcome.status, RunStatus::Completed);
     expect_same(serial.outputs, domains.outputs, ranks);
     for (int k = 0; k < 6; ++k)
-      EXPECT_EQ(std::memcmp(&split.world.cell_stress[k], &whole.world.cell_stress[k], sizeof(Real)), 0) << k;
+      EXPECT_EQ(std::memcmp(&split.world.cell.stress[k], &whole.world.cell.stress[k], sizeof(Real)), 0) << k;
   }
 }
 
@@ -443,8 +443,8 @@ TEST_P(Domains, AServoedShearingCellGivesTheSerialBits) {
   Recorder serial;
   const Ended whole = run_whole(world, plan, serial);
   ASSERT_EQ(whole.outcome.status, RunStatus::Completed) << whole.outcome.error;
-  ASSERT_LT(whole.world.cell.tilt.y, 0) << "the tilt was taken back";
-  ASSERT_LT(whole.world.cell.hi.x - whole.world.cell.lo.x, 0.045) << "the servo squeezed the cell";
+  ASSERT_LT(whole.world.cell.now.tilt.y, 0) << "the tilt was taken back";
+  ASSERT_LT(whole.world.cell.now.hi.x - whole.world.cell.now.lo.x, 0.045) << "the servo squeezed the cell";
   ASSERT_GT(serial.outputs.back().stats.contacts, 15);
   for (const int ranks : {2, 3}) {
     Recorder domains;
@@ -452,10 +452,10 @@ TEST_P(Domains, AServoedShearingCellGivesTheSerialBits) {
     const Ended split = run_on(ranks, world, plan, domains, 0, &report);
     ASSERT_EQ(split.outcome.status, RunStatus::Completed);
     expect_same(serial.outputs, domains.outputs, ranks);
-    EXPECT_EQ(std::memcmp(&split.world.cell, &whole.world.cell, sizeof(PeriodicCell)), 0) << ranks << " ranks";
+    EXPECT_EQ(std::memcmp(&split.world.cell.now, &whole.world.cell.now, sizeof(PeriodicCell)), 0) << ranks << " ranks";
     for (int k = 0; k < 6; ++k) {
-      EXPECT_EQ(std::memcmp(&split.world.cell_rate[k], &whole.world.cell_rate[k], sizeof(Real)), 0) << k;
-      EXPECT_EQ(std::memcmp(&split.world.cell_stress[k], &whole.world.cell_stress[k], sizeof(Real)), 0) << k;
+      EXPECT_EQ(std::memcmp(&split.world.cell.rate[k], &whole.world.cell.rate[k], sizeof(Real)), 0) << k;
+      EXPECT_EQ(std::memcmp(&split.world.cell.stress[k], &whole.world.cell.stress[k], sizeof(Real)), 0) << k;
     }
     double moved = 0;
     for (const DomainReport::Rank& r : report.ranks) moved += r.moved_out;

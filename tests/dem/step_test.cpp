@@ -298,14 +298,14 @@ TEST(StepTest, ACellShrunkBelowShortestPeriodReportsCellTooShort) {
     ++steps;
     report = step(w, dt);
     if (report.status != StepStatus::Ok) break;
-    ASSERT_GT(cell_width(w.cell, 1), shortest) << "an Ok step leaves the cell wider than allowed";
+    ASSERT_GT(cell_width(w.cell.now, 1), shortest) << "an Ok step leaves the cell wider than allowed";
   }
   ASSERT_EQ(report.status, StepStatus::CellTooShort);
   EXPECT_EQ(report.id_a, 1u) << "axis y";
   EXPECT_NEAR(report.shortest, shortest, 1e-15);
-  EXPECT_LE(cell_width(w.cell, 1), shortest);
-  EXPECT_NEAR(cell_width(w.cell, 0), side, 1e-15);
-  EXPECT_NEAR(cell_width(w.cell, 2), side, 1e-15);
+  EXPECT_LE(cell_width(w.cell.now, 1), shortest);
+  EXPECT_NEAR(cell_width(w.cell.now, 0), side, 1e-15);
+  EXPECT_NEAR(cell_width(w.cell.now, 2), side, 1e-15);
   EXPECT_NEAR(steps, expected, 1);
 }
 

@@ -269,13 +269,13 @@ material = "rock"
 position = [0.0, 0.0, 0.005]
 )";
   Scene scene = load_scene(text, "cell.toml", fs::temp_directory_path());
-  scene.world.cell.lo.x = -0.025, scene.world.cell.hi.x = 0.025;
+  scene.world.cell.now.lo.x = -0.025, scene.world.cell.now.hi.x = 0.025;
   const std::string exported = export_scene(text, fs::temp_directory_path(), scene.world, "");
   const Scene back = load_scene(exported, "exported.toml", fs::temp_directory_path());
-  EXPECT_EQ(back.world.cell.lo.x, -0.025);
-  EXPECT_EQ(back.world.cell.hi.x, 0.025);
-  EXPECT_EQ(back.world.cell.hi.y, 0.02);
-  scene.world.cell.tilt.x = 0.001;
+  EXPECT_EQ(back.world.cell.now.lo.x, -0.025);
+  EXPECT_EQ(back.world.cell.now.hi.x, 0.025);
+  EXPECT_EQ(back.world.cell.now.hi.y, 0.02);
+  scene.world.cell.now.tilt.x = 0.001;
   try {
     export_scene(text, fs::temp_directory_path(), scene.world, "");
     ADD_FAILURE() << "a sheared cell was exported";

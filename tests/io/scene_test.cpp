@@ -1004,7 +1004,7 @@ TEST(Scene, ADeformingPeriodicCellIsRead) {
   EXPECT_EQ(c.mode[dem::kXY], dem::CellMode::Stress);
   EXPECT_EQ(c.mode[dem::kYZ], dem::CellMode::Fixed);
   EXPECT_EQ(c.max_strain_rate, 0.5);
-  EXPECT_EQ(s.world.cell.hi.x, 0.1);
+  EXPECT_EQ(s.world.cell.now.hi.x, 0.1);
 }
 
 }  // namespace gjkdem::io

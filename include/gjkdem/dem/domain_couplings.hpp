@@ -42,8 +42,9 @@ struct CouplingContext {
   /// AfterBeginStep: the first id the inflows inserted (all ones: none).
   std::uint64_t first_inserted = ~std::uint64_t{0};
   /// AfterStep: the bodies changed (splits): exchange them, evaluate the
-  /// forces again and walk the AfterEvaluation rows; the run loop's.
-  std::function<void()> evaluate_again;
+  /// forces again and walk the AfterEvaluation rows, a failure into the
+  /// string given; the run loop's, made once per run.
+  const std::function<void(std::string& failed)>* evaluate_again = nullptr;
 };
 
 struct DomainCoupling {

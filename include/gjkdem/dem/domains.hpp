@@ -119,7 +119,7 @@ void sync_bonds(World& domain, DomainRole& role, DomainTransport& transport);
 /// it together.
 Real whole_wall_power(const World& domain, DomainTransport& transport);
 
-/// The cell's stress at the last force evaluation (World::cell_stress),
+/// The cell's stress at the last force evaluation (World::cell.stress),
 /// which a servo reads at every step: every domain's contacts summed on
 /// rank 0 in the order of their keys, as a whole world sums them, and told
 /// to every rank. All ranks call it together.

@@ -55,6 +55,17 @@ using CellTensor = std::array<Real, 6>;
 inline constexpr int kXY = 3, kXZ = 4, kYZ = 5;
 inline constexpr const char* kCellComponents[6] = {"x", "y", "z", "xy", "xz", "yz"};
 
+/// The periodic cell's state in a world (World::cell): the cell now (the
+/// settings' cell, deformed by its control), its velocity gradient in the
+/// last step (1/s) and the contacts' stress at the last force evaluation
+/// (Pa, compression positive: the symmetric part of sum f x branch over the
+/// contacts, divided by the cell's volume). A checkpoint holds all three.
+struct CellState {
+  PeriodicCell now;
+  CellTensor rate{};
+  CellTensor stress{};
+};
+
 /// How each component of the velocity gradient is set: held at zero, at a
 /// strain rate, or by a servo driving that component of the stress to a
 /// target.

@@ -119,14 +119,7 @@ struct World {
   /// The bonds of bonded assemblies (bonds.hpp), intact and broken, sorted
   /// by their bodies' ids: made by the builder, each then only breaks.
   std::vector<Bond> bonds;
-  /// The periodic cell now: the settings' cell, deformed by its control
-  /// (periodic.hpp); its velocity gradient in the last step (1/s) and the
-  /// contacts' stress at the last force evaluation (Pa, compression
-  /// positive: the symmetric part of sum f x branch over the contacts,
-  /// divided by the cell's volume).
-  PeriodicCell cell;
-  CellTensor cell_rate{};
-  CellTensor cell_stress{};
+  CellState cell;  ///< the periodic cell now, its rate and stress (periodic.hpp)
   StepStats stats;
   SearchCache search;  ///< the broad phase's cache a bit-exact resume needs
   // Results of the last force evaluation, which outputs read.

@@ -164,7 +164,7 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
   std::vector<char> counted(w.bodies.size(), 0);
   // In a periodic world the region also holds the images of the bodies near
   // the cell's faces (a body straddling one fills both sides).
-  const std::vector<Vec3> shifts = image_shifts(w.cell);
+  const std::vector<Vec3> shifts = image_shifts(w.cell.now);
   for (std::size_t k = 0; k < w.bodies.size(); ++k) {
     const Body& b = w.bodies[k];
     if (b.fixed) continue;
@@ -184,8 +184,8 @@ Measures measure(const World& w, std::span<const MeasuredContact> contacts, cons
     if (!first && !second) continue;
     ++m.contacts;
     m.normal_forces.push_back(std::fabs(dot(c.force, c.normal)));
-    if (second) add_outer(sum, nearest_image(w.cell, c.point - w.bodies[c.second].position), c.force), ++ends;
-    if (first) add_outer(sum, nearest_image(w.cell, c.point - w.bodies[c.first].position), -c.force), ++ends;
+    if (second) add_outer(sum, nearest_image(w.cell.now, c.point - w.bodies[c.second].position), c.force), ++ends;
+    if (first) add_outer(sum, nearest_image(w.cell.now, c.point - w.bodies[c.first].position), -c.force), ++ends;
   }
   m.coordination = m.grains ? static_cast<Real>(ends) / static_cast<Real>(m.grains) : 0;
   for (const Real f : m.normal_forces) m.mean_normal_force += f;

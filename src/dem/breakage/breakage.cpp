@@ -79,7 +79,7 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
   for (const StepContact& c : w.results.contacts) {
     if (!c.active) continue;
     // b's image lies at b + shift, where the contact point is.
-    if (can[c.b]) loads.push_back({c.b, c.geometry.point - image_shift_of(w.cell, c), c.force});
+    if (can[c.b]) loads.push_back({c.b, c.geometry.point - image_shift_of(w.cell.now, c), c.force});
     if (!c.a_is_plane && can[c.a]) loads.push_back({c.a, c.geometry.point, -c.force});
   }
   std::stable_sort(loads.begin(), loads.end(), [](const GrainLoad& x, const GrainLoad& y) { return x.body < y.body; });

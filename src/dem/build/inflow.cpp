@@ -77,7 +77,7 @@ bool is_free(std::span<const Body> bodies, const InflowSite& site, const std::ve
 }  // namespace
 
 InflowSite inflow_site(const World& w) {
-  return {{w.templates, w.materials}, w.planes, w.cell, w.time, w.settings.gravity};
+  return {{w.templates, w.materials}, w.planes, w.cell.now, w.time, w.settings.gravity};
 }
 
 bool near_inflow(std::span<const ShapeTemplate> templates, const Inflow& f, const Body& b, const Vec3& shift) noexcept {

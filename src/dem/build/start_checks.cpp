@@ -146,11 +146,11 @@ void WorldBuilder::check_periodic_cell() {
   const PeriodicCell& cell = settings_.periodic;
   const CellControl& control = settings_.cell_control;
   const char* names[3] = {"x", "y", "z"};
-  if (!continued_) world_.cell = cell, world_.cell_rate = {}, world_.cell_stress = {};
+  if (!continued_) world_.cell.now = cell, world_.cell.rate = {}, world_.cell.stress = {};
   if (!cell.active()) return;
   for (int a = 0; a < 3; ++a) {
     if (!cell.axes[a]) continue;
-    const Real need = shortest_period(world_), length = cell_width(world_.cell, a);
+    const Real need = shortest_period(world_), length = cell_width(world_.cell.now, a);
     if (!(length > need))
       throw BuildError(std::string("the periodic cell is ") + number_text(length) + " m wide across " +
                        names[a] + ": it must exceed four times the largest body's reach (" + number_text(need) + " m)");
@@ -165,7 +165,7 @@ void WorldBuilder::check_periodic_cell() {
     if (!b.fixed) continue;
     const Aabb box = aabb(given_shapes_[b.shape], shape_pose(world_.templates[b.shape], b));
     for (int a = 0; a < 3; ++a) {
-      const Real period = world_.cell.hi[a] - world_.cell.lo[a], extent = box.hi[a] - box.lo[a];
+      const Real period = world_.cell.now.hi[a] - world_.cell.now.lo[a], extent = box.hi[a] - box.lo[a];
       if (cell.axes[a] && extent > period - two_reaches)
         throw BuildError(labels_[i] + " spans " + number_text(extent) + " m along the periodic axis " + names[a] +
                              ", more than the period less two of the largest body's reach (" +
@@ -178,7 +178,7 @@ void WorldBuilder::check_periodic_cell() {
   world_.settings.periodic = cell;
   world_.settings.cell_control = control;
   const Makeup makeup{world_.templates, world_.materials};
-  wrap_bodies(world_.cell, world_.cell_rate, world_.search.boxes, {world_.bodies, &makeup, nullptr, &world_.wall_work});
+  wrap_bodies(world_.cell.now, world_.cell.rate, world_.search.boxes, {world_.bodies, &makeup, nullptr, &world_.wall_work});
 }
 
 // An inflow whose region lies wholly beyond a plane wall that never moves,

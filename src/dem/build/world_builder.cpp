@@ -265,7 +265,7 @@ World WorldBuilder::build() {
   if (world_.bodies.empty() && world_.planes.empty() && world_.inflows.empty()) throw BuildError("the world is empty");
   place_driven(world_);  // where their motions have them now, for the checks
   check_periodic_cell();
-  if (!world_.bonds.empty() && world_.cell.active())
+  if (!world_.bonds.empty() && world_.cell.now.active())
     throw BuildError("bonded assemblies cannot be in a periodic world yet (their bonds do not wrap)");
   prepare_shapes();
   prepare_surfaces();

@@ -22,7 +22,7 @@ void inflows(CouplingContext& c) { c.first_inserted = insert_inflow_bodies(c.wor
 
 void bonds(CouplingContext& c) { sync_bonds(c.world, c.role, c.transport); }
 
-void cell_stress(CouplingContext& c) { c.world.cell_stress = whole_cell_stress(c.world, c.transport); }
+void cell_stress(CouplingContext& c) { c.world.cell.stress = whole_cell_stress(c.world, c.transport); }
 
 // Rank 0 takes the whole world's power, and after a step the work of the
 // step by the trapezoid rule (as finish_step integrates a whole world's).
@@ -39,7 +39,7 @@ void wall_power(CouplingContext& c) {
 // grain's did not), and find the fragments' forces at once.
 void breakage(CouplingContext& c) {
   const int broken = break_domain_grains(c.world, c.role, c.transport, c.failed.empty());
-  if (broken > 0) c.evaluate_again();
+  if (broken > 0) (*c.evaluate_again)(c.failed);
   c.world.stats.broken = broken;
 }
 
@@ -54,7 +54,7 @@ constexpr std::array kCouplings{
     DomainCoupling{"bonds", AfterEvaluation, "bonds", "domains/domain_exchange.cpp (sync_bonds)",
                    "the bonds each domain broke", "every rank's bonds", bonded, bonds},
     DomainCoupling{"cell_stress", AfterEvaluation, "a servo cell", "domains/domains.cpp (whole_cell_stress)",
-                   "every domain's contact terms", "cell_stress on every rank", servoed, cell_stress},
+                   "every domain's contact terms", "cell.stress on every rank", servoed, cell_stress},
     DomainCoupling{"wall_power", AfterEvaluation, "driven walls, a deforming cell",
                    "domains/domains.cpp (whole_wall_power)", "every domain's powered contact terms",
                    "rank 0's stats.wall_power, wall_work", driven, wall_power},

@@ -164,7 +164,7 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
   // remade or a body wrapped anywhere, or a tilt was taken back.
   const int threads = detail::thread_count(w.settings.threads);
   const bool left =
-      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w.cell, w.search.cell), ghost);
+      measure_box_motion(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, threads, cell_drift(w.cell.now, w.search.cell), ghost);
   const std::vector<std::string> said = all_gather(t, std::string{left ? '1' : '0', w.search.renew_cell ? '1' : '0'});
   bool any_left = false, renew = false;
   for (const std::string& s : said) {
@@ -175,7 +175,7 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
                                           any_left ? kBoxBatchFraction : 1, ghost);
   w.search.renew_cell = false;
   if (any_left || renew) {
-    w.search.cell = w.cell;  // before the ghosts' images below, and the search
+    w.search.cell = w.cell.now;  // before the ghosts' images below, and the search
     work.candidates_current = false;
   }
 
@@ -240,7 +240,7 @@ ExchangeCounts exchange_bodies(World& w, DomainRole& role, const DomainLayout& l
   }
   // In a periodic cell, a box reaches a domain through any of its images
   // in the search cell (the domain's broad phase then finds the image itself).
-  const std::vector<Vec3> shifts = w.cell.active() ? image_shifts(w.search.cell) : std::vector<Vec3>{Vec3{}};
+  const std::vector<Vec3> shifts = w.cell.now.active() ? image_shifts(w.search.cell) : std::vector<Vec3>{Vec3{}};
   std::vector<std::vector<BodyRecord>> ghosts(ranks);
   auto send_ghost = [&](const Aabb& box, const auto& record) {  // record() made only for a domain it reaches
     for (int r = 0; r < ranks; ++r) {

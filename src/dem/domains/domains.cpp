@@ -52,7 +52,7 @@ ContactSums gathered_sums(const World& d, DomainTransport& t, Wanted wanted) {
     const StepContact& c = d.results.contacts[k];
     if (!c.active) continue;
     ContactTerm term =
-        contact_term(c, image_shift_of(d.cell, c), d.bodies, d.planes, d.results.motion_frames, d.cell, d.cell_rate);
+        contact_term(c, image_shift_of(d.cell.now, c), d.bodies, d.planes, d.results.motion_frames, d.cell.now, d.cell.rate);
     term.key = d.results.keys[k];
     if (wanted(term)) terms.push_back(term);
   }
@@ -110,9 +110,9 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
   d.motions = whole.motions;
   d.inflows = whole.inflows;
   d.inflow_states = whole.inflow_states;
-  d.cell = whole.cell;
-  d.cell_rate = whole.cell_rate;
-  d.cell_stress = whole.cell_stress;
+  d.cell.now = whole.cell.now;
+  d.cell.rate = whole.cell.rate;
+  d.cell.stress = whole.cell.stress;
   d.search.cell = whole.search.cell;
   d.search.renew_cell = whole.search.renew_cell;
   role.whole_reach = largest_reach(whole);
@@ -227,10 +227,10 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
     c.a = c.a_is_plane ? static_cast<std::uint32_t>(r.a) : index_of(r.a);
     c.b = index_of(r.b);
     Body& b = whole.bodies[c.b];
-    const Vec3 shift = image_shift_of(d.cell, c);
+    const Vec3 shift = image_shift_of(d.cell.now, c);
     if (b.fixed) push_b(b, c, shift);
     if (!c.a_is_plane && whole.bodies[c.a].fixed) push_a(whole.bodies[c.a], c);
-    sums.add(contact_term(c, shift, whole.bodies, whole.planes, whole.results.motion_frames, d.cell, d.cell_rate));
+    sums.add(contact_term(c, shift, whole.bodies, whole.planes, whole.results.motion_frames, d.cell.now, d.cell.rate));
     whole.results.contacts.push_back(c);
     whole.results.keys.push_back(r.key);
   }
@@ -249,11 +249,11 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   }
   stats.wall_power = d.stats.wall_power;  // rank 0's is the whole world's (whole_wall_power), the sums' the same
   whole.stats = stats;
-  whole.cell = d.cell;
-  whole.cell_rate = d.cell_rate;
+  whole.cell.now = d.cell.now;
+  whole.cell.rate = d.cell.rate;
   whole.search.cell = d.search.cell;
   whole.search.renew_cell = d.search.renew_cell;
-  if (d.cell.active()) whole.cell_stress = sums.cell_stress(whole.cell);
+  if (d.cell.now.active()) whole.cell.stress = sums.cell_stress(whole.cell.now);
   whole.work.candidates_current = false;
 }
 
@@ -263,7 +263,7 @@ Real whole_wall_power(const World& d, DomainTransport& t) {
 }
 
 CellTensor whole_cell_stress(const World& d, DomainTransport& t) {
-  CellTensor stress = gathered_sums(d, t, [](const ContactTerm&) { return true; }).cell_stress(d.cell);
+  CellTensor stress = gathered_sums(d, t, [](const ContactTerm&) { return true; }).cell_stress(d.cell.now);
   const std::string said = all_gather(t, std::string(reinterpret_cast<const char*>(stress.data()), sizeof stress))[0];
   if (said.size() != sizeof stress) throw std::runtime_error("the cell's stress came damaged");
   std::memcpy(stress.data(), said.data(), sizeof stress);

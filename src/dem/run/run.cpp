@@ -76,14 +76,14 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
   // through the cell's faces are missed (a strain rate of 1e12 /s inverted
   // the cell in one step, reported as a width of -nan).
   const CellControl& control = w.settings.cell_control;
-  if (std::isfinite(smallest) && control.deforms() && w.cell.active()) {
+  if (std::isfinite(smallest) && control.deforms() && w.cell.now.active()) {
     Real rate = 0, period = 0;
     for (int k = 0; k < 6; ++k) {
       if (control.mode[k] == CellMode::StrainRate) rate = std::fmax(rate, std::fabs(control.value[k]));
       if (control.mode[k] == CellMode::Stress) rate = std::fmax(rate, control.max_strain_rate);
     }
     for (int a = 0; a < 3; ++a)
-      if (w.cell.axes[a]) period = std::fmax(period, cell_width(w.cell, a));
+      if (w.cell.now.axes[a]) period = std::fmax(period, cell_width(w.cell.now, a));
     const Real travel = rate * period * state.dt;
     if (travel > g.max_travel * smallest)
       return "the periodic cell's strain rate " + number_text(rate) + " 1/s moves the images " +
@@ -187,7 +187,7 @@ std::string describe_failure(const World& w, const StepReport& r) {
     case StepStatus::CellTooShort: {
       const int a = static_cast<int>(r.id_a);
       return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +
-             number_text(cell_width(w.cell, a)) + " m at t = " + number_text(w.time) +
+             number_text(cell_width(w.cell.now, a)) + " m at t = " + number_text(w.time) +
              " s, no longer above four times the largest body's reach (" + number_text(r.shortest) +
              " m): start from a larger cell, or compress it less";
     }

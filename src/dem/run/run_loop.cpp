@@ -209,21 +209,21 @@ RunOutcome run_domains(World& whole, RunState& state, std::span<RunObserver* con
   if (rank.split())
     for (const DomainCoupling& c : domain_couplings())
       if (c.needed(whole)) couplings.push_back(&c);
-  std::function<std::uint64_t(CouplingPoint, std::string&, bool, Real)> couple =
-      [&](CouplingPoint point, std::string& failed, bool ends_step, Real work_before) {
-        if (couplings.empty()) return kNoneInserted;
-        CouplingContext c{.world = stepped, .role = *ctx.domain, .layout = rank.layout(), .transport = t,
-                          .step = ctx, .failed = failed, .ends_step = ends_step, .work_before = work_before,
-                          .first_inserted = kNoneInserted, .evaluate_again = {}};
-        c.evaluate_again = [&] {
-          rank.exchange();
-          if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
-          couple(CouplingPoint::AfterEvaluation, failed, false, stepped.wall_work);
-        };
-        for (const DomainCoupling* k : couplings)
-          if (k->point == point) k->run(c);
-        return c.first_inserted;
-      };
+  std::function<std::uint64_t(CouplingPoint, std::string&, bool, Real)> couple;
+  const std::function<void(std::string&)> evaluate_again = [&](std::string& failed) {
+    rank.exchange();
+    if (failed.empty()) failed = failure_of(stepped, [&] { return compute_forces_now(stepped, ctx.domain); });
+    couple(CouplingPoint::AfterEvaluation, failed, false, stepped.wall_work);
+  };
+  couple = [&](CouplingPoint point, std::string& failed, bool ends_step, Real work_before) {
+    if (couplings.empty()) return kNoneInserted;
+    CouplingContext c{.world = stepped, .role = *ctx.domain, .layout = rank.layout(), .transport = t,
+                      .step = ctx, .failed = failed, .ends_step = ends_step, .work_before = work_before,
+                      .first_inserted = kNoneInserted, .evaluate_again = &evaluate_again};
+    for (const DomainCoupling* k : couplings)
+      if (k->point == point) k->run(c);
+    return c.first_inserted;
+  };
   // The step listeners due before the forces at the end of step `step`
   // (0: the start), on each rank's own bodies before the exchange hands
   // them to the others as ghosts; a listener's exception as a message.

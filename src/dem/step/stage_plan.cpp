@@ -55,7 +55,7 @@ StepReport make_boxes(ForceEvaluation& e) {
     }
   }
   e.box_updates = update_boxes(w.bodies, w.templates, w.settings.box_skin, w.search.boxes, e.threads,
-                               cell_drift(w.cell, w.search.cell));
+                               cell_drift(w.cell.now, w.search.cell));
   if (e.box_updates > 0) w.search.renew_cell = true;
   return {};
 }
@@ -63,8 +63,8 @@ StepReport make_boxes(ForceEvaluation& e) {
 StepReport find_candidates(ForceEvaluation& e) {
   World& w = e.world;
   if (e.box_updates > 0 || !w.work.static_ready || !w.work.candidates_current) {
-    if (w.cell.active() && w.search.renew_cell) w.search.cell = w.cell, w.search.renew_cell = false;
-    detail::find_candidates(w.bodies, w.search.boxes.boxes, w.cell.active() ? &w.search.cell : nullptr,
+    if (w.cell.now.active() && w.search.renew_cell) w.search.cell = w.cell.now, w.search.renew_cell = false;
+    detail::find_candidates(w.bodies, w.search.boxes.boxes, w.cell.now.active() ? &w.search.cell : nullptr,
                             !w.driven.empty(), e.threads, w.work);
   }
   return {};
@@ -72,14 +72,14 @@ StepReport find_candidates(ForceEvaluation& e) {
 
 StepReport list_contacts(ForceEvaluation& e) {
   World& w = e.world;
-  detail::list_contacts(w.bodies, w.templates, w.planes, w.search.boxes.boxes, w.cell, e.domain, w.work, w.results);
+  detail::list_contacts(w.bodies, w.templates, w.planes, w.search.boxes.boxes, w.cell.now, e.domain, w.work, w.results);
   return {};
 }
 
 StepReport surface_patches(ForceEvaluation& e) {
   World& w = e.world;
   if (w.work.kinds.surface_grains)
-    detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell, w.settings.model, w.pairs, e.threads,
+    detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell.now, w.settings.model, w.pairs, e.threads,
                                     w.results, w.work);
   return {};
 }
@@ -110,7 +110,7 @@ StepReport narrow_phase(ForceEvaluation& e) {
     }
     const Body& b = w.bodies[c.b];
     PartPose pb = part_pose(w.templates[b.shape], b, c.part_b);
-    pb.pose.translation += image_shift_of(w.cell, c);
+    pb.pose.translation += image_shift_of(w.cell.now, c);
     if (c.a_is_plane) {
       c.geometry = plane_contact(w.planes[c.a], *pb.shape, pb.pose, model);
     } else {
@@ -141,7 +141,7 @@ StepReport geometry_checks(ForceEvaluation& e) {
 StepReport wall_crossing(ForceEvaluation& e) {
   const World& w = e.world;
   if (!w.work.kinds.wall_faces) return {};
-  return detail::find_wall_crossing(w.bodies, w.templates, w.results.motion_frames, w.cell, w.results.contacts, e.dt);
+  return detail::find_wall_crossing(w.bodies, w.templates, w.results.motion_frames, w.cell.now, w.results.contacts, e.dt);
 }
 
 StepReport merge_walls(ForceEvaluation& e) {
@@ -154,7 +154,7 @@ StepReport contact_laws(ForceEvaluation& e) {
   World& w = e.world;
   std::vector<StepContact>& contacts = w.results.contacts;
   const std::int64_t m = static_cast<std::int64_t>(contacts.size());
-  const detail::SideSources sources{{w.templates, w.materials}, w.results.motion_frames, w.cell_rate};
+  const detail::SideSources sources{{w.templates, w.materials}, w.results.motion_frames, w.cell.rate};
 #pragma omp parallel for num_threads(e.threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
@@ -165,7 +165,7 @@ StepReport contact_laws(ForceEvaluation& e) {
     const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
     const ContactForce f =
         contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                      detail::side_of(sources, b, c.part_b, image_shift_of(w.cell, c)), w.pairs[k].history,
+                      detail::side_of(sources, b, c.part_b, image_shift_of(w.cell.now, c)), w.pairs[k].history,
                       w.settings, e.dt);
     c.force = f.force;
     c.torque = f.torque;
@@ -177,8 +177,8 @@ StepReport contact_laws(ForceEvaluation& e) {
 
 StepReport sum_forces(ForceEvaluation& e) {
   World& w = e.world;
-  w.stats = detail::sum_forces(w.results.contacts, w.bodies, w.pairs, w.planes, w.results.motion_frames, w.cell,
-                               w.cell_rate, w.cell_stress);
+  w.stats = detail::sum_forces(w.results.contacts, w.bodies, w.pairs, w.planes, w.results.motion_frames, w.cell.now,
+                               w.cell.rate, w.cell.stress);
   w.stats.box_updates = static_cast<int>(e.box_updates);
   return {};
 }

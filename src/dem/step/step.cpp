@@ -59,18 +59,18 @@ StepReport begin_step(World& w, StepContext& ctx) {
   const CellBodies moved{w.bodies, &makeup, ctx.domain, &w.wall_work};
   kick(w.bodies, makeup, dt / 2, threads, w.applied_loads);
   const bool deforming = w.settings.cell_control.deforms();
-  if (deforming) control_cell(w.settings.cell_control, w.cell_stress, w.cell, w.cell_rate, moved);
+  if (deforming) control_cell(w.settings.cell_control, w.cell.stress, w.cell.now, w.cell.rate, moved);
   drift(w.bodies, makeup, dt, threads);
   if (deforming) {
-    if (deform_cell(w.cell, w.cell_rate, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
+    if (deform_cell(w.cell.now, w.cell.rate, dt)) w.work.candidates_current = false, w.search.renew_cell = true;  // images renamed
     const Real shortest = shortest_period(w, ctx.domain);
     for (int a = 0; a < 3; ++a)
-      if (w.cell.axes[a] && !(cell_width(w.cell, a) > shortest)) {
+      if (w.cell.now.axes[a] && !(cell_width(w.cell.now, a) > shortest)) {
         w.forces_current = false;
         return {StepStatus::CellTooShort, static_cast<std::uint64_t>(a), 0, shortest};
       }
   }
-  if (w.cell.active() && wrap_bodies(w.cell, w.cell_rate, w.search.boxes, moved) > 0) w.work.candidates_current = false, w.search.renew_cell = true;
+  if (w.cell.now.active() && wrap_bodies(w.cell.now, w.cell.rate, w.search.boxes, moved) > 0) w.work.candidates_current = false, w.search.renew_cell = true;
   ctx.power_before = w.stats.wall_power;
   w.time += dt;
   ctx.kicked_bodies = w.bodies.size();
