@@ -128,4 +128,27 @@ std::optional<dem::RoundRegion> region_arg(const char* who, const py::object& lo
                           .radius = c["radius"].cast<double>()};
 }
 
+TriangleArrays triangles_from_arrays(const py::handle& vertices, const py::handle& triangles) {
+  const auto v = to_matrix(vertices, 3, "vertices");
+  const auto t = to_matrix(triangles, 3, "triangles");
+  std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    const double* row = v.data(i, 0);
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(row[k])) fail("vertices[" + std::to_string(i) + "]", "must be finite numbers");
+    points[static_cast<std::size_t>(i)] = {row[0], row[1], row[2]};
+  }
+  std::vector<std::array<std::uint32_t, 3>> corners(static_cast<std::size_t>(t.shape(0)));
+  for (py::ssize_t i = 0; i < t.shape(0); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = *t.data(i, k);
+      if (!(x >= 0 && x < static_cast<double>(points.size()) && x == std::floor(x)))
+        fail("triangles[" + std::to_string(i) + "]",
+             "must hold indices of vertices (integers from 0 to " + std::to_string(points.size()) + " - 1)");
+      corners[static_cast<std::size_t>(i)][k] = static_cast<std::uint32_t>(x);
+    }
+  return {std::move(points), std::move(corners)};
+}
+
+
 }  // namespace gjkdem::py_bind

@@ -6,6 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,5 +64,15 @@ py::array_t<double, py::array::c_style | py::array::forcecast> to_matrix(const p
                                                                           const std::string& what);
 
 py::array_t<double> from_vec3(const Vec3& v);
+
+/// Vertices (N, 3), finite, and triangles (M, 3) of indices into them: whole
+/// numbers from 0 to N - 1 (a float index is refused, not truncated), as
+/// every binding taking a triangle mesh reads them (surfaces, shells, mesh
+/// walls); the one index rule (triangle_index_problem) is the library's.
+struct TriangleArrays {
+  std::vector<Vec3> points;
+  std::vector<std::array<std::uint32_t, 3>> corners;
+};
+TriangleArrays triangles_from_arrays(const py::handle& vertices, const py::handle& triangles);
 
 }  // namespace gjkdem::py_bind

@@ -11,35 +11,8 @@
 namespace gjkdem::py_bind {
 namespace {
 
-// Vertices (N, 3) and triangles (M, 3) of indices into them, checked.
-struct Triangles {
-  std::vector<Vec3> points;
-  std::vector<TriangleIndices> corners;
-};
-Triangles triangles_from_arrays(const py::handle& vertices, const py::handle& triangles) {
-  const auto v = to_matrix(vertices, 3, "vertices");
-  const auto t = to_matrix(triangles, 3, "triangles");
-  std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
-  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
-    const double* row = v.data(i, 0);
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(row[k])) fail("vertices[" + std::to_string(i) + "]", "must be finite numbers");
-    points[static_cast<std::size_t>(i)] = {row[0], row[1], row[2]};
-  }
-  std::vector<TriangleIndices> corners(static_cast<std::size_t>(t.shape(0)));
-  for (py::ssize_t i = 0; i < t.shape(0); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const double x = *t.data(i, k);
-      if (!(x >= 0 && x < static_cast<double>(points.size()) && x == std::floor(x)))
-        fail("triangles[" + std::to_string(i) + "]",
-             "must hold indices of vertices (integers from 0 to " + std::to_string(points.size()) + " - 1)");
-      corners[static_cast<std::size_t>(i)][k] = static_cast<std::uint32_t>(x);
-    }
-  return {std::move(points), std::move(corners)};
-}
-
 std::shared_ptr<const Surface> surface_from_arrays(const py::handle& vertices, const py::handle& triangles) {
-  Triangles t = triangles_from_arrays(vertices, triangles);
+  TriangleArrays t = triangles_from_arrays(vertices, triangles);
   try {
     py::gil_scoped_release unlocked;  // the self-intersection check can take a while on big surfaces
     return std::make_shared<const Surface>(make_surface(std::move(t.points), std::move(t.corners)));
@@ -82,7 +55,7 @@ void bind_surfaces(py::module_& m) {
                                             "(M, 3)), with a thickness (m): a body of its own under the Hertz and "
                                             "linear laws (docs/scenes.md, type = \"shell\").")
       .def(py::init([](const py::handle& vertices, const py::handle& triangles, double thickness) {
-             Triangles t = triangles_from_arrays(vertices, triangles);
+             TriangleArrays t = triangles_from_arrays(vertices, triangles);
              try {
                return std::make_shared<Shell>(make_shell(std::move(t.points), std::move(t.corners), thickness));
              } catch (const ShellError& e) {

@@ -455,22 +455,9 @@ void bind_world(py::module_& m) {
           "add_mesh_walls",
           [](dem::WorldBuilder& b, const py::object& vertices, const py::object& triangles, double thickness,
              const py::object& material, std::uint32_t motion, const std::string& label) {
-            const auto v = to_matrix(vertices, 3, "vertices");
-            const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(triangles);
-            if (!t || t.ndim() != 2 || t.shape(1) != 3) fail("triangles", "expected an (M, 3) array of vertex indices");
-            std::vector<Vec3> points(static_cast<std::size_t>(v.shape(0)));
-            for (std::size_t k = 0; k < points.size(); ++k) points[k] = {v.at(k, 0), v.at(k, 1), v.at(k, 2)};
-            std::vector<std::array<std::uint32_t, 3>> tris(static_cast<std::size_t>(t.shape(0)));
-            for (std::size_t k = 0; k < tris.size(); ++k)
-              for (int c = 0; c < 3; ++c) {
-                const std::int64_t i = t.at(k, c);
-                if (i < 0 || i >= v.shape(0))
-                  fail("triangles", "row " + std::to_string(k) + ": vertex index " + std::to_string(i) +
-                                        " out of range [0, " + std::to_string(v.shape(0)) + ")");
-                tris[k][c] = static_cast<std::uint32_t>(i);
-              }
-            b.add_mesh_walls(points, tris, thickness, material_index(b, material), label.empty() ? "mesh" : label,
-                             motion);
+            TriangleArrays mesh = triangles_from_arrays(vertices, triangles);
+            b.add_mesh_walls(mesh.points, mesh.corners, thickness, material_index(b, material),
+                             label.empty() ? "mesh" : label, motion);
           },
           py::arg("vertices"), py::arg("triangles"), py::arg("thickness"), py::arg("material"),
           py::arg("motion") = 0, py::arg("label") = "",

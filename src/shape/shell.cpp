@@ -14,10 +14,8 @@ Shell make_shell(std::vector<Vec3> vertices, std::vector<TriangleIndices> triang
   s.margin = thickness / 2;
   const Vec3 grow{s.margin, s.margin, s.margin};
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (const std::uint32_t v : triangles[t])
-      if (v >= vertices.size())
-        throw ShellError("triangle " + std::to_string(t) + " names vertex " + std::to_string(v) + " of " +
-                         std::to_string(vertices.size()));
+    if (const std::string why = triangle_index_problem(triangles[t], vertices.size()); !why.empty())
+      throw ShellError("triangle " + std::to_string(t) + " " + why);
     const Vec3 &a = vertices[triangles[t][0]], &b = vertices[triangles[t][1]], &c = vertices[triangles[t][2]];
     const Real area = 0.5 * length(cross(b - a, c - a));
     if (!(area > 0)) throw ShellError("triangle " + std::to_string(t) + " has no area");

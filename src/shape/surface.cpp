@@ -11,6 +11,16 @@
 #include "gjkdem/shape/predicates.hpp"
 
 namespace gjkdem {
+
+std::string triangle_index_problem(const TriangleIndices& corners, std::size_t vertex_count) {
+  for (const std::uint32_t i : corners)
+    if (i >= vertex_count)
+      return "refers to vertex " + std::to_string(i) + " but there are " + std::to_string(vertex_count) + " vertices";
+  if (repeats_a_vertex(corners))
+    return "repeats a vertex (" + std::to_string(corners[0]) + ", " + std::to_string(corners[1]) + ", " +
+           std::to_string(corners[2]) + ")";
+  return "";
+}
 namespace {
 
 std::string edge_name(std::uint32_t i, std::uint32_t j) {
@@ -163,14 +173,9 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
   std::vector<std::uint8_t> used(nv, 0);
   for (std::size_t t = 0; t < nt; ++t) {
     const TriangleIndices& tri = s.triangles[t];
-    for (const std::uint32_t i : tri) {
-      if (i >= nv)
-        throw SurfaceError("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(i) + " but there are " +
-                           std::to_string(nv) + " vertices");
-      used[i] = 1;
-    }
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
-      throw SurfaceError("triangle " + std::to_string(t) + " repeats a vertex");
+    if (const std::string why = triangle_index_problem(tri, nv); !why.empty())
+      throw SurfaceError("triangle " + std::to_string(t) + " " + why);
+    for (const std::uint32_t i : tri) used[i] = 1;
     const Vec3 &a = s.vertices[tri[0]], &b = s.vertices[tri[1]], &c = s.vertices[tri[2]];
     if (orient2d(a, b, c, 0) == 0 && orient2d(a, b, c, 1) == 0 && orient2d(a, b, c, 2) == 0)
       throw SurfaceError("triangle " + std::to_string(t) + " has no area (its corners are collinear)");

@@ -74,7 +74,7 @@ TEST(Shell, APlateIsTheBoxItIsAndATrayTheUnionOfItsPlates) {
     }
   };
   refused({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}}, t, "triangle 0 has no area");
-  refused({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 3}}, t, "triangle 0 names vertex 3 of 3");
+  refused({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 3}}, t, "triangle 0 refers to vertex 3 but there are 3 vertices");
   refused({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}, 0, "thickness must be > 0");
   refused({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, t, "at least one triangle");
   refused({{0, 0, 0}, {1, 0, std::nan("")}, {0, 1, 0}}, {{0, 1, 2}}, t, "vertex 1 is not finite");

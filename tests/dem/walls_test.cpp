@@ -53,5 +53,28 @@ TEST(Walls, MeshTrianglesActAsOneContactLikeAPlane) {
   EXPECT_NEAR(z_mesh, z_plane, 0.01 * depth);
 }
 
+// A mesh wall's triangles pass the one index rule of every mesh
+// (triangle_index_problem): an index out of range or a vertex named twice
+// is refused naming the triangle; a triangle of three distinct collinear
+// corners holds nothing and is left out.
+TEST(Walls, MeshTrianglesAreCheckedByTheOneIndexRule) {
+  const Vec3 c[4] = {{-0.05, -0.05, 0}, {0.05, -0.05, 0}, {0.05, 0.05, 0}, {0, 0, 0}};
+  const auto refusal = [&](std::array<std::uint32_t, 3> bad) -> std::string {
+    WorldBuilder b;
+    const std::uint32_t m = b.add_material({"rubber", 1000, 1e7, 0.3, 0.2, 0.5});
+    const std::array<std::uint32_t, 3> tris[2] = {{0, 1, 2}, bad};
+    try {
+      b.add_mesh_walls(c, tris, 2 * kRho, m, "square");
+    } catch (const BuildError& e) {
+      return e.what();
+    }
+    return "(accepted, " + std::to_string(b.build().bodies.size()) + " pieces)";
+  };
+  EXPECT_EQ(refusal({0, 2, 4}), "square: triangle 1 refers to vertex 4 but there are 4 vertices");
+  EXPECT_EQ(refusal({0, 0, 0}), "square: triangle 1 repeats a vertex (0, 0, 0)");
+  EXPECT_EQ(refusal({2, 1, 2}), "square: triangle 1 repeats a vertex (2, 1, 2)");
+  EXPECT_EQ(refusal({0, 3, 2}), "(accepted, 1 pieces)") << "collinear corners: no piece";
+}
+
 }  // namespace
 }  // namespace gjkdem::dem

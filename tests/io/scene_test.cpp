@@ -269,6 +269,28 @@ TEST(Scene, MeshScaledBeyondDoublesIsRefused) {
   std::filesystem::remove(obj);
 }
 
+// A mesh wall's STL facet whose corners weld into one vertex twice (a CAD
+// sliver) holds nothing: it is left out, and the scene says so; the others
+// are the wall's pieces.
+TEST(Scene, MeshWallFacetsWithoutAreaAreLeftOutAndSaid) {
+  const std::filesystem::path stl = std::filesystem::temp_directory_path() / "gjkdem_scene_test_sliver.stl";
+  const auto facet = [](const char* a, const char* b, const char* c) {
+    return std::string("facet normal 0 0 1\nouter loop\nvertex ") + a + "\nvertex " + b + "\nvertex " + c +
+           "\nendloop\nendfacet\n";
+  };
+  std::ofstream(stl) << "solid floor\n" + facet("-1 -1 0", "1 -1 0", "1 1 0") + facet("-1 -1 0", "1 1 0", "-1 1 0") +
+                            facet("1 1 0", "1 1 0", "-1 1 0") + "endsolid floor\n";
+  const Scene s = load_scene(kHead + kCube + "[[wall]]\ntype = \"mesh\"\nfile = \"" + stl.string() +
+                                 "\"\nthickness = 0.002\nmaterial = \"rock\"\n",
+                             "sliver.toml", ".");
+  std::size_t pieces = 0;
+  for (const dem::Body& b : s.world.bodies) pieces += b.fixed;
+  EXPECT_EQ(pieces, 2u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], "wall[0]: 1 triangles of gjkdem_scene_test_sliver.stl name a vertex twice (no area): left out");
+  std::filesystem::remove(stl);
+}
+
 // A generator's region drawn past the side of a closed mesh (a box region in
 // a drum) puts bodies outside it, which fall away for the whole run: the
 // scene says how many. Inside, or around a closed obstacle, it says nothing.

@@ -238,8 +238,14 @@ def test_a_ball_rests_on_a_mesh_wall_as_on_a_plane():
     assert on_mesh == pytest.approx(on_plane, abs=1e-9)
     b = gjkdem.WorldBuilder()
     b.add_material("m", 2500, 1e7)
-    with pytest.raises(ValueError, match="row 1: vertex index 4 out of range"):
-        b.add_mesh_walls(square, [[0, 1, 2], [0, 2, 4]], 0.002, "m")
+    # The indices are read as gjkdem.Surface reads them, and checked by the
+    # library's one rule: out of range, a fraction (not truncated), a
+    # vertex named twice.
+    for triangles, why in [([[0, 1, 2], [0, 2, 4]], r"triangles\[1\]: must hold indices of vertices"),
+                           ([[0, 1, 2], [0, 2, 2.5]], r"triangles\[1\]: must hold indices of vertices"),
+                           ([[0, 1, 2], [0, 0, 0]], r"mesh: triangle 1 repeats a vertex \(0, 0, 0\)")]:
+        with pytest.raises(ValueError, match=why):
+            b.add_mesh_walls(square, triangles, 0.002, "m")
 
 
 def test_a_belt_carries_a_grain_and_its_work_is_counted():

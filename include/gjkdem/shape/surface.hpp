@@ -14,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gjkdem/math/transform.hpp"
@@ -26,6 +27,16 @@
 namespace gjkdem {
 
 using TriangleIndices = std::array<std::uint32_t, 3>;
+
+/// What is wrong with a triangle's corners as indices into `vertex_count`
+/// vertices: one out of range, or a vertex named twice; "" when nothing is.
+/// The one index rule of every triangle mesh taken (surfaces, shells, mesh
+/// walls); callers put "triangle N " before it.
+std::string triangle_index_problem(const TriangleIndices& corners, std::size_t vertex_count);
+/// Whether a triangle names one vertex twice (so it has no area).
+constexpr bool repeats_a_vertex(const TriangleIndices& c) noexcept {
+  return c[0] == c[1] || c[1] == c[2] || c[2] == c[0];
+}
 
 struct Surface {
   std::vector<Vec3> vertices;

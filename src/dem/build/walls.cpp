@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "gjkdem/shape/polytope.hpp"
+#include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::dem {
 
@@ -68,9 +69,9 @@ void WorldBuilder::add_mesh_walls(std::span<const Vec3> vertices,
   const std::uint32_t group = ++groups_;
   std::size_t index = 0;
   for (const auto& tri : triangles) {
-    const std::string piece = label + " (triangle " + std::to_string(index++) + ")";
-    for (std::uint32_t v : tri)
-      if (v >= vertices.size()) throw BuildError(piece + ": vertex index out of range");
+    const std::string triangle = "triangle " + std::to_string(index++), piece = label + " (" + triangle + ")";
+    if (const std::string why = triangle_index_problem(tri, vertices.size()); !why.empty())
+      throw BuildError(label + ": " + triangle + " " + why);
     const Vec3 a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
     const Vec3 n3 = cross(b - a, c - a);
     if (!(length(n3) > 0)) continue;  // degenerate triangles hold nothing

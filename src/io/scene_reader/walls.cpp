@@ -61,6 +61,13 @@ void SceneReader::read_wall(TableReader& r) {
       r.fail("file", e.what());
     }
     scale_mesh(r, mesh, scale, Transform::from(position, rotation));
+    // An STL facet whose corners weld into fewer than three vertices has no
+    // area and holds nothing (CAD files have such slivers): left out, said.
+    const std::size_t facets = mesh.triangles.size();
+    std::erase_if(mesh.triangles, repeats_a_vertex);
+    if (mesh.triangles.size() < facets)
+      scene_.warnings.push_back(r.where() + ": " + std::to_string(facets - mesh.triangles.size()) + " triangles of " +
+                                file.filename().string() + " name a vertex twice (no area): left out");
     Vec3 lo{1e300, 1e300, 1e300}, hi = -lo;
     for (const Vec3& v : mesh.vertices) lo = min(lo, v), hi = max(hi, v);
     const Real thick = r.positive("thickness", 0.01 * length(hi - lo));
