@@ -49,6 +49,20 @@ if [ -w /dev/full ]; then
   [ "$rc" -eq 2 ] && grep -q "cannot write the results" full.err || fail "/dev/full: exit $rc: $(cat full.err)"
 fi
 
+# 3b. A line longer than the 64 MiB limit is refused unread, in bounded
+# memory (under a 1 GB cap: parsing it would take about 1.3 GB), and the
+# next line is answered. An answer that is not finite names its line too
+# (tests/io/query_jsonl_test.cpp), as every refusal does.
+python3 -c "import sys; sys.stdout.write('{\"id\": 1, \"a\": [' + '0,' * (33 << 20) + '0]}\n')" > long.jsonl
+echo "$good" >> long.jsonl
+set +e
+(ulimit -v 1000000; "$gjkdem" query --in long.jsonl > long.out 2> long.err)
+rc=$?
+set -e
+[ "$rc" -eq 1 ] || fail "long line: exit $rc, expected 1: $(cat long.err)"
+grep -q '"error":"line 1: longer than 64 MiB' long.out || fail "long line: $(head -c 300 long.out)"
+grep -q '"id":"ok","intersect":false' long.out || fail "long line: the next line was lost"
+
 # 4. Bad options exit 2, as documented.
 expect2() {
   set +e

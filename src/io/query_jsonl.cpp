@@ -18,6 +18,12 @@ using Json = nlohmann::json;
 
 [[noreturn]] void fail(const std::string& msg) { throw QueryFormatError(msg); }
 
+// Never write nan or inf (not JSON): the caller makes such an answer an
+// error line, naming its input line.
+[[noreturn]] void refuse_not_finite() {
+  throw std::range_error("the answer is not finite (the pair is beyond what double precision resolves)");
+}
+
 // Lengths and coordinates beyond this cannot be answered in double precision
 // (squared distances overflow near 1e154): such lines are refused.
 // Deeper JSON is refused before parsing (the parser recurses per level).
@@ -309,11 +315,10 @@ PairInput parse_pair(std::string_view line, std::string& id_json) {
 }
 
 std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& o) {
-  // Never write nan or inf (not JSON): such an answer is an error line.
   const bool finite = std::isfinite(r.distance) && std::isfinite(r.depth) && is_finite(r.witness_a) &&
                       is_finite(r.witness_b) && is_finite(r.normal) && (!o.computed || std::isfinite(o.volume)) &&
                       (!o.has_centroid || is_finite(o.centroid)) && (!o.has_normal || is_finite(o.contact_normal));
-  if (!finite) return format_error(id_json, "the answer is not finite (the pair is beyond what double precision resolves)");
+  if (!finite) refuse_not_finite();
   std::string s;
   s.reserve(400);
   s += "{\"id\":" + id_json + ",\"intersect\":" + (r.intersect ? "true" : "false") + ",\"distance\":";
@@ -344,7 +349,7 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
                       (!d || (std::isfinite(d->distance) && is_finite(d->witness_a) && is_finite(d->witness_b)));
   for (const SurfacePatch& p : o.patches)
     finite = finite && std::isfinite(p.volume) && is_finite(p.centroid) && is_finite(p.area_a) && is_finite(p.area_b);
-  if (!finite) return format_error(id_json, "the answer is not finite (the pair is beyond what double precision resolves)");
+  if (!finite) refuse_not_finite();
   std::string s;
   s.reserve(400);
   s += "{\"id\":" + id_json + ",\"intersect\":" + (o.intersect ? "true" : "false") + ",\"distance\":";

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
 namespace gjkdem::io {
 namespace {
 
@@ -99,6 +103,27 @@ TEST(QueryJsonl, ResultAndErrorLinesAreJson) {
   EXPECT_TRUE(is_skipped_line("  # comment"));
   EXPECT_TRUE(is_skipped_line("   "));
   EXPECT_FALSE(is_skipped_line(" {}"));
+}
+
+// An answer that is not finite is thrown, never written: the line loop turns
+// it into an error line naming the input line, as every other refusal.
+TEST(QueryJsonl, AnAnswerThatIsNotFiniteIsThrownForTheLineLoop) {
+  PenetrationResult r;
+  r.distance = std::numeric_limits<Real>::infinity();
+  EXPECT_THROW(format_result("1", r), std::range_error);
+  PenetrationResult fine;
+  OverlapFields f;
+  f.computed = true;
+  f.volume = std::nan("");
+  EXPECT_THROW(format_result("1", fine, f), std::range_error);
+  SurfaceOverlap o;
+  o.intersect = true;
+  o.volume = 1;
+  o.patches.push_back({});
+  o.patches[0].volume = std::numeric_limits<Real>::infinity();
+  EXPECT_THROW(format_surface_result("1", o, nullptr), std::range_error);
+  o.patches[0].volume = 1;
+  EXPECT_NO_THROW(format_surface_result("1", o, nullptr));
 }
 
 }  // namespace

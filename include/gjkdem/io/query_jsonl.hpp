@@ -3,6 +3,7 @@
 // one JSON object per line in, one per line out. This is an I/O boundary: it
 // validates everything and throws QueryFormatError with a message that names
 // the field at fault; the CLI adds the line number.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -43,6 +44,11 @@ PairInput parse_pair(std::string_view line, std::string& id_json);
 /// reader of the format: the text, and Python's lists and dicts).
 inline constexpr int kMaxJsonDepth = 64;
 
+/// A query line longer than this (bytes) is refused unread: parsing costs
+/// about 20 times a line's size in memory, and this still holds a mesh of a
+/// million triangles (about 55 MB written with full precision).
+inline constexpr std::size_t kMaxLineBytes = std::size_t{64} << 20;
+
 /// Where a SHAPE object's coordinates are: in the world (the query format:
 /// every shape placed by its fields), or in its own frame (scenes and
 /// Python), where a shape placed by a "center" is centred on the origin
@@ -64,12 +70,15 @@ struct OverlapFields {
   Vec3 contact_normal;
 };
 
-/// One result line (no trailing newline).
+/// One result line (no trailing newline). An answer that is not finite
+/// throws std::range_error (JSON has no nan or inf): the caller writes an
+/// error line for it.
 std::string format_result(const std::string& id_json, const PenetrationResult& r, const OverlapFields& overlap = {});
 
 /// One result line of a pair of meshes: `distance` of separated solids
 /// (null when they intersect), the overlap otherwise. Depth and normal are
-/// null (not defined for meshes in this version).
+/// null (not defined for meshes in this version). Throws std::range_error
+/// as format_result does.
 std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& overlap,
                                   const SurfaceDistance* distance);
 
