@@ -132,6 +132,10 @@ inline constexpr Real kPatchMatchRel = 0.25;
 /// measured for an icosahedron inside another). The run stops naming the
 /// pair. A real contact's |S_A| is at least of the order of V^(2/3).
 inline constexpr Real kEngulfedAreaRel = 1e-6;
+/// Such a piece is the smaller solid wholly inside the other when its volume
+/// is that solid's within this (relative); a smaller piece is one solid
+/// passed through the other.
+inline constexpr Real kWhollyInsideVolumeRel = 1e-6;
 
 /// Surface overlaps: an edge of the other surface is tested exactly for
 /// lying along an edge's line only when the squared sines of its ends'
@@ -196,6 +200,11 @@ inline constexpr Real kMassFractionSumTol = 1e-6;
 /// magnitude (m) are refused by every reader (queries, scenes): squares of
 /// such numbers, and their differences, stay finite and resolvable.
 inline constexpr Real kMaxCoordinate = 1e100;
+/// A closed surface whose volume is at most this fraction of the sum over
+/// its triangles of |a - o| |b - o| |c - o| (o its first vertex) encloses no
+/// volume double precision resolves (flat, or thinner than about 1e-12 of
+/// its size): refused, as its volume's sign is round-off.
+inline constexpr Real kFlatSurfaceRel = 1e-12;
 /// The smallest mesh a scale may leave (its largest |coordinate|, m): below
 /// it the vertices' differences underflow and the mesh reads as flat.
 inline constexpr Real kMinMeshSize = 1e-100;

@@ -25,6 +25,7 @@
 #include "gjkdem/io/checkpoint.hpp"
 #include "gjkdem/io/run_observers.hpp"
 #include "gjkdem/io/scene_run.hpp"
+#include "gjkdem/tolerances.hpp"
 #include "py_run.hpp"
 
 namespace gjkdem::py_bind {
@@ -640,6 +641,8 @@ void bind_world(py::module_& m) {
             for (std::size_t k = 0; k < idx.size(); ++k) {
               const Vec3 p{v.at(k, 0), v.at(k, 1), v.at(k, 2)};
               if (!is_finite(p)) fail("positions", "row " + std::to_string(k) + " is not finite");
+              if (!(max_abs(p) <= kMaxCoordinate))  // as add_body refuses it
+                fail("positions", "row " + std::to_string(k) + " is outside the supported range [-1e100, 1e100] m");
               if (w.bodies[idx[k]].fixed) fail("positions", "body " + std::to_string(idx[k]) + " is fixed");
             }
             for (std::size_t k = 0; k < idx.size(); ++k) w.bodies[idx[k]].position = {v.at(k, 0), v.at(k, 1), v.at(k, 2)};

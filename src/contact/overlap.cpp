@@ -503,8 +503,8 @@ std::shared_ptr<const Surface> big_hull_surface(const Shape& s) {
 
 // The overlap of two big hulls as the overlap of their surfaces: the same
 // region, found exactly, in the clip's terms. Its normal is S_A - S_B, and
-// it has one unless one hull lies within the other: a contact area below
-// kEngulfedAreaRel V^(2/3), the surface grains' rule.
+// it has one unless one hull lies within the other (has_contact_area, the
+// surface grains' rule).
 OverlapResult overlap_of_surfaces(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                                   const std::shared_ptr<const Surface>& b, const Transform& pose_b,
                                   OverlapWorkspace& w) {
@@ -519,7 +519,7 @@ OverlapResult overlap_of_surfaces(const std::shared_ptr<const Surface>& a, const
   r.area_b = apply_rotation(frame, o.area_b);
   r.contact_area = length(r.area_a);
   r.moment_a = apply_rotation(frame, o.area_moment_a) + cross(frame.translation, r.area_a);
-  r.has_normal = r.contact_area > kEngulfedAreaRel * std::cbrt(r.volume * r.volume);
+  r.has_normal = has_contact_area(r.contact_area, r.volume);
   if (r.has_normal) {
     r.contact_normal = normalized(r.area_a - r.area_b);
     r.application_point = cross(r.area_a, r.moment_a) / dot(r.area_a, r.area_a);

@@ -480,9 +480,14 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
       if (Sums* sum = piece_at(triangles_a + t, middle)) sum->area_b -= area / length(nb) * nb;
   }
 
-  // Pieces without volume (the slivers of faces that only touch) are no patches.
+  // Pieces without volume (the slivers of faces that only touch) are no
+  // patches, and count in no total: the totals are the patches'.
+  const Real smallest = kPatchMinRelVolume * std::fmin(a.volume, b.volume);
+  const auto kept = [&](std::uint32_t root) { return joined.find(root) == root && pieces[root].volume6 / 6 > smallest; };
   Sums total;
-  for (const Sums& sum : pieces) {
+  for (std::uint32_t root = 0; root < pieces.size(); ++root) {
+    if (!kept(root)) continue;
+    const Sums& sum = pieces[root];
     total.volume6 += sum.volume6;
     total.moment24 += sum.moment24;
     total.area_a += sum.area_a;
@@ -504,10 +509,9 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     out.intersect = triangles_meet(a.vertices[ts[0]], a.vertices[ts[1]], a.vertices[ts[2]], b.vertices[tt[0]],
                                    b.vertices[tt[1]], b.vertices[tt[2]]);
   }
-  const Real smallest = kPatchMinRelVolume * std::fmin(a.volume, b.volume);
   for (std::uint32_t root = 0; root < pieces.size(); ++root) {
+    if (!kept(root)) continue;
     const Sums& sum = pieces[root];
-    if (joined.find(root) != root || !(sum.volume6 / 6 > smallest)) continue;
     SurfacePatch patch;
     patch.volume = sum.volume6 / 6;
     patch.centroid = origin + sum.moment24 / (24 * patch.volume);

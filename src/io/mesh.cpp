@@ -1,6 +1,5 @@
-// OBJ and STL readers (only what convex particles need: positions and
-// triangles; OBJ polygons are fan-triangulated, texture/normal indices
-// ignored) and the convexification of a mesh with an honest report.
+// OBJ and STL readers (only what particles need: positions and triangles;
+// OBJ polygons cut into triangles, texture/normal indices ignored) and the convexification of a mesh with an honest report.
 #include "gjkdem/io/mesh.hpp"
 
 #include <algorithm>
@@ -52,6 +51,86 @@ Vec3 read_point(std::istringstream& ls, const std::string& file, long line, cons
   return finite_point(file, at_line(line), xyz[0], xyz[1], xyz[2]);
 }
 
+// A polygon face's triangles. A convex polygon is a fan from its first
+// corner; any other is cut by ear clipping in the plane it spans (Newell's
+// normal), so a notch stays open. A face with no area, or one that crosses
+// itself (no ear to cut), is refused naming its line.
+void add_polygon(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& poly,
+                 std::vector<std::array<std::uint32_t, 3>>& out, const std::string& where) {
+  const std::size_t n = poly.size();
+  if (n == 3) {
+    out.push_back({poly[0], poly[1], poly[2]});
+    return;
+  }
+  const Vec3 origin = vertices[poly[0]];
+  Vec3 normal;
+  for (std::size_t i = 0; i < n; ++i) normal += cross(vertices[poly[i]] - origin, vertices[poly[(i + 1) % n]] - origin);
+  if (!(length(normal) > 0)) throw MeshError(where + ": the face's polygon has no area (its corners are on a line)");
+  // The plane's two coordinates, in the order that keeps the polygon counter-clockwise.
+  const int axis = std::fabs(normal.x) >= std::fabs(normal.y) && std::fabs(normal.x) >= std::fabs(normal.z) ? 0
+                   : std::fabs(normal.y) >= std::fabs(normal.z)                                       ? 1
+                                                                                                       : 2;
+  int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  if (normal[axis] < 0) std::swap(u, v);
+  std::vector<std::array<Real, 2>> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = {vertices[poly[i]][u] - origin[u], vertices[poly[i]][v] - origin[v]};
+  const auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+    return (p[b][0] - p[a][0]) * (p[c][1] - p[a][1]) - (p[b][1] - p[a][1]) * (p[c][0] - p[a][0]);
+  };
+  // Convex: every corner turns left and the turns add up to one turn.
+  bool convex = true;
+  Real turned = 0;
+  for (std::size_t i = 0; i < n && convex; ++i) {
+    const std::size_t a = (i + n - 1) % n, c = (i + 1) % n;
+    convex = turn(a, i, c) > 0;
+    const Real dx0 = p[i][0] - p[a][0], dy0 = p[i][1] - p[a][1], dx1 = p[c][0] - p[i][0], dy1 = p[c][1] - p[i][1];
+    turned += std::atan2(dx0 * dy1 - dy0 * dx1, dx0 * dx1 + dy0 * dy1);
+  }
+  if (convex && std::fabs(turned - 2 * kPi) < 1) {
+    for (std::size_t i = 1; i + 1 < n; ++i) out.push_back({poly[0], poly[i], poly[i + 1]});
+    return;
+  }
+  // Simple: no two edges meet but neighbours at their corner (quadratic, for
+  // the few faces that are not convex).
+  const auto side = [&](std::size_t a, std::size_t b, std::size_t c) {
+    const Real t = turn(a, b, c);
+    return (t > 0) - (t < 0);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 2; j < n; ++j) {
+      const std::size_t i1 = (i + 1) % n, j1 = (j + 1) % n;
+      if (j1 == i) continue;  // neighbours across the last corner
+      const int s1 = side(i, i1, j), s2 = side(i, i1, j1), s3 = side(j, j1, i), s4 = side(j, j1, i1);
+      if (s1 * s2 <= 0 && s3 * s4 <= 0 && (s1 | s2 | s3 | s4) != 0)
+        throw MeshError(where + ": the face's polygon crosses itself (edges " + std::to_string(i + 1) + " and " +
+                        std::to_string(j + 1) + " meet): give it as triangles");
+    }
+  std::vector<std::size_t> left(n);
+  for (std::size_t i = 0; i < n; ++i) left[i] = i;
+  const auto inside = [&](std::size_t q, std::size_t a, std::size_t b, std::size_t c) {
+    if (p[q] == p[a] || p[q] == p[b] || p[q] == p[c]) return false;
+    return turn(a, b, q) >= 0 && turn(b, c, q) >= 0 && turn(c, a, q) >= 0;
+  };
+  while (left.size() > 3) {
+    const std::size_t m = left.size();
+    bool cut = false;
+    for (std::size_t s = 1; s <= m && !cut; ++s) {  // from the second corner: a fan where it can be
+      const std::size_t k = s % m, a = left[(k + m - 1) % m], b = left[k], c = left[(k + 1) % m];
+      if (!(turn(a, b, c) > 0)) continue;
+      bool ear = true;
+      for (const std::size_t q : left) ear = ear && (q == a || q == b || q == c || !inside(q, a, b, c));
+      if (!ear) continue;
+      out.push_back({poly[a], poly[b], poly[c]});
+      left.erase(left.begin() + static_cast<std::ptrdiff_t>(k));
+      cut = true;
+    }
+    if (!cut) throw MeshError(where + ": the face's polygon has no corner to cut off: give it as triangles");
+  }
+  if (!(turn(left[0], left[1], left[2]) > 0))
+    throw MeshError(where + ": the face's polygon has no corner to cut off: give it as triangles");
+  out.push_back({poly[left[0]], poly[left[1]], poly[left[2]]});
+}
+
 TriangleMesh read_obj(std::istream& in, const std::string& file) {
   TriangleMesh m;
   std::string line;
@@ -87,7 +166,7 @@ TriangleMesh read_obj(std::istream& in, const std::string& file) {
         poly.push_back(static_cast<std::uint32_t>(k));
       }
       if (poly.size() < 3) fail(file, "line " + std::to_string(line_no) + ": a face needs at least 3 vertices");
-      for (std::size_t i = 1; i + 1 < poly.size(); ++i) m.triangles.push_back({poly[0], poly[i], poly[i + 1]});
+      add_polygon(m.vertices, poly, m.triangles, file + ": line " + std::to_string(line_no));
     }
   }
   return m;

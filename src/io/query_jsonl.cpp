@@ -366,8 +366,9 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
   if (o.volume > 0) append_vec(s, o.centroid);
   else s += "null";
   s += ",\"contact_normal\":";
+  // Normals where the contact area is more than round-off (has_contact_area).
   const Vec3 n = o.area_a - o.area_b;
-  if (o.volume > 0 && length(n) > 0) append_vec(s, n / length(n));
+  if (o.volume > 0 && has_contact_area(0.5 * length(n), o.volume)) append_vec(s, n / length(n));
   else s += "null";
   s += ",\"patches\":[";
   for (std::size_t k = 0; k < o.patches.size(); ++k) {
@@ -378,7 +379,7 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
     s += ",\"centroid\":";
     append_vec(s, p.centroid);
     s += ",\"normal\":";
-    if (length(m) > 0) append_vec(s, m / length(m));
+    if (has_contact_area(0.5 * length(m), p.volume)) append_vec(s, m / length(m));
     else s += "null";
     s += ",\"area\":";
     append_value(s, 0.5 * length(m));

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "gjkdem/io/run_output.hpp"
@@ -30,8 +31,16 @@ void put_array(std::string& out, const std::vector<T>& values) {
 
 void pad4(std::string& out) { out.append((4 - out.size() % 4) % 4, '\0'); }
 
+// Every number a frame holds as a float: a double beyond float's range (a
+// position within the supported 1e100 m, a force) is written as float's
+// largest, with its sign, never as inf, so that the frames stay readable.
+float frame_float(Real v) {
+  constexpr Real kLargest = std::numeric_limits<float>::max();
+  return static_cast<float>(std::clamp(v, -kLargest, kLargest));
+}
+
 void put_vec(std::vector<float>& out, const Vec3& v) {
-  out.push_back(static_cast<float>(v.x)), out.push_back(static_cast<float>(v.y)), out.push_back(static_cast<float>(v.z));
+  out.push_back(frame_float(v.x)), out.push_back(frame_float(v.y)), out.push_back(frame_float(v.z));
 }
 
 /// Reads fields in order, refusing to run past the end.
@@ -117,7 +126,7 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
   for (const dem::Body& b : w.bodies) {
     put_vec(f.positions, b.position);
     for (const Real c : {b.orientation.w, b.orientation.x, b.orientation.y, b.orientation.z})
-      f.orientations.push_back(static_cast<float>(c));
+      f.orientations.push_back(frame_float(c));
     put_vec(f.velocities, b.velocity);
     put_vec(f.angular_velocities, dem::angular_velocity_of(w, b));
     f.templates.push_back(b.shape);
@@ -135,7 +144,7 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
   for (const dem::PlaneWall& p : w.planes) put_vec(f.plane_points, p.point), put_vec(f.plane_normals, p.normal);
   for (int a = 0; a < 3; ++a) f.cell_axes |= w.cell.now.axes[a] ? 1u << a : 0u;
   const Vec3 cell[3] = {w.cell.now.lo, w.cell.now.hi, w.cell.now.tilt};
-  for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? static_cast<float>(cell[k / 3][k % 3]) : 0.0f;
+  for (int k = 0; k < 9; ++k) f.cell[k] = f.cell_axes ? frame_float(cell[k / 3][k % 3]) : 0.0f;
   for (const dem::Bond& bond : w.bonds) {
     const std::size_t a = dem::index_of_body(w.bodies, bond.a), b = dem::index_of_body(w.bodies, bond.b);
     if (a >= w.bodies.size() || b >= w.bodies.size()) continue;
@@ -152,7 +161,7 @@ ViewFrame view_frame(const dem::World& w, std::uint64_t step) {
     c.values.reserve(ch.components * n);
     for (const dem::Body& b : w.bodies) {
       ch.read(w, b, values);
-      for (std::uint32_t k = 0; k < ch.components; ++k) c.values.push_back(static_cast<float>(values[k]));
+      for (std::uint32_t k = 0; k < ch.components; ++k) c.values.push_back(frame_float(values[k]));
     }
   }
   return f;

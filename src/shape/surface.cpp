@@ -8,7 +8,9 @@
 #include <string>
 
 #include "gjkdem/shape/hull_surface_slot.hpp"
+#include "gjkdem/math/union_find.hpp"
 #include "gjkdem/shape/predicates.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
 
@@ -22,6 +24,8 @@ std::string triangle_index_problem(const TriangleIndices& corners, std::size_t v
   return "";
 }
 namespace {
+
+constexpr std::uint32_t kNoShell = 0xffffffffu;
 
 std::string edge_name(std::uint32_t i, std::uint32_t j) {
   return "edge (" + std::to_string(i) + ", " + std::to_string(j) + ")";
@@ -103,6 +107,81 @@ void fit_boxes(Surface& s) {
   }
 }
 
+
+// The sign of the enclosed volume, from the surface scaled (by a power of
+// two: exactly) to about unit size and taken about its first vertex, so that
+// neither its size nor its place decides: refuses a surface facing inward,
+// and one whose volume is round-off (flat, or thinner than round-off).
+void check_volume_resolved(const Surface& s) {
+  const Real extent = std::fmax(max_abs(s.box.lo), max_abs(s.box.hi));
+  int exponent = 0;
+  std::frexp(extent, &exponent);
+  const Vec3 o = s.vertices[0];
+  const auto at = [&](std::uint32_t i) { return std::ldexp(Real(1), -exponent) * (s.vertices[i] - o); };
+  Real volume6 = 0, scale = 0;
+  for (const TriangleIndices& t : s.triangles) {
+    const Vec3 a = at(t[0]), b = at(t[1]), c = at(t[2]);
+    volume6 += dot(a, cross(b, c));
+    scale += length(a) * length(b) * length(c);
+  }
+  if (!(std::fabs(volume6) > kFlatSurfaceRel * scale))
+    throw SurfaceError("it encloses no volume that double precision resolves: it is flat, or thinner than 1e-12 of "
+                       "its size");
+  if (volume6 < 0)
+    throw SurfaceError("the triangles face inward (the enclosed volume is negative): list each triangle's corners "
+                       "the other way round");
+}
+
+// A surface of several shells bounds one solid when each point is inside it
+// at most once: the other shells wind 0 times about a shell facing outward
+// (a separate piece) and once about a shell facing inward (a cavity's). As
+// the shells do not meet (checked before), one vertex of each decides.
+void check_shells_nest(const Surface& s) {
+  UnionFind joined;
+  joined.reset(s.vertices.size());
+  for (const auto& [p, q] : s.edges) joined.join(p, q);
+  struct Shell {
+    std::vector<TriangleIndices> triangles;
+    std::uint32_t first_triangle = 0;
+    Aabb box;
+    Real volume6 = 0;
+  };
+  std::vector<Shell> shells;
+  std::vector<std::uint32_t> shell_of(s.vertices.size(), kNoShell);
+  for (std::uint32_t t = 0; t < s.triangles.size(); ++t) {
+    const TriangleIndices& tri = s.triangles[t];
+    std::uint32_t& k = shell_of[joined.find(tri[0])];
+    if (k == kNoShell) {
+      k = static_cast<std::uint32_t>(shells.size());
+      shells.push_back({{}, t, s.triangle_boxes[t], 0});
+    }
+    Shell& shell = shells[k];
+    shell.triangles.push_back(tri);
+    shell.box = enclose(shell.box, s.triangle_boxes[t]);
+    const Vec3 o = s.vertices[s.triangles[shell.first_triangle][0]];
+    shell.volume6 += dot(s.vertices[tri[0]] - o, cross(s.vertices[tri[1]] - o, s.vertices[tri[2]] - o));
+  }
+  if (shells.size() < 2) return;
+  for (const Shell& shell : shells) {
+    const Vec3 p = s.vertices[shell.triangles[0][0]];
+    Real winding = 0;
+    for (const Shell& other : shells)
+      if (&other != &shell && overlaps(other.box, {p, p})) winding += winding_number(s.vertices, other.triangles, p);
+    const long inside = std::lround(winding);
+    const long expected = shell.volume6 > 0 ? 0 : 1;
+    if (inside == expected) continue;
+    const std::string name = "the shell of triangle " + std::to_string(shell.first_triangle) + " (" +
+                             std::to_string(shell.triangles.size()) + " triangles)";
+    if (shell.volume6 > 0 && inside == 1)
+      throw SurfaceError(name + " faces outward but lies inside the solid of another shell: a solid within a solid "
+                                "(a cavity's triangles face into the cavity: list its corners the other way round)");
+    if (shell.volume6 < 0 && inside == 0)
+      throw SurfaceError(name + " faces inward but lies in no solid: a cavity must lie inside an outer shell (or "
+                                "list its corners the other way round)");
+    throw SurfaceError(name + " lies inside " + std::to_string(inside) +
+                       " other shells: the shells do not bound one solid");
+  }
+}
 }  // namespace
 
 bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f) {
@@ -267,28 +346,16 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
                          " intersect: the surface crosses itself");
   });
+  check_volume_resolved(s);
   const MassProperties m = mass_properties(s);
   s.volume = m.volume, s.centroid = m.centroid;
   if (!(s.volume > 0 && s.volume < std::numeric_limits<Real>::infinity())) {
-    // Inward, or beyond double's range: the sign of the volume of the
-    // surface scaled (by a power of two: exactly) to about unit size.
-    const Real extent = std::fmax(max_abs(s.box.lo), max_abs(s.box.hi));
-    int exponent = 0;
-    std::frexp(extent, &exponent);
-    Real scaled = 0;
-    for (const TriangleIndices& t : s.triangles) {
-      const auto at = [&](std::uint32_t i) { return std::ldexp(Real(1), -exponent) * s.vertices[i]; };
-      scaled += dot(at(t[0]), cross(at(t[1]), at(t[2])));
-    }
-    if (scaled > 0) {
-      char size[32];
-      std::snprintf(size, sizeof size, "%.3g", extent);
-      throw SurfaceError(std::string("its volume is beyond the range of double precision (coordinates up to ") + size +
-                         "): give the surface in other units");
-    }
-    throw SurfaceError("the triangles face inward (the enclosed volume is not positive): list each triangle's corners "
-                       "the other way round");
+    char size[32];
+    std::snprintf(size, sizeof size, "%.3g", std::fmax(max_abs(s.box.lo), max_abs(s.box.hi)));
+    throw SurfaceError(std::string("its volume is beyond the range of double precision (coordinates up to ") + size +
+                       "): give the surface in other units");
   }
+  check_shells_nest(s);
   return s;
 }
 

@@ -491,7 +491,7 @@ TEST(SurfaceGrain, OneInsideAnotherStopsTheRunNamingThem) {
       builder.build();
       ADD_FAILURE() << "accepted";
     } catch (const BuildError& e) {
-      EXPECT_NE(std::string(e.what()).find("start one wholly inside the other"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("start one wholly inside or through the other"), std::string::npos) << e.what();
     }
     WorldBuilder unchecked(volume_settings());
     unchecked.accept_initial_overlaps();
@@ -502,6 +502,27 @@ TEST(SurfaceGrain, OneInsideAnotherStopsTheRunNamingThem) {
     const StepReport r = step(w, 1e-5);
     EXPECT_EQ(r.status, StepStatus::Engulfed) << small_first;
     EXPECT_NE(describe_failure(w, r).find("lies wholly inside the other"), std::string::npos);
+  }
+}
+
+// Issue 54, point 16: a cube punched through a thin plate was said to lie
+// "wholly inside" it. Their overlap (the plate's part within the cube) has
+// no net contact area either, but neither holds the other: the run now says
+// one passed through the other, in either order.
+TEST(SurfaceGrain, OnePiercedThroughAnotherIsSaidSo) {
+  for (int cube_first = 0; cube_first < 2; ++cube_first) {
+    WorldBuilder builder(volume_settings());
+    builder.accept_initial_overlaps();
+    const std::uint32_t m = builder.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    BodyShape plate, cube;
+    plate.surface = shared(test::box_surface({-0.05, -0.05, -0.001}, {0.05, 0.05, 0.001}));
+    cube.surface = shared(test::box_surface({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}));
+    builder.add_body({.shape = cube_first ? cube : plate, .material = m});
+    builder.add_body({.shape = cube_first ? plate : cube, .material = m, .position = {0.001, 0.002, 0.0003}});
+    World w = builder.build();
+    const StepReport r = step(w, 1e-5);
+    EXPECT_EQ(r.status, StepStatus::Pierced) << cube_first;
+    EXPECT_NE(describe_failure(w, r).find("passed through the other"), std::string::npos) << describe_failure(w, r);
   }
 }
 

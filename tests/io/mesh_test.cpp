@@ -1,9 +1,12 @@
 #include "gjkdem/io/mesh.hpp"
 
+#include "gjkdem/shape/surface.hpp"
+
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -182,6 +185,52 @@ TEST_F(MeshTest, NotIntegersAndNotFilesAreRefused) {
   fs::create_symlink(dir / "loop_b.obj", dir / "loop_a.obj");
   fs::create_symlink(dir / "loop_a.obj", dir / "loop_b.obj");
   EXPECT_NE(error_of(dir / "loop_a.obj").find("loop_a.obj: cannot open"), std::string::npos);
+}
+
+// Issue 54, point 9: a non-convex polygon face was fanned from its first
+// corner, over its notch: a phantom triangle a ball rested on, and a surface
+// grain refused naming triangles not in the file. Now every polygon is cut
+// inside itself: L-prisms whose caps start at each of their six corners (so
+// that some fans would cross the notch) bound the L's solid, volume 3, with
+// the notch empty; convex polygons keep their fan; a polygon that crosses
+// itself (a bow tie, a pentagram) is refused naming its line.
+TEST_F(MeshTest, PolygonFacesAreCutInsideThemselvesOrRefusedByLine) {
+  const Real l[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};  // counter-clockwise from +z
+  for (int start = 0; start < 6; ++start) {
+    std::string obj;
+    for (int z = 0; z < 2; ++z)
+      for (const auto& c : l) obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(z) + "\n";
+    std::string bottom = "f", top = "f";
+    for (int k = 0; k < 6; ++k) {
+      bottom += " " + std::to_string(1 + (start + 6 - k) % 6);
+      top += " " + std::to_string(7 + (start + k) % 6);
+    }
+    obj += bottom + "\n" + top + "\n";
+    for (int k = 0; k < 6; ++k) {
+      const int i = k + 1, j = (k + 1) % 6 + 1;
+      obj += "f " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(j + 6) + " " + std::to_string(i + 6) + "\n";
+    }
+    const TriangleMesh mesh = read_mesh(write("l" + std::to_string(start) + ".obj", obj));
+    ASSERT_EQ(mesh.triangles.size(), 2u * 4 + 6 * 2) << start;
+    const Surface surface = make_surface(mesh.vertices, mesh.triangles);
+    EXPECT_NEAR(surface.volume, 3, 1e-12) << start;
+    EXPECT_NEAR(winding_number(mesh, {1.5, 1.5, 0.5}), 0, 1e-9) << start;  // the notch
+    EXPECT_NEAR(winding_number(mesh, {0.5, 1.5, 0.5}), 1, 1e-9) << start;
+  }
+  const TriangleMesh quad = read_mesh(write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"));
+  ASSERT_EQ(quad.triangles.size(), 2u);
+  EXPECT_EQ(quad.triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(quad.triangles[1], (std::array<std::uint32_t, 3>{0, 2, 3}));
+  EXPECT_NE(error_of(write("bowtie.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 1 0\n# crossing\nf 1 2 3 4\n"))
+                .find("bowtie.obj: line 6: the face's polygon crosses itself"),
+            std::string::npos);
+  std::string star;
+  for (int k = 0; k < 5; ++k)
+    star += "v " + std::to_string(std::cos(4 * kPi * k / 5)) + " " + std::to_string(std::sin(4 * kPi * k / 5)) + " 0\n";
+  EXPECT_NE(error_of(write("star.obj", star + "f 1 2 3 4 5\n")).find("star.obj: line 6: the face's polygon crosses itself"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\n")).find("line 5: the face's polygon has no area"),
+            std::string::npos);
 }
 
 }  // namespace

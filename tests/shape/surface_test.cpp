@@ -107,6 +107,69 @@ TEST(Surface, RefusalsNameTheFault) {
   EXPECT_EQ(refusal(two), "");
 }
 
+// Issue 54, point 6: a cube inside a cube, both facing outward, passed the
+// checks (volume 1.125; a probe in the inner cube "did not intersect"). A
+// surface of several shells must bound one solid: separate pieces face
+// outward, a cavity faces inward and lies inside a piece. Checked under
+// rigid moves (the answer cannot depend on where the surface is).
+TEST(Surface, ShellsMustBoundOneSolid) {
+  const auto inward = [](Mesh m) {
+    for (auto& t : m.triangles) std::swap(t[0], t[1]);
+    return m;
+  };
+  const auto moved_by = [](Mesh m, const Vec3& shift, Real turn) {
+    const Quat q = normalized(Quat{std::cos(turn / 2), 0.3 * std::sin(turn / 2), 0.9 * std::sin(turn / 2), 0.3 * std::sin(turn / 2)});
+    for (Vec3& v : m.vertices) v = rotate(q, v) + shift;
+    return m;
+  };
+  const Mesh outer = box_surface({0, 0, 0}, {1, 1, 1}), inner = box_surface({0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  const Mesh island = box_surface({0.4, 0.4, 0.4}, {0.6, 0.6, 0.6});
+  Mesh nested = outer, hollow = outer, loose = outer, islanded = outer, deep = outer;
+  test::append(nested, inner);
+  test::append(hollow, inward(inner));
+  test::append(loose, inward(box_surface({2, 0, 0}, {2.5, 0.5, 0.5})));
+  test::append(islanded, inward(inner));
+  test::append(islanded, island);
+  test::append(deep, inward(inner));
+  test::append(deep, inward(island));
+  for (const Real turn : {0.0, 0.7, 2.9}) {
+    const Vec3 shift = turn * Vec3{3, -20, 1e3};
+    const std::string n = refusal(moved_by(nested, shift, turn));
+    EXPECT_NE(n.find("the shell of triangle 12 (12 triangles) faces outward but lies inside the solid of another shell"),
+              std::string::npos) << n;
+    EXPECT_EQ(refusal(moved_by(hollow, shift, turn)), "");
+    EXPECT_NEAR(test::surface_of(moved_by(hollow, shift, turn)).volume, 1 - 0.125, 1e-9);
+    EXPECT_NE(refusal(moved_by(loose, shift, turn)).find("faces inward but lies in no solid"), std::string::npos);
+    EXPECT_EQ(refusal(moved_by(islanded, shift, turn)), "");
+    EXPECT_NEAR(test::surface_of(moved_by(islanded, shift, turn)).volume, 1 - 0.125 + 0.008, 1e-9);
+    EXPECT_NE(refusal(moved_by(deep, shift, turn)).find("faces inward but lies in no solid"), std::string::npos);
+  }
+}
+
+// Issue 54, point 16: a solid thinner than round-off at its size was told
+// its triangles face inward (the sign of its volume was round-off). Now
+// such a surface is said to enclose no volume double precision resolves,
+// wherever it lies, while a thin one that double resolves is taken.
+TEST(Surface, AVolumeOfRoundOffIsSaidSoNotTakenForInward) {
+  const auto tet = [](Real height, const Vec3& shift, Real turn) {
+    Mesh m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, height}};
+    m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    for (Vec3& v : m.vertices) v = Vec3{std::cos(turn) * v.x - std::sin(turn) * v.z, v.y, std::sin(turn) * v.x + std::cos(turn) * v.z} + shift;
+    return m;
+  };
+  for (const Real turn : {0.0, 0.5, 1.3})
+    for (const Vec3& shift : {Vec3{0, 0, 0}, Vec3{3, 3, 3}, Vec3{-1e3, 7, 0.1}}) {
+      const std::string thin = refusal(tet(1e-16, shift, turn));
+      EXPECT_TRUE(thin.find("encloses no volume that double precision resolves") != std::string::npos ||
+                  thin.find("no area") != std::string::npos || thin.find("crosses itself") != std::string::npos)
+          << thin;
+      EXPECT_EQ(thin.find("inward"), std::string::npos) << thin;
+      EXPECT_EQ(refusal(tet(1e-6, shift, turn)), "") << turn;
+      EXPECT_NE(refusal(tet(-1e-6, shift, turn)).find("face inward"), std::string::npos) << turn;
+    }
+}
+
 TEST(Surface, ACylinderWithFannedCapsIsAcceptedWithItsVolume) {
   const int n = 64;
   std::vector<std::pair<Real, Real>> rim;

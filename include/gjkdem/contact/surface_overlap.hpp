@@ -15,12 +15,21 @@
 // looked at, besides a walk over the vertices near the overlap that carries
 // the inside/outside status along the edges; a triangle that nothing
 // crosses counts whole (one fan) when inside, with no cycle.
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "gjkdem/shape/surface.hpp"
+#include "gjkdem/tolerances.hpp"
 
 namespace gjkdem {
+
+/// The engulfed-area rule, one for every reader of an overlap's contact area
+/// (the query's normals, the surface grains' contacts, big hulls' overlaps):
+/// a piece of volume V whose contact area is at most kEngulfedAreaRel
+/// V^(2/3) has no contact normal, as one solid lies wholly inside the other
+/// or their surfaces coincide, and the area is round-off.
+inline bool has_contact_area(Real area, Real volume) { return area > kEngulfedAreaRel * std::cbrt(volume * volume); }
 
 /// A connected piece of A ∩ B (pieces that touch only along an edge or at a
 /// point may come out as one or two).
@@ -47,7 +56,7 @@ struct SurfaceOverlap {
   Vec3 area_moment_a;
   /// The pieces of A ∩ B, largest first; pieces smaller than
   /// kPatchMinRelVolume of the smaller solid are left out (slivers of faces
-  /// that only touch).
+  /// that only touch), and the totals above are those of the pieces kept.
   std::vector<SurfacePatch> patches;
 };
 

@@ -11,6 +11,7 @@ enum class GeometryStatus {
   Unsupported,  ///< the contact model has no computation for this pair of shapes
   Through,      ///< volume law: the body lies wholly beyond a plane wall (no cut face: no force can hold it)
   Engulfed,     ///< surface grains: one lies wholly inside the other (a volume, no contact area)
+  Pierced,      ///< surface grains: one passed through the other (a piece of volume, no net contact area)
 };
 
 struct ContactGeometry {

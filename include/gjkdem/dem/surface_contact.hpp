@@ -57,10 +57,13 @@ struct SurfaceScratch {
 };
 
 
-/// The patches of two placed surfaces, largest first. Returns false when a
-/// piece of the overlap has volume but no contact area (one solid wholly
-/// inside the other: nothing can push them apart).
-bool surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
+/// The patches of two placed surfaces, largest first. Returns Touching, or
+/// when a piece of the overlap has volume but no contact area
+/// (has_contact_area), so that nothing can push them apart: Engulfed when
+/// the piece is the smaller solid whole, Pierced when it is not (a cube
+/// punched through a thin plate: the plate's faces inside it, and its sides
+/// inside the plate, each add up to nothing).
+GeometryStatus surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                      const std::shared_ptr<const Surface>& b, const Transform& pose_b,
                      ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 

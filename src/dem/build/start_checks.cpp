@@ -63,7 +63,8 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
         return pr.intersect ? pr.depth : 0;
       }
       if (!sa || !sb) return 0;
-      if (!surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches))
+      if (surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches) !=
+          GeometryStatus::Touching)
         return std::numeric_limits<Real>::infinity();
       break;
     }
@@ -130,7 +131,8 @@ void WorldBuilder::check_explicit_bodies() const {
     if (depth > tol) {
       const std::uint32_t first = is_explicit[i] ? i : j, second = first == i ? j : i;
       if (std::isinf(depth))
-        throw BuildError(labels_[first] + " and " + labels_[second] + " start one wholly inside the other",
+        throw BuildError(labels_[first] + " and " + labels_[second] +
+                             " start one wholly inside or through the other (their overlap has no contact area)",
                          {first, second});
       throw BuildError(labels_[first] + " overlaps " + labels_[second] + " by " + number_text(depth) +
                            " m at the start",

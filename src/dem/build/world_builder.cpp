@@ -183,8 +183,9 @@ void WorldBuilder::check_compound(const BodyShape& shape, const std::string& lab
   std::vector<SurfacePatchContact> patches;
   for (std::size_t j = parts.size(); j < n; ++j)
     for (std::size_t i = 0; i < j; ++i) {
-      if (!surface_patches(solids[i], pose_of(i), solids[j], pose_of(j), ContactModel::Volume, scratch, patches))
-        throw overlap_error(i, j, "(one wholly inside the other)");
+      const GeometryStatus met = surface_patches(solids[i], pose_of(i), solids[j], pose_of(j), ContactModel::Volume, scratch, patches);
+      if (met != GeometryStatus::Touching)
+        throw overlap_error(i, j, met == GeometryStatus::Engulfed ? "(one wholly inside the other)" : "(one through the other)");
       const Real size = 2 * std::fmax(radii[i], radii[j]);
       for (const SurfacePatchContact& p : patches)
         if (p.geometry.depth > kCompoundOverlapRelTol * size)
@@ -223,6 +224,8 @@ std::uint32_t WorldBuilder::add_body(const BodyDef& d) {
   check_material(d.material, label);
   for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
     if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
+  if (!(max_abs(d.position) <= kMaxCoordinate))
+    throw BuildError(label + ": position is outside the supported range [-1e100, 1e100] m");
   if (d.fixed && (length(d.velocity) > 0 || length(d.angular_velocity) > 0))
     throw BuildError(label + ": a fixed body cannot move (velocity and angular_velocity must be 0)");
   const bool loaded = check_given(d, label);

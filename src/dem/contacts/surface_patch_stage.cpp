@@ -53,8 +53,7 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   // patch, and nothing to move or traverse.
   if (!intersect(*pa.shape, pa.pose, *pb.shape, pb.pose)) return GeometryStatus::Touching;
   if (!sa || !sb) return GeometryStatus::Unsupported;
-  return surface_patches(sa, pa.pose, sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
-                                                                        : GeometryStatus::Engulfed;
+  return surface_patches(sa, pa.pose, sb, pb.pose, model, scratch, out);
 }
 
 // A contact of the Margin route, a grain and a mesh wall's piece: the

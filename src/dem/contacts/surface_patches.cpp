@@ -11,7 +11,7 @@
 
 namespace gjkdem::dem {
 
-bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Transform& pose_a,
+GeometryStatus surface_patches(const std::shared_ptr<const Surface>& shared_a, const Transform& pose_a,
                      const std::shared_ptr<const Surface>& shared_b, const Transform& pose_b, ContactModel model,
                      SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
@@ -21,9 +21,12 @@ bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
     const Vec3 area_a = apply_rotation(frame, p.area_a);
     ContactGeometry g;
     g.area = length(area_a);
-    // A volume with no contact area: one solid wholly inside the other (S_A
-    // is then zero, or rounding noise in no direction).
-    if (!(g.area > kEngulfedAreaRel * std::cbrt(p.volume * p.volume))) return false;
+    // A volume with no contact area: one solid wholly inside the other, or
+    // through it (S_A is then zero, or rounding noise in no direction).
+    if (!has_contact_area(g.area, p.volume)) {
+      const Real smaller = std::fmin(shared_a->volume, shared_b->volume);
+      return p.volume >= (1 - kWhollyInsideVolumeRel) * smaller ? GeometryStatus::Engulfed : GeometryStatus::Pierced;
+    }
     g.status = GeometryStatus::Touching;
     g.normal = area_a / g.area;
     g.volume = p.volume;
@@ -42,13 +45,14 @@ bool surface_patches(const std::shared_ptr<const Surface>& shared_a, const Trans
     }
     out.push_back({g, centroid});
   }
-  return true;
+  return GeometryStatus::Touching;
 }
 
 bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                    const std::shared_ptr<const Surface>& b, const Transform& pose_b, SurfaceScratch& scratch,
                    std::vector<SurfacePatchContact>& patches) {
-  return !surface_patches(a, pose_a, b, pose_b, ContactModel::Volume, scratch, patches) || !patches.empty();
+  return surface_patches(a, pose_a, b, pose_b, ContactModel::Volume, scratch, patches) != GeometryStatus::Touching ||
+         !patches.empty();
 }
 
 bool placed_body_meets(const Shape& shape, const Transform& pose, const std::shared_ptr<const Surface>& surface,

@@ -184,6 +184,11 @@ std::string describe_failure(const World& w, const StepReport& r) {
              number_text(w.time) +
              " s: their overlap has no contact area to push them apart (lower dt, or their speed, or stiffen the "
              "contact)";
+    case StepStatus::Pierced:
+      return "one of " + name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " passed through the other at t = " +
+             number_text(w.time) +
+             " s: the faces of each inside the other add up to no contact area, so nothing pushes them apart (lower "
+             "dt, or their speed, or stiffen the contact; a thicker body holds faster ones)";
     case StepStatus::CellTooShort: {
       const int a = static_cast<int>(r.id_a);
       return std::string("the periodic cell's width across ") + "xyz"[a] + " shrank to " +

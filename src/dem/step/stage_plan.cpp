@@ -134,6 +134,8 @@ StepReport geometry_checks(ForceEvaluation& e) {
       return {StepStatus::ThroughWall, w.planes[c.a].id, w.bodies[c.b].id};
     if (c.geometry.status == GeometryStatus::Engulfed)
       return {StepStatus::Engulfed, w.bodies[c.a].id, w.bodies[c.b].id};
+    if (c.geometry.status == GeometryStatus::Pierced)
+      return {StepStatus::Pierced, w.bodies[c.a].id, w.bodies[c.b].id};
   }
   return {};
 }
