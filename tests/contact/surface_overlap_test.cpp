@@ -12,6 +12,7 @@
 #include "gjkdem/collide/surface_distance.hpp"
 #include "gjkdem/contact/overlap.hpp"
 #include "gjkdem/contact/surface_overlap.hpp"
+#include "gjkdem/io/query_jsonl.hpp"
 #include "gjkdem/shape/polytope.hpp"
 #include "shape/surface_shapes.hpp"
 
@@ -246,6 +247,51 @@ TEST(SurfaceOverlap, PiecesTouchingAlongAnEdgeAreTwoPatches) {
   std::sort(xs.begin(), xs.end());
   EXPECT_NEAR(xs[0], 0.5, 1e-14);
   EXPECT_NEAR(xs[1], 1.5, 1e-14);
+}
+
+// Issue 54, point 7: a piece below kPatchMinRelVolume was left out of the
+// patches but kept in the totals (overlap_volume > 0 with patches: []). The
+// totals are the patches' sums, on random poses of an L-prism and a box, and
+// on a sliver of overlap 1e-13 thick, which is no patch and no volume.
+TEST(SurfaceOverlap, TheTotalsAreThePatchesSums) {
+  std::mt19937_64 rng(54);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  const Surface l = surface_of(test::l_prism(1));
+  for (int k = 0; k < 200; ++k) {
+    const Surface b = surface_of(moved(box_surface({0, 0, 0}, {0.6, 0.5, 0.7}), {1 + u(rng), 1 + u(rng), 0.5 + u(rng)}));
+    const SurfaceOverlap o = surface_overlap(l, b);
+    Real volume = 0;
+    Vec3 area_a, area_b;
+    for (const SurfacePatch& p : o.patches) volume += p.volume, area_a += p.area_a, area_b += p.area_b;
+    EXPECT_NEAR(o.volume, volume, 1e-15) << k;
+    EXPECT_LT(length(o.area_a - area_a) + length(o.area_b - area_b), 1e-14) << k;
+    EXPECT_EQ(o.volume > 0, !o.patches.empty()) << k;
+  }
+  const Surface a = surface_of(box_surface({0, 0, 0}, {1, 1, 1}));
+  const Surface sliver = surface_of(box_surface({1 - 1e-13, 0.2, 0.2}, {2, 0.8, 0.8}));
+  const SurfaceOverlap o = surface_overlap(a, sliver);
+  EXPECT_TRUE(o.intersect);
+  EXPECT_TRUE(o.patches.empty());
+  EXPECT_EQ(o.volume, 0);
+}
+
+// Issue 54, point 8: a curved mesh against itself got a unit normal made of
+// round-off (its contact area 7e-16), where identical cubes got none. One
+// rule (has_contact_area) decides everywhere: a torus, a bowl and a box
+// against themselves have no contact normal; the same moved a little have.
+TEST(SurfaceOverlap, AMeshAgainstItselfHasNoContactNormal) {
+  for (const Mesh& m : {test::torus(1, 0.3, 24, 12), test::bowl(0.8, 1, 24, 8), box_surface({0, 0, 0}, {1, 2, 3})}) {
+    const Surface s = surface_of(m);
+    const SurfaceOverlap same = surface_overlap(s, s);
+    EXPECT_NEAR(same.volume, s.volume, 1e-12 * s.volume);
+    EXPECT_FALSE(has_contact_area(0.5 * length(same.area_a - same.area_b), same.volume));
+    for (const SurfacePatch& p : same.patches) EXPECT_FALSE(has_contact_area(0.5 * length(p.area_a - p.area_b), p.volume));
+    const std::string line = io::format_surface_result("1", same, nullptr);
+    EXPECT_NE(line.find("\"contact_normal\":null"), std::string::npos) << line;
+    EXPECT_EQ(line.find("\"normal\":["), std::string::npos) << line;  // nor any patch's
+    const SurfaceOverlap near = surface_overlap(s, surface_of(moved(m, {0.01, 0.02, 0})));
+    EXPECT_TRUE(has_contact_area(0.5 * length(near.area_a - near.area_b), near.volume));
+  }
 }
 
 TEST(SurfaceDistance, SeparatedBoxesGiveTheirGapAndWitnesses) {

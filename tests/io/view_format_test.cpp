@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <fstream>
 #include <random>
 
@@ -84,6 +87,37 @@ TEST(ViewFormat, AFrameHoldsTheWorldAndReadsBackTheSame) {
   EXPECT_EQ(back.contact_forces, f.contact_forces);
   EXPECT_EQ(back.plane_normals, f.plane_normals);
   EXPECT_EQ(encode(back), bytes);
+}
+
+// Issue 54, point 11: positions beyond float's range (3.4e38 m) became inf
+// in the frames, and analyze then refused the folder. Every position the
+// builder takes (up to 1e100 m; beyond, refused) gives finite frames, at
+// float's largest with its sign where it is beyond float's range.
+TEST(ViewFormat, FramesStayFiniteForEveryPositionTheBuilderTakes) {
+  for (const Real x : {1e30, 1e39, 1e100, -1e100}) {
+    dem::WorldBuilder b;
+    const std::uint32_t m = b.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+    b.add_body({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .material = m, .position = {x, 0, 0},
+                .velocity = {1e45, 0, 0}});
+    const dem::World w = b.build();
+    const ViewFrame f = view_frame(w, 0);
+    for (const std::vector<float>* v : {&f.positions, &f.velocities})
+      for (const float c : *v) EXPECT_TRUE(std::isfinite(c)) << x;
+    EXPECT_EQ(f.positions[0], x > std::numeric_limits<float>::max() ? std::numeric_limits<float>::max()
+                              : x < -std::numeric_limits<float>::max() ? -std::numeric_limits<float>::max()
+                                                                       : static_cast<float>(x));
+    EXPECT_EQ(decode_view_frame(encode(f)).positions, f.positions);
+  }
+  dem::WorldBuilder b;
+  const std::uint32_t m = b.add_material({"rock", 2500, 1e7, 0.25, 0.5, 0.5});
+  try {
+    b.add_body({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .material = m, .position = {0, 1.1e100, 0}, .label = "far"});
+    b.build();
+    ADD_FAILURE() << "a position beyond 1e100 m was taken";
+  } catch (const dem::BuildError& e) {
+    EXPECT_NE(std::string(e.what()).find("far: position is outside the supported range [-1e100, 1e100] m"),
+              std::string::npos) << e.what();
+  }
 }
 
 // Each body's force is gravity plus what its contacts in the frame give:

@@ -166,6 +166,8 @@ def test_bad_setter_input_raises_value_error():
         w.set_positions(np.zeros((1, 3)), indices=[9])
     with pytest.raises(ValueError, match="not finite"):
         w.set_positions(np.full((1, 3), np.inf), indices=[0])
+    with pytest.raises(ValueError, match=r"row 0 is outside the supported range \[-1e100, 1e100\]"):
+        w.set_positions(np.array([[0, 0, 1e101]]), indices=[0])  # as add_body refuses it
     with pytest.raises(ValueError, match="must be unit"):
         w.set_orientations(np.array([[2.0, 0, 0, 0]]), indices=[0])
     with pytest.raises(ValueError, match=r"shape \(N, 4\)"):
