@@ -3,6 +3,7 @@
 // on and the exit status is 1 at the end. Output that cannot be written (a
 // full disk) stops it with exit status 2.
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -45,7 +46,8 @@ int run_query(const QueryOptions& opt) {
             const SurfaceOverlap o = surface_overlap(*p.a.surface, *p.b.surface, surface_work);
             SurfaceDistance d;
             if (!o.intersect) d = surface_distance(*p.a.surface, *p.b.surface);
-            emit(io::format_surface_result(p.id_json, o, o.intersect ? nullptr : &d));
+            emit(io::format_surface_result(p.id_json, o, o.intersect ? nullptr : &d,
+                                           std::fmin(p.a.surface->volume, p.b.surface->volume)));
             return;
           }
           const PenetrationResult r = penetration(p.a.shape, p.a.pose, p.b.shape, p.b.pose);

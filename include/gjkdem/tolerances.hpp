@@ -132,6 +132,18 @@ inline constexpr Real kPatchMatchRel = 0.25;
 /// measured for an icosahedron inside another). The run stops naming the
 /// pair. A real contact's |S_A| is at least of the order of V^(2/3).
 inline constexpr Real kEngulfedAreaRel = 1e-6;
+/// A bonded assembly's bonds must be at least this fraction of the stiffness
+/// of a bar of the material spanning two pieces (E / spacing, Pa/m), in
+/// tension and in shear: bonded pieces do not touch, and a softer bond lets
+/// them sink into each other unopposed.
+inline constexpr Real kMinBondStiffnessRel = 1e-3;
+
+/// Two convex bodies whose contact is deeper than this times the smaller
+/// one's radius of curvature are tested for passing through each other (a
+/// centre inside the other body: the run stops). Shallower contacts, nearly
+/// all of them, need no test: a centre lies that deep only in a body much
+/// thinner than it is wide.
+inline constexpr Real kDeepOverlapRel = 0.05;
 /// Such a piece is the smaller solid wholly inside the other when its volume
 /// is that solid's within this (relative); a smaller piece is one solid
 /// passed through the other.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "gjkdem/io/number_text.hpp"
@@ -344,7 +345,8 @@ std::string format_result(const std::string& id_json, const PenetrationResult& r
   return s;
 }
 
-std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& o, const SurfaceDistance* d) {
+std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& o, const SurfaceDistance* d,
+                                  Real smaller_volume) {
   bool finite = std::isfinite(o.volume) && is_finite(o.centroid) && is_finite(o.area_a) && is_finite(o.area_b) &&
                       (!d || (std::isfinite(d->distance) && is_finite(d->witness_a) && is_finite(d->witness_b)));
   for (const SurfacePatch& p : o.patches)
@@ -366,9 +368,15 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
   if (o.volume > 0) append_vec(s, o.centroid);
   else s += "null";
   s += ",\"contact_normal\":";
-  // Normals where the contact area is more than round-off (has_contact_area).
-  const Vec3 n = o.area_a - o.area_b;
-  if (o.volume > 0 && has_contact_area(0.5 * length(n), o.volume)) append_vec(s, n / length(n));
+  // normalize(S_A - S_B), none where it is zero or where one solid lies
+  // wholly inside the other (piece_meeting: its round-off is no direction).
+  const auto normal_of = [&](const Vec3& m, Real volume) -> std::optional<Vec3> {
+    if (!(volume > 0) || !(length(m) > 0) ||
+        piece_meeting(0.5 * length(m), volume, smaller_volume) == PieceMeeting::WhollyInside)
+      return std::nullopt;
+    return m / length(m);
+  };
+  if (const std::optional<Vec3> n = normal_of(o.area_a - o.area_b, o.volume)) append_vec(s, *n);
   else s += "null";
   s += ",\"patches\":[";
   for (std::size_t k = 0; k < o.patches.size(); ++k) {
@@ -379,7 +387,7 @@ std::string format_surface_result(const std::string& id_json, const SurfaceOverl
     s += ",\"centroid\":";
     append_vec(s, p.centroid);
     s += ",\"normal\":";
-    if (has_contact_area(0.5 * length(m), p.volume)) append_vec(s, m / length(m));
+    if (const std::optional<Vec3> n = normal_of(m, p.volume)) append_vec(s, *n);
     else s += "null";
     s += ",\"area\":";
     append_value(s, 0.5 * length(m));

@@ -277,20 +277,23 @@ TEST(SurfaceOverlap, TheTotalsAreThePatchesSums) {
 
 // Issue 54, point 8: a curved mesh against itself got a unit normal made of
 // round-off (its contact area 7e-16), where identical cubes got none. One
-// rule (has_contact_area) decides everywhere: a torus, a bowl and a box
-// against themselves have no contact normal; the same moved a little have.
+// rule (piece_meeting) decides for the surface grains and the query: a
+// torus, a bowl and a box against themselves meet wholly inside, with no
+// normal in the query's line; the same moved a little meet by their area.
 TEST(SurfaceOverlap, AMeshAgainstItselfHasNoContactNormal) {
   for (const Mesh& m : {test::torus(1, 0.3, 24, 12), test::bowl(0.8, 1, 24, 8), box_surface({0, 0, 0}, {1, 2, 3})}) {
     const Surface s = surface_of(m);
     const SurfaceOverlap same = surface_overlap(s, s);
     EXPECT_NEAR(same.volume, s.volume, 1e-12 * s.volume);
     EXPECT_FALSE(has_contact_area(0.5 * length(same.area_a - same.area_b), same.volume));
-    for (const SurfacePatch& p : same.patches) EXPECT_FALSE(has_contact_area(0.5 * length(p.area_a - p.area_b), p.volume));
-    const std::string line = io::format_surface_result("1", same, nullptr);
+    for (const SurfacePatch& p : same.patches)
+      EXPECT_EQ(piece_meeting(0.5 * length(p.area_a - p.area_b), p.volume, s.volume), PieceMeeting::WhollyInside);
+    const std::string line = io::format_surface_result("1", same, nullptr, s.volume);
     EXPECT_NE(line.find("\"contact_normal\":null"), std::string::npos) << line;
     EXPECT_EQ(line.find("\"normal\":["), std::string::npos) << line;  // nor any patch's
     const SurfaceOverlap near = surface_overlap(s, surface_of(moved(m, {0.01, 0.02, 0})));
     EXPECT_TRUE(has_contact_area(0.5 * length(near.area_a - near.area_b), near.volume));
+    EXPECT_NE(io::format_surface_result("1", near, nullptr, s.volume).find("\"contact_normal\":["), std::string::npos);
   }
 }
 

@@ -267,5 +267,33 @@ TEST(Bonds, TheBuilderRefusesAssembliesItCannotMake) {
   EXPECT_THROW(p.build(), BuildError);
 }
 
+// Issue 54, point 5: a bond stiffness of 1e-300 was taken; no bond broke, and
+// as bonded pieces never touch, the assembly flattened to a third of its
+// height. Bonds softer than 1e-3 of E / spacing, in tension or in shear, are
+// refused naming the material and the least stiffness; the default (0: E /
+// spacing) and the stiff glue of these tests are taken.
+TEST(Bonds, BondsTooSoftToHoldThePiecesAreRefused) {
+  for (const auto& [normal, shear] : {std::pair{1e-300, 4e8}, {1e9, 1e-300}, {10.0, 10.0}}) {
+    WorldBuilder b;
+    Material soft = glued(1e5, 1e5);
+    soft.glue.normal_stiffness = normal, soft.glue.shear_stiffness = shear;
+    const std::uint32_t m = b.add_material(soft);
+    try {
+      b.add_bonded({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .pieces = 8, .material = m, .label = "rock"});
+      ADD_FAILURE() << normal << " " << shear << " taken";
+    } catch (const BuildError& e) {
+      EXPECT_NE(std::string(e.what()).find("rock: material 'rock': its bonds"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("too soft to hold pieces"), std::string::npos) << e.what();
+    }
+  }
+  for (const Real stiffness : {0.0, 1e9}) {
+    WorldBuilder b;
+    Material fine = glued(1e5, 1e5);
+    fine.glue.normal_stiffness = stiffness, fine.glue.shear_stiffness = stiffness;
+    const std::uint32_t m = b.add_material(fine);
+    EXPECT_EQ(b.add_bonded({.shape = {Shape{Box{{0.01, 0.01, 0.01}}}, {}}, .pieces = 8, .material = m}).size(), 8u);
+  }
+}
+
 }  // namespace
 }  // namespace gjkdem::dem

@@ -121,9 +121,9 @@ TEST(QueryJsonl, AnAnswerThatIsNotFiniteIsThrownForTheLineLoop) {
   o.volume = 1;
   o.patches.push_back({});
   o.patches[0].volume = std::numeric_limits<Real>::infinity();
-  EXPECT_THROW(format_surface_result("1", o, nullptr), std::range_error);
+  EXPECT_THROW(format_surface_result("1", o, nullptr, 1), std::range_error);
   o.patches[0].volume = 1;
-  EXPECT_NO_THROW(format_surface_result("1", o, nullptr));
+  EXPECT_NO_THROW(format_surface_result("1", o, nullptr, 1));
 }
 
 }  // namespace

@@ -24,12 +24,22 @@
 
 namespace gjkdem {
 
-/// The engulfed-area rule, one for every reader of an overlap's contact area
-/// (the query's normals, the surface grains' contacts, big hulls' overlaps):
-/// a piece of volume V whose contact area is at most kEngulfedAreaRel
-/// V^(2/3) has no contact normal, as one solid lies wholly inside the other
-/// or their surfaces coincide, and the area is round-off.
+/// The engulfed-area rule: a piece of volume V whose contact area is at most
+/// kEngulfedAreaRel V^(2/3) has none (it is zero, or round-off).
 inline bool has_contact_area(Real area, Real volume) { return area > kEngulfedAreaRel * std::cbrt(volume * volume); }
+
+/// How a piece of an overlap meets, one rule for every reader (the surface
+/// grains' contacts, the query's normals): by its contact area; or without
+/// one, as the smaller solid (of volume `smaller_volume`) lies wholly inside
+/// the other or their surfaces coincide (a mesh against itself: no normal),
+/// or as one passed through the other (a cube punched through a thin plate:
+/// the faces of each inside the other add up to nothing; the query still
+/// writes normalize(S_A - S_B) where it is not zero, as its spec says).
+enum class PieceMeeting { ByArea, WhollyInside, Through };
+inline PieceMeeting piece_meeting(Real area, Real volume, Real smaller_volume) {
+  if (has_contact_area(area, volume)) return PieceMeeting::ByArea;
+  return volume >= (1 - kWhollyInsideVolumeRel) * smaller_volume ? PieceMeeting::WhollyInside : PieceMeeting::Through;
+}
 
 /// A connected piece of A ∩ B (pieces that touch only along an edge or at a
 /// point may come out as one or two).

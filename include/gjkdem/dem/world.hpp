@@ -54,6 +54,7 @@ enum class StepStatus {
   ThroughWall,      ///< a body lies wholly beyond a plane wall, or its centre crossed a mesh wall piece (id_a the wall or piece, id_b the body)
   Engulfed,         ///< a body lies wholly inside a surface grain, or one inside it (ids of the two)
   Pierced,          ///< a body passed through a surface grain, or one through it: their overlap has no net contact area (ids of the two)
+  ThroughBody,      ///< two convex bodies pass through each other: a centre inside the other (ids of the two)
 };
 
 /// The outcome of a step; on failure the pair at fault (ids), or for

@@ -77,10 +77,12 @@ std::string format_result(const std::string& id_json, const PenetrationResult& r
 
 /// One result line of a pair of meshes: `distance` of separated solids
 /// (null when they intersect), the overlap otherwise. Depth and normal are
-/// null (not defined for meshes in this version). Throws std::range_error
-/// as format_result does.
+/// null (not defined for meshes in this version); `smaller_volume` is the
+/// smaller solid's, for piece_meeting (a piece that is that solid whole, or
+/// where the surfaces coincide, has no normal). Throws std::range_error as
+/// format_result does.
 std::string format_surface_result(const std::string& id_json, const SurfaceOverlap& overlap,
-                                  const SurfaceDistance* distance);
+                                  const SurfaceDistance* distance, Real smaller_volume);
 
 /// One error line (no trailing newline).
 std::string format_error(const std::string& id_json, const std::string& message);

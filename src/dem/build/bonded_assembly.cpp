@@ -1,5 +1,7 @@
 // Bonded assemblies: a convex solid cut into Voronoi pieces glued face to
 // face (world_builder.hpp: BondedDef; bonds.hpp; docs/breakage.md).
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "gjkdem/dem/bonds.hpp"
@@ -8,9 +10,13 @@
 #include "gjkdem/shape/shape_factories.hpp"
 #include "gjkdem/shape/tessellate.hpp"
 #include "gjkdem/shape/voronoi.hpp"
+#include "gjkdem/tolerances.hpp"
+#include "number_text.hpp"
 
 namespace gjkdem::dem {
 namespace {
+
+using detail::number_text;
 
 constexpr std::uint64_t kSiteKey = 0x424f4e4453495445;  // keys the sites' draws apart from other draws
 constexpr int kSiteTries = 1000;                        // per site: rejection from the bounding box
@@ -102,7 +108,20 @@ std::vector<std::uint32_t> WorldBuilder::add_bonded(const BondedDef& d) {
     const Body& a = world_.bodies[indices[f.a]];
     const Body& b = world_.bodies[indices[f.b]];
     const Vec3 normal = rotate(d.rotation, apply_rotation(d.shape.pose, f.normal));
-    world_.bonds.push_back(glue_bodies(a, b, material, to_world(f.centroid), normal, f.area, f.polar_moment));
+    const Bond bond = glue_bodies(a, b, material, to_world(f.centroid), normal, f.area, f.polar_moment);
+    // Bonded pieces do not touch: a bond much softer than the material lets
+    // them sink into each other unopposed (a stiffness of 1e-300 flattened
+    // an assembly to a third of its height, its pieces overlapping by 3.5%
+    // of its volume).
+    const Real spacing = length(b.position - a.position);
+    const Real least = kMinBondStiffnessRel * material.youngs_modulus / spacing;
+    if (!(bond.normal_stiffness >= least && bond.shear_stiffness >= least))
+      throw BuildError(label + ": material '" + material.name + "': its bonds (bond_normal_stiffness " +
+                       number_text(bond.normal_stiffness) + ", bond_shear_stiffness " + number_text(bond.shear_stiffness) +
+                       " Pa/m) are too soft to hold pieces " + number_text(spacing) +
+                       " m apart, which do not touch while bonded: give at least " + number_text(least) +
+                       " Pa/m (1e-3 of E / spacing), or leave them 0 (E / spacing)");
+    world_.bonds.push_back(bond);
   }
   return indices;
 }

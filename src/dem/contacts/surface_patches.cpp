@@ -23,9 +23,10 @@ GeometryStatus surface_patches(const std::shared_ptr<const Surface>& shared_a, c
     g.area = length(area_a);
     // A volume with no contact area: one solid wholly inside the other, or
     // through it (S_A is then zero, or rounding noise in no direction).
-    if (!has_contact_area(g.area, p.volume)) {
-      const Real smaller = std::fmin(shared_a->volume, shared_b->volume);
-      return p.volume >= (1 - kWhollyInsideVolumeRel) * smaller ? GeometryStatus::Engulfed : GeometryStatus::Pierced;
+    switch (piece_meeting(g.area, p.volume, std::fmin(shared_a->volume, shared_b->volume))) {
+      case PieceMeeting::ByArea: break;
+      case PieceMeeting::WhollyInside: return GeometryStatus::Engulfed;
+      case PieceMeeting::Through: return GeometryStatus::Pierced;
     }
     g.status = GeometryStatus::Touching;
     g.normal = area_a / g.area;

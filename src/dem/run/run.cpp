@@ -184,6 +184,11 @@ std::string describe_failure(const World& w, const StepReport& r) {
              number_text(w.time) +
              " s: their overlap has no contact area to push them apart (lower dt, or their speed, or stiffen the "
              "contact)";
+    case StepStatus::ThroughBody:
+      return name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " are passing through each other at t = " +
+             number_text(w.time) +
+             " s: the centre of one is inside the other, so their contact pushes them on through, not apart "
+             "(lower dt, or their speeds, or stiffen the contact; a heavier or faster body needs a stiffer one)";
     case StepStatus::Pierced:
       return "one of " + name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " passed through the other at t = " +
              number_text(w.time) +

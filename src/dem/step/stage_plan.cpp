@@ -146,6 +146,11 @@ StepReport wall_crossing(ForceEvaluation& e) {
   return detail::find_wall_crossing(w.bodies, w.templates, w.results.motion_frames, w.cell.now, w.results.contacts, e.dt);
 }
 
+StepReport body_crossing(ForceEvaluation& e) {
+  const World& w = e.world;
+  return detail::find_body_crossing(w.bodies, w.templates, w.cell.now, w.results.contacts);
+}
+
 StepReport merge_walls(ForceEvaluation& e) {
   World& w = e.world;
   if (w.settings.model != ContactModel::Volume) merge_wall_contacts(w.bodies, w.templates, w.results.contacts);
@@ -246,6 +251,8 @@ constexpr std::array kPlan{
           "each contact's geometry: GJK/EPA, the overlap region, half-spaces", narrow_phase},
     Stage{"geometry checks", P::PerContact, "step/stage_plan.cpp", "each contact's geometry",
           "the first pair the model cannot take, or past holding: the step stops", geometry_checks},
+    Stage{"body crossing", P::PerContact, "contacts/body_crossing.cpp", "deep contacts of two convex bodies, their centres",
+          "two bodies passing through each other (a centre inside the other): the step stops", body_crossing},
     Stage{"wall merge", P::PerContact, "contacts/narrow_phase.cpp", "a body's contacts with one wall's pieces",
           "one contact per body and wall (Hertz and linear laws)", merge_walls},
     Stage{"laws", P::PerContact, "contacts/contact_force.cpp, contacts/contact_sides.cpp", "geometry, material pair, sides, springs",

@@ -52,6 +52,15 @@ StepReport find_wall_crossing(std::span<const Body> bodies, std::span<const Shap
                               std::span<const MotionFrame> motion_frames, const PeriodicCell& cell,
                               std::span<const StepContact> contacts, Real dt);
 
+/// contacts/body_crossing.cpp: the first active contact (in list order) of two
+/// convex bodies (no compounds, surface grains, shells or wall pieces),
+/// deeper than kDeepOverlapRel of the smaller's radius of curvature, where a
+/// body's centre lies inside the other: ThroughBody naming the two, else Ok.
+/// The overlap is then deeper than the body is thick there, and the contact
+/// pushes the two on through each other, not apart.
+StepReport find_body_crossing(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
+                              const PeriodicCell& cell, std::span<const StepContact> contacts);
+
 /// contacts/contact_sides.cpp: what the contact laws see of each side of a contact,
 /// from the bodies' make-up, the driven motions' frames at this step's time
 /// and a deforming cell's velocity gradient.
