@@ -92,7 +92,15 @@ std::optional<Polytope> polytope_below(const Polytope& polytope, const Vec3& nor
   std::optional<Polytope> part = solid_of(below);
   const bool above_solid = spans_volume(above);
   if (!part && !above_solid) throw std::logic_error("split_polytope: neither side of the cut holds volume");
-  if (!above_solid) return polytope;  // a sliver above: no cut
+  // A sliver above (no volume by the hull's tolerance, yet its corners may
+  // stand well above the plane: a needle's tip) is pressed onto the plane,
+  // not kept: a Voronoi cell keeping it pokes into its neighbour's cell.
+  if (!above_solid) {
+    const Real n2 = dot(normal, normal);
+    for (const Vec3& p : above) below.push_back(p - normal * ((dot(normal, p) - offset) / n2));
+    if (std::optional<Polytope> pressed = solid_of(below)) return pressed;
+    return polytope;
+  }
   return part;
 }
 

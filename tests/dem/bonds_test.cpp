@@ -295,5 +295,19 @@ TEST(Bonds, BondsTooSoftToHoldThePiecesAreRefused) {
   }
 }
 
+// A box cut into 2,000 pieces (seed 1) was refused at its start: two pieces
+// that share no face overlapped by 4e-8 m, as a Voronoi cut leaving a sliver
+// above its plane (no volume by the hull's tolerance) kept the sliver's tip,
+// which poked into the next cell. The sliver is now pressed onto the plane
+// (split.hpp: polytope_below), and the assembly starts.
+TEST(Bonds, ABoxOf2000PiecesStartsWithoutItsPiecesOverlapping) {
+  WorldBuilder b;
+  Material m{.name = "rock", .density = 2500, .youngs_modulus = 1e8};
+  m.glue = {.tensile_strength = 1e5, .shear_strength = 4e5};
+  const std::uint32_t rock = b.add_material(m);
+  b.add_bonded({.shape = {Shape{Box{{0.05, 0.05, 0.05}}}, {}}, .pieces = 2000, .seed = 1, .material = rock});
+  EXPECT_NO_THROW(b.build());
+}
+
 }  // namespace
 }  // namespace gjkdem::dem

@@ -26,7 +26,8 @@ PolytopeSplit split_polytope(const Polytope& polytope, const Vec3& normal, Real 
 
 /// split_polytope(...).below without the piece above made (only its hull,
 /// to tell a sliver from a cut): the cells of voronoi_cells, cut again and
-/// again, keep one side.
+/// again, keep one side. A sliver above is pressed onto the plane (its
+/// corners projected), so that the result never pokes above it.
 std::optional<Polytope> polytope_below(const Polytope& polytope, const Vec3& normal, Real offset);
 
 }  // namespace gjkdem
