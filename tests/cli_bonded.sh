@@ -88,4 +88,18 @@ if command -v mpirun > /dev/null; then
     cmp -s "gen/$f" "gen_mpi/$f" || fail "$f of the generator differs between 1 and 2 ranks"
   done
 fi
+# Issue 54, point 14: a long build printed nothing. Three boxes of 1,500
+# pieces (about 8 s here): run --check says what the build is on after its
+# first second.
+{
+  printf '[simulation]\nduration = 0.001\n[[material]]\nname = "rock"\ndensity = 2500.0\nyoungs_modulus = 1.0e8\n'
+  printf 'bond_tensile_strength = 1.0e5\nbond_shear_strength = 4.0e5\n'
+  for k in 0 1 2; do
+    printf '[[body]]\nshape = { type = "bonded", shape = { type = "box", half_extents = [0.05, 0.05, 0.05] }, pieces = 1500, seed = %s }\n' $((k + 1))
+    printf 'material = "rock"\nposition = [%s, 0.0, 0.0]\n' "$k.0"
+  done
+} > long_build.toml
+"$gjkdem" run long_build.toml --check > long_check.txt 2> long_build.err || { cat long_build.err; fail "the long build's check failed"; }
+grep -qE "^gjkdem: building \([0-9]+ s\): (body\[[12]\]: cutting it into 1500 pieces|checking that the 4500 bodies start apart)" long_build.err ||
+  fail "a long build said nothing: $(cat long_build.err)"
 echo "cli_bonded: all checks passed"

@@ -82,18 +82,38 @@ void install_signal_handlers() {
   std::signal(SIGTERM, on_stop_signal);
 }
 
+// A long build's progress on standard error (rank 0, not --quiet): nothing
+// in its first second, then what it starts on, at most a line a second.
+dem::BuildProgress build_printer(bool quiet) {
+  if (quiet) return {};
+  using Clock = std::chrono::steady_clock;
+  struct Printer {
+    Clock::time_point start = Clock::now(), last{};
+    bool printed = false;
+  };
+  return [p = std::make_shared<Printer>()](const std::string& what) {
+    const Clock::time_point now = Clock::now();
+    const double since = std::chrono::duration<double>(now - p->start).count();
+    if (since < 1 || (p->printed && std::chrono::duration<double>(now - p->last).count() < 1)) return;
+    p->printed = true, p->last = now;
+    std::cerr << "gjkdem: building (" << static_cast<long>(since) << " s): " << what << "\n";
+  };
+}
+
 // The run this rank takes part in (on a follower, one that writes
 // nothing); null when the run to resume is already completed.
 std::unique_ptr<io::SceneRun> open_run(const RunOptions& opt, bool follower) {
+  const dem::BuildProgress on_build = build_printer(opt.quiet || follower);
   if (!opt.resume.empty()) {
     if (io::SceneRun::completed(opt.resume)) return nullptr;
-    return io::SceneRun::resume(opt.resume, opt.threads, follower);
+    return io::SceneRun::resume(opt.resume, opt.threads, follower, on_build);
   }
   return io::SceneRun::start(opt.scene, {.out = opt.out,
                                          .overwrite = opt.overwrite,
                                          .threads = opt.threads,
                                          .follower = follower,
-                                         .start_from = opt.start_from});
+                                         .start_from = opt.start_from,
+                                         .on_build = on_build});
 }
 
 // More ranks on this node than it has cores: each of the many exchanges of
@@ -150,7 +170,7 @@ int check_simulation(const RunOptions& opt) {
     return 2;
   }
   try {
-    const io::SceneCheck c = io::check_scene(opt.scene, opt.threads);
+    const io::SceneCheck c = io::check_scene(opt.scene, opt.threads, 2.0, build_printer(opt.quiet));
     std::cout << io::describe(c);
     return c.failure.empty() ? 0 : 1;
   } catch (const std::exception& e) {

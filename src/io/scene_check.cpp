@@ -88,10 +88,11 @@ std::string seconds_text(double s) {
 
 }  // namespace
 
-SceneCheck check_scene(const std::string& scene_file, int threads, double sample_seconds) {
+SceneCheck check_scene(const std::string& scene_file, int threads, double sample_seconds,
+                       const dem::BuildProgress& on_build) {
   const ScratchFolder scratch;
-  std::unique_ptr<SceneRun> run =
-      SceneRun::start(scene_file, {.out = scratch.path() / "run", .overwrite = true, .threads = threads});
+  std::unique_ptr<SceneRun> run = SceneRun::start(
+      scene_file, {.out = scratch.path() / "run", .overwrite = true, .threads = threads, .on_build = on_build});
   const dem::World& w = run->scene.world;
   SceneCheck c;
   c.bodies = w.bodies.size();

@@ -101,7 +101,7 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
     base = fs::path(scene_file).parent_path();
     if (base.empty()) base = ".";
   }
-  r->scene = load_scene(text, source, base);
+  r->scene = load_scene(text, source, base, options.on_build);
   if (options.threads >= 0) r->scene.world.settings.threads = options.threads;
   r->state = plan_scene(r->scene, source);
   r->folder.dir = options.out.empty() ? fs::path(r->scene.output_dir) : options.out;
@@ -129,13 +129,14 @@ std::unique_ptr<SceneRun> SceneRun::start(const std::string& scene_file, const S
   return r;
 }
 
-std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads, bool follower) {
+std::unique_ptr<SceneRun> SceneRun::resume(const fs::path& dir, int threads, bool follower,
+                                          const dem::BuildProgress& on_build) {
   std::unique_ptr<SceneRun> r(new SceneRun);
   r->folder.dir = dir;
   if (!fs::exists(r->folder.checkpoint()))
     throw SceneError(dir.string() + " holds no checkpoint.bin to resume from");
   const FolderScene saved = read_folder_scene(r->folder);
-  r->scene = load_scene(saved.text, r->folder.scene().string(), saved.base);
+  r->scene = load_scene(saved.text, r->folder.scene().string(), saved.base, on_build);
   if (threads >= 0) r->scene.world.settings.threads = threads;
   r->state = plan_scene(r->scene, r->folder.scene().string());
   if (follower) {

@@ -9,6 +9,7 @@
 // tests, benchmarks and Python all build worlds through it.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <limits>
 #include <optional>
@@ -209,6 +210,9 @@ struct InflowDef {
   std::string label;                ///< e.g. "inflow[0]"
 };
 
+/// What a long build is starting on (WorldBuilder::set_progress).
+using BuildProgress = std::function<void(const std::string&)>;
+
 class WorldBuilder {
  public:
   /// Checks the settings (check_settings).
@@ -238,6 +242,12 @@ class WorldBuilder {
   /// saved from a settled bed, or a stack started at its resting overlaps.
   /// (By default such a start is refused, naming the two bodies.)
   void accept_initial_overlaps() noexcept { check_overlaps_ = false; }
+
+  /// Told what the builder starts on where that can take long (cutting a
+  /// bonded assembly, filling a region, checking the start), so that a long
+  /// build can say where it is: one line each, as "LABEL: cutting it into
+  /// 2000 pieces".
+  void set_progress(BuildProgress progress) { progress_ = std::move(progress); }
 
   /// A prescribed motion (motion.hpp) for walls and fixed bodies; returns
   /// its number (> 0) for BodyDef::motion and the walls' `motion`.
@@ -319,6 +329,10 @@ class WorldBuilder {
   };
   std::vector<SharedShape> shared_;  ///< add_shape
   bool check_overlaps_ = true;
+  BuildProgress progress_;
+  void say(const std::string& what) const {
+    if (progress_) progress_(what);
+  }
   std::uint32_t groups_ = 0;
   bool continued_ = false;              ///< made from a world: its periodic cell is state to keep
 };

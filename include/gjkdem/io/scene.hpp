@@ -39,8 +39,10 @@ struct Scene {
 };
 
 /// Reads a scene from TOML text. `source` names it in messages; relative
-/// file names (meshes) are taken from `base_dir`.
-Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir);
+/// file names (meshes) are taken from `base_dir`; `progress` hears what a
+/// long build starts on (WorldBuilder::set_progress).
+Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir,
+                 const dem::BuildProgress& progress = {});
 
 /// One shape in the scene's vocabulary (docs/scenes.md, "Shapes"), and the
 /// warnings reading it gave (a mesh that was not convex, ...).

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "gjkdem/dem/world_builder.hpp"
 #include "gjkdem/math/real.hpp"
 
 namespace gjkdem::io {
@@ -38,7 +39,8 @@ struct SceneCheck {
 /// throws SceneError as a run would; runs it for about `sample_seconds` of
 /// wall time (at least one step, at most the whole run) with `threads`
 /// (< 0: the scene's).
-SceneCheck check_scene(const std::string& scene_file, int threads = -1, double sample_seconds = 2.0);
+SceneCheck check_scene(const std::string& scene_file, int threads = -1, double sample_seconds = 2.0,
+                       const dem::BuildProgress& on_build = {});
 
 /// The check as lines of text for a terminal.
 std::string describe(const SceneCheck& check);

@@ -31,6 +31,7 @@ struct SceneRunOptions {
   /// walls must be those of that run; its materials, contact law settings,
   /// gravity, motions, duration and outputs may differ (io::Restore::NewRun).
   std::filesystem::path start_from{};
+  dem::BuildProgress on_build{};  ///< hears what a long build starts on (WorldBuilder::set_progress)
 };
 
 /// The library's version ("0.1.0"), written into run.json.
@@ -57,7 +58,8 @@ class SceneRun {
   /// Takes up the run in `dir` from its checkpoint (SceneError when the
   /// folder holds none, CheckpointError when it does not match the scene).
   /// `follower`: as in SceneRunOptions (the folder is only read).
-  static std::unique_ptr<SceneRun> resume(const std::filesystem::path& dir, int threads = -1, bool follower = false);
+  static std::unique_ptr<SceneRun> resume(const std::filesystem::path& dir, int threads = -1, bool follower = false,
+                                          const dem::BuildProgress& on_build = {});
   /// True when run.json in `dir` says the run completed.
   static bool completed(const std::filesystem::path& dir);
 

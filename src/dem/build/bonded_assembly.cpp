@@ -58,6 +58,7 @@ std::vector<std::uint32_t> WorldBuilder::add_bonded(const BondedDef& d) {
   for (const Vec3& v : {d.position, d.velocity, d.angular_velocity})
     if (!is_finite(v)) throw BuildError(label + ": position, velocity and angular velocity must be finite");
   const Polytope solid = solid_of(d.shape, settings_.tessellation, label);
+  say(label + ": cutting it into " + std::to_string(d.pieces) + " pieces");
   const PolytopeData& s = *solid.data;
 
   // Sites drawn uniformly inside the solid, then Lloyd's iterations.

@@ -91,6 +91,7 @@ std::uint32_t WorldBuilder::add_inflow(const InflowDef& d) {
 
 std::vector<std::uint32_t> WorldBuilder::fill_region(const RegionFill& f, std::mt19937_64& rng) {
   const std::string& label = f.label.empty() ? std::string("region") : f.label;
+  say(label + ": placing " + std::to_string(f.count) + (f.pieces > 0 ? " bonded assemblies" : " bodies"));
   Vec3 region_lo = f.lo, region_hi = f.hi;  // a round region's: its bounding box
   if (f.round) {
     const RoundRegion& g = *f.round;

@@ -272,6 +272,7 @@ World WorldBuilder::build() {
     throw BuildError("bonded assemblies cannot be in a periodic world yet (their bonds do not wrap)");
   prepare_shapes();
   prepare_surfaces();
+  say("checking that the " + std::to_string(world_.bodies.size()) + " bodies start apart");
   check_explicit_bodies();
   check_inflow_regions();
   world_.material_pairs = make_material_table(world_.materials, settings_.model);

@@ -26,6 +26,7 @@ Scene SceneReader::build(const toml::table& root) {
   read_output(top);
   read_contact(top);
   builder_.emplace(settings_);
+  builder_->set_progress(progress_);
   if (accept_overlaps_) builder_->accept_initial_overlaps();
   for_each_table(top, "material", [&](TableReader& r) { read_material(r); });
   read_named_shapes(top);
@@ -197,7 +198,8 @@ std::uint32_t SceneReader::material_of(TableReader& r) {
 
 namespace gjkdem::io {
 
-Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir) {
+Scene load_scene(std::string_view toml_text, const std::string& source, const std::filesystem::path& base_dir,
+                 const dem::BuildProgress& progress) {
   detail::check_key_depth(toml_text, source);
   toml::table root;
   try {
@@ -206,7 +208,7 @@ Scene load_scene(std::string_view toml_text, const std::string& source, const st
     throw SceneError(source + ": " + std::string(e.description()) + " (line " +
                      std::to_string(e.source().begin.line) + ")");
   }
-  return detail::SceneReader(source, base_dir).build(root);
+  return detail::SceneReader(source, base_dir, progress).build(root);
 }
 
 SceneShape read_scene_shape(std::string_view toml_inline_table, const std::filesystem::path& base_dir,

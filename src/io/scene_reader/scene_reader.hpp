@@ -60,7 +60,8 @@ using ShapeSpec = dem::BodyShape;
 
 class SceneReader {
  public:
-  SceneReader(const std::string& source, std::filesystem::path base) : source_(source), base_(std::move(base)) {}
+  SceneReader(const std::string& source, std::filesystem::path base, dem::BuildProgress progress = {})
+      : source_(source), base_(std::move(base)), progress_(std::move(progress)) {}
 
   // One SHAPE table outside a scene (read_scene_shape): a random polyhedron
   // drawn once from `seed` (a size range drawn in too), any other type as
@@ -224,6 +225,7 @@ class SceneReader {
   Scene scene_;
   dem::WorldSettings settings_;
   std::optional<dem::WorldBuilder> builder_;
+  dem::BuildProgress progress_;
   std::map<std::pair<std::string, Real>, std::shared_ptr<const Surface>> surfaces_;  ///< by file and scale
   std::map<std::string, NamedShape> named_shapes_;  ///< the [shapes] table, by name
   std::map<std::uint32_t, std::uint32_t> body_lines_;  // explicit bodies: index -> line
