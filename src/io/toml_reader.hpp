@@ -7,13 +7,16 @@
 // fallback gave. The echo is made by the reads, so it cannot drift from
 // what the reader takes. Internal to src/io; toml++ is included by the
 // scene reader and, to write scenes, scene_export.cpp.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -265,6 +268,13 @@ class TableReader {
     if (!n) return nullptr;
     if (!n->is_table()) fail(key, "must be a table, e.g. { type = \"box\", ... }");
     return n->as_table();
+  }
+  /// Refuses at once a key not among `known` (as finish() would, later): a
+  /// scene's misspelt section before any of its bodies is cut or placed.
+  void refuse_keys_but(std::span<const std::string_view> known) const {
+    for (const auto& [k, v] : table_)
+      if (std::find(known.begin(), known.end(), k.str()) == known.end())
+        throw SceneError(where_ + ": unknown key '" + std::string(k.str()) + "'" + line_of(v));
   }
   /// Refuses the keys nobody asked for; echoes the keys asked for that no
   /// getter recorded (a SHAPE table, a list of parts) as they are written,

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 namespace gjkdem::io {
 namespace {
@@ -197,20 +198,19 @@ TEST_F(MeshTest, NotIntegersAndNotFilesAreRefused) {
 TEST_F(MeshTest, PolygonFacesAreCutInsideThemselvesOrRefusedByLine) {
   const Real l[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};  // counter-clockwise from +z
   for (int start = 0; start < 6; ++start) {
-    std::string obj;
+    std::ostringstream obj;
     for (int z = 0; z < 2; ++z)
-      for (const auto& c : l) obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(z) + "\n";
-    std::string bottom = "f", top = "f";
-    for (int k = 0; k < 6; ++k) {
-      bottom += " " + std::to_string(1 + (start + 6 - k) % 6);
-      top += " " + std::to_string(7 + (start + k) % 6);
-    }
-    obj += bottom + "\n" + top + "\n";
+      for (const auto& c : l) obj << "v " << c[0] << " " << c[1] << " " << z << "\n";
+    obj << "f";
+    for (int k = 0; k < 6; ++k) obj << " " << 1 + (start + 6 - k) % 6;
+    obj << "\nf";
+    for (int k = 0; k < 6; ++k) obj << " " << 7 + (start + k) % 6;
+    obj << "\n";
     for (int k = 0; k < 6; ++k) {
       const int i = k + 1, j = (k + 1) % 6 + 1;
-      obj += "f " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(j + 6) + " " + std::to_string(i + 6) + "\n";
+      obj << "f " << i << " " << j << " " << j + 6 << " " << i + 6 << "\n";
     }
-    const TriangleMesh mesh = read_mesh(write("l" + std::to_string(start) + ".obj", obj));
+    const TriangleMesh mesh = read_mesh(write(std::string("l") += std::to_string(start) += ".obj", obj.str()));
     ASSERT_EQ(mesh.triangles.size(), 2u * 4 + 6 * 2) << start;
     const Surface surface = make_surface(mesh.vertices, mesh.triangles);
     EXPECT_NEAR(surface.volume, 3, 1e-12) << start;
@@ -224,10 +224,9 @@ TEST_F(MeshTest, PolygonFacesAreCutInsideThemselvesOrRefusedByLine) {
   EXPECT_NE(error_of(write("bowtie.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 1 0\n# crossing\nf 1 2 3 4\n"))
                 .find("bowtie.obj: line 6: the face's polygon crosses itself"),
             std::string::npos);
-  std::string star;
-  for (int k = 0; k < 5; ++k)
-    star += "v " + std::to_string(std::cos(4 * kPi * k / 5)) + " " + std::to_string(std::sin(4 * kPi * k / 5)) + " 0\n";
-  EXPECT_NE(error_of(write("star.obj", star + "f 1 2 3 4 5\n")).find("star.obj: line 6: the face's polygon crosses itself"),
+  std::ostringstream star;
+  for (int k = 0; k < 5; ++k) star << "v " << std::cos(4 * kPi * k / 5) << " " << std::sin(4 * kPi * k / 5) << " 0\n";
+  EXPECT_NE(error_of(write("star.obj", star.str() + "f 1 2 3 4 5\n")).find("star.obj: line 6: the face's polygon crosses itself"),
             std::string::npos);
   EXPECT_NE(error_of(write("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\n")).find("line 5: the face's polygon has no area"),
             std::string::npos);

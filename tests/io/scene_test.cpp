@@ -608,6 +608,11 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"no_simulation", kNoSim + kCube, "[simulation]"},
         Bad{"no_duration", "[simulation]\ndt = 1e-5\n" + kNoSim + kCube, "'duration'"},
         Bad{"unknown_top_key", kHead + kCube + "\n[extra]\nx = 1\n", "unknown key 'extra' (line"},
+        // A misspelt section is refused first, before any body is read (and
+        // cut or placed: minutes on a big scene), not after.
+        Bad{"misspelt_section_first",
+            kHead + "[[plane]]\nnormal = [0.0, 0.0, 1.0]\n[[body]]\nshape = { type = \"box\", half_extents = [0.01, 0.01, 0.01] }\nmaterial = \"nope\"\n",
+            "unknown key 'plane' (line"},
         Bad{"unknown_body_key", kHead + kCube + "colour = \"red\"\n", "unknown key 'colour' (line 16)"},
         Bad{"unknown_simulation_key", "[simulation]\nduration = 1.0\nsubsteps = 3\n" + kNoSim + kCube,
             "simulation: unknown key 'substeps' (line 3)"},

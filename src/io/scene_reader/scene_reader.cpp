@@ -22,6 +22,11 @@ SceneShape SceneReader::one_shape(const toml::table& t, const std::string& where
 
 Scene SceneReader::build(const toml::table& root) {
   TableReader top(root, source_);
+  // The sections read below: a misspelt one ([[plane]]) was told only after
+  // every body was cut and placed, minutes on a big scene.
+  static constexpr std::string_view kSections[] = {"simulation", "output", "contact", "material", "shapes",
+                                                   "wall",       "body",   "generator", "inflow"};
+  top.refuse_keys_but(kSections);
   read_simulation(top);
   read_output(top);
   read_contact(top);
