@@ -132,6 +132,11 @@ inline constexpr Real kPatchMatchRel = 0.25;
 /// measured for an icosahedron inside another). The run stops naming the
 /// pair. A real contact's |S_A| is at least of the order of V^(2/3).
 inline constexpr Real kEngulfedAreaRel = 1e-6;
+/// A run warns, once, of a contact deeper than this times the smaller radius
+/// of curvature of its bodies: the contact laws are made for small overlaps
+/// (a press crushing soft fragments had one 0.7 mm into the floor, silently).
+inline constexpr Real kLawRangeRel = 0.1;
+
 /// A bonded assembly's bonds must be at least this fraction of the stiffness
 /// of a bar of the material spanning two pieces (E / spacing, Pa/m), in
 /// tension and in shear: bonded pieces do not touch, and a softer bond lets

@@ -205,14 +205,48 @@ std::string describe_failure(const World& w, const StepReport& r) {
   return "step failed";
 }
 
+namespace {
+
+// The deepest contact relative to the smaller radius of curvature of its
+// bodies, when beyond kLawRangeRel: a warning naming the pair, or "".
+std::string deep_overlap(const World& w) {
+  Real worst = kLawRangeRel;
+  const StepContact* deepest = nullptr;
+  Real size_of_deepest = 0;
+  for (const StepContact& c : w.results.contacts) {
+    if (!c.active) continue;
+    Real size = w.templates[w.bodies[c.b].shape].curvature_radius;
+    if (!c.a_is_plane) size = std::fmin(size, w.templates[w.bodies[c.a].shape].curvature_radius);
+    if (!(size > 0) || !(c.geometry.depth > worst * size)) continue;
+    worst = c.geometry.depth / size, deepest = &c, size_of_deepest = size;
+  }
+  if (!deepest) return "";
+  const StepContact& c = *deepest;
+  const std::string a = name_of(w, c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id);
+  return "contacts overlap deeply: " + a + " and " + name_of(w, w.bodies[c.b].id) + " by " +
+         number_text(c.geometry.depth) + " m, " + number_text(100 * c.geometry.depth / size_of_deepest) +
+         "% of the radius " + number_text(size_of_deepest) + " m, at t = " + number_text(w.time) +
+         " s: the contact laws hold for small overlaps (below " + number_text(100 * kLawRangeRel) +
+         "%); stiffen the material (youngs_modulus) or ease the load (said once a run)";
+}
+
+}  // namespace
+
 std::string detail::GuardCheck::operator()(const World& w, const RunState& state, const RunGuards& guards,
                                             std::span<RunObserver* const> observers) {
   std::string trouble = check_guards(w, state, guards);
-  if (trouble.empty() || guards.action == GuardAction::Stop) return trouble;
-  const std::string kind = trouble.substr(0, trouble.find(' ', 4));
-  if (kind != last_warning_)
-    for (RunObserver* o : observers) o->on_warning(w, state, trouble);
-  last_warning_ = kind;
+  if (!trouble.empty() && guards.action == GuardAction::Stop) return trouble;
+  if (!trouble.empty()) {
+    const std::string kind = trouble.substr(0, trouble.find(' ', 4));
+    if (kind != last_warning_)
+      for (RunObserver* o : observers) o->on_warning(w, state, trouble);
+    last_warning_ = kind;
+  }
+  if (guards.action != GuardAction::Off && !told_deep_)
+    if (const std::string deep = deep_overlap(w); !deep.empty()) {
+      told_deep_ = true;
+      for (RunObserver* o : observers) o->on_warning(w, state, deep);
+    }
   return "";
 }
 
