@@ -54,8 +54,8 @@ Vec3 read_point(std::istringstream& ls, const std::string& file, long line, cons
 // A polygon face's triangles. A convex polygon is a fan from its first
 // corner; any other is cut by ear clipping in the plane it spans (Newell's
 // normal), so a notch stays open. A face with no area, or one that crosses
-// itself (no ear to cut), is refused naming its line.
-void add_polygon(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& poly,
+// itself (no ear to cut), throws naming its line (add_face fans it then).
+void cut_polygon(const std::vector<Vec3>& vertices, const std::vector<std::uint32_t>& poly,
                  std::vector<std::array<std::uint32_t, 3>>& out, const std::string& where) {
   const std::size_t n = poly.size();
   if (n == 3) {
@@ -131,6 +131,20 @@ void add_polygon(const std::vector<Vec3>& vertices, const std::vector<std::uint3
   out.push_back({poly[left[0]], poly[left[1]], poly[left[2]]});
 }
 
+// A face's triangles: cut_polygon's, or where it cannot cut the polygon, a
+// fan from its first corner, and the problem kept (TriangleMesh::uncut_polygon).
+void add_face(TriangleMesh& m, const std::vector<std::uint32_t>& poly, const std::string& where) {
+  std::vector<std::array<std::uint32_t, 3>> cut;
+  try {
+    cut_polygon(m.vertices, poly, cut, where);
+  } catch (const MeshError& e) {
+    if (m.uncut_polygon.empty()) m.uncut_polygon = e.what();
+    cut.clear();
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i) cut.push_back({poly[0], poly[i], poly[i + 1]});
+  }
+  m.triangles.insert(m.triangles.end(), cut.begin(), cut.end());
+}
+
 TriangleMesh read_obj(std::istream& in, const std::string& file) {
   TriangleMesh m;
   std::string line;
@@ -166,7 +180,7 @@ TriangleMesh read_obj(std::istream& in, const std::string& file) {
         poly.push_back(static_cast<std::uint32_t>(k));
       }
       if (poly.size() < 3) fail(file, "line " + std::to_string(line_no) + ": a face needs at least 3 vertices");
-      add_polygon(m.vertices, poly, m.triangles, file + ": line " + std::to_string(line_no));
+      add_face(m, poly, file + ": line " + std::to_string(line_no));
     }
   }
   return m;
@@ -229,6 +243,10 @@ TriangleMesh read_stl_binary(const std::string& bytes, const std::string& file) 
 }
 
 }  // namespace
+
+void refuse_uncut_polygons(const TriangleMesh& mesh) {
+  if (!mesh.uncut_polygon.empty()) throw MeshError(mesh.uncut_polygon);
+}
 
 TriangleMesh read_mesh(const std::filesystem::path& path) {
   const std::string file = path.string();

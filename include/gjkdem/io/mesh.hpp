@@ -23,7 +23,17 @@ struct TriangleMesh {
   /// Where each object's triangles start (OBJ `o` and `g` lines begin objects,
   /// as convex-decomposition tools write them); {0} for one object.
   std::vector<std::size_t> object_begin{0};
+  /// The first OBJ polygon face that could not be cut into triangles inside
+  /// itself (no area, or crossing itself): "FILE: line N: why". It was
+  /// fanned from its first corner instead, which a convex hull does not mind
+  /// but a surface, a shell or a mesh wall would take as its triangles
+  /// (refuse_uncut_polygons). "" when none.
+  std::string uncut_polygon;
 };
+
+/// Throws MeshError(mesh.uncut_polygon) when a polygon face could not be
+/// cut: for the readers that take the mesh's triangles as they are.
+void refuse_uncut_polygons(const TriangleMesh& mesh);
 
 /// Reads .obj or .stl (by extension, case-insensitive; STL ASCII or binary by
 /// content). Throws MeshError for a missing, unreadable, malformed or empty

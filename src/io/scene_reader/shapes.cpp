@@ -47,6 +47,7 @@ std::shared_ptr<const Surface> SceneReader::mesh_surface(TableReader& r, Real sc
   if (known) return known;
   try {
     TriangleMesh mesh = read_mesh(file);
+    refuse_uncut_polygons(mesh);
     scale_mesh(r, mesh, scale);
     known = std::make_shared<const Surface>(make_surface(std::move(mesh.vertices), std::move(mesh.triangles)));
     return known;
@@ -97,6 +98,7 @@ std::shared_ptr<const Shell> SceneReader::mesh_shell(TableReader& r, Real scale)
     const std::filesystem::path file = file_of(r, "file");
     try {
       mesh = read_mesh(file);
+      refuse_uncut_polygons(mesh);
       scale_mesh(r, mesh, scale);
     } catch (const MeshError& e) {
       r.fail("file", e.what());

@@ -57,6 +57,7 @@ void SceneReader::read_wall(TableReader& r) {
     TriangleMesh mesh;
     try {
       mesh = read_mesh(file);
+      refuse_uncut_polygons(mesh);
     } catch (const MeshError& e) {
       r.fail("file", e.what());
     }
