@@ -145,10 +145,11 @@ inline constexpr Real kMinBondStiffnessRel = 1e-3;
 
 /// Two convex bodies whose contact is deeper than this times the smaller
 /// one's radius of curvature are tested for passing through each other (a
-/// centre inside the other body: the run stops). Shallower contacts, nearly
-/// all of them, need no test: a centre lies that deep only in a body much
-/// thinner than it is wide.
-inline constexpr Real kDeepOverlapRel = 0.05;
+/// centre inside the other body: the run stops). A shallower one with a
+/// centre inside is a thin fragment squeezed, deep but not through (the
+/// press example has one 50% of its radius in at its end; kLawRangeRel
+/// warns of it). Two spheres' centres lie inside each other only deeper.
+inline constexpr Real kDeepOverlapRel = 1.0;
 /// Such a piece is the smaller solid wholly inside the other when its volume
 /// is that solid's within this (relative); a smaller piece is one solid
 /// passed through the other.

@@ -184,11 +184,20 @@ std::string describe_failure(const World& w, const StepReport& r) {
              number_text(w.time) +
              " s: their overlap has no contact area to push them apart (lower dt, or their speed, or stiffen the "
              "contact)";
-    case StepStatus::ThroughBody:
+    case StepStatus::ThroughBody: {
+      std::string depth;  // the pair's contact, as the failed step left it
+      for (const StepContact& c : w.results.contacts)
+        if (!c.a_is_plane && w.bodies[c.a].id == r.id_a && w.bodies[c.b].id == r.id_b && c.active) {
+          const Real radius = std::fmin(w.templates[w.bodies[c.a].shape].curvature_radius,
+                                        w.templates[w.bodies[c.b].shape].curvature_radius);
+          depth = " (overlapping by " + number_text(c.geometry.depth) + " m, the smaller radius " +
+                  number_text(radius) + " m)";
+        }
       return name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " are passing through each other at t = " +
-             number_text(w.time) +
-             " s: the centre of one is inside the other, so their contact pushes them on through, not apart "
+             number_text(w.time) + " s" + depth +
+             ": the centre of one is inside the other, so their contact pushes them on through, not apart "
              "(lower dt, or their speeds, or stiffen the contact; a heavier or faster body needs a stiffer one)";
+    }
     case StepStatus::Pierced:
       return "one of " + name_of(w, r.id_a) + " and " + name_of(w, r.id_b) + " passed through the other at t = " +
              number_text(w.time) +
