@@ -27,15 +27,16 @@ StepReport find_body_crossing(std::span<const Body> bodies, std::span<const Shap
   for (const StepContact& c : contacts) {
     if (!c.active || c.a_is_plane || c.surface) continue;
     const Body &a = bodies[c.a], &b = bodies[c.b];
-    if (!convex_solid(templates[a.shape]) || !convex_solid(templates[b.shape])) continue;
     const ShapeTemplate &ta = templates[a.shape], &tb = templates[b.shape];
+    if (!convex_solid(ta) || !convex_solid(tb)) continue;
     // Shallow contacts (all but the deepest few) need no test.
     if (!(c.geometry.depth > kDeepOverlapRel * std::fmin(ta.curvature_radius, tb.curvature_radius))) continue;
+    const Vec3 shift = image_shift_of(cell, c);  // b at its image
     const PartPose pa = part_pose(ta, a, 0);
     PartPose pb = part_pose(tb, b, 0);
-    pb.pose.translation += image_shift_of(cell, c);
+    pb.pose.translation += shift;
     const Shape centre{Point{}};
-    if (intersect(centre, Transform::from(b.position + image_shift_of(cell, c), Quat{}), *pa.shape, pa.pose) ||
+    if (intersect(centre, Transform::from(b.position + shift, Quat{}), *pa.shape, pa.pose) ||
         intersect(centre, Transform::from(a.position, Quat{}), *pb.shape, pb.pose))
       return {StepStatus::ThroughBody, a.id, b.id};
   }
