@@ -26,6 +26,14 @@ std::string triangle_index_problem(const TriangleIndices& corners, std::size_t v
 namespace {
 
 constexpr std::uint32_t kNoShell = 0xffffffffu;
+constexpr std::uint32_t kNoRun = 0xffffffffu;
+
+// Fans of this many triangles or more are taken by runs (fan_runs) rather
+// than pair by pair: below it the pairs are few and cheap.
+constexpr std::size_t kCertifiedFanMinTriangles = 16;
+// Corrections of the direction a fan is seen along before its runs are
+// taken as they are (fan_runs).
+constexpr int kFanViewPasses = 16;
 
 std::string edge_name(std::uint32_t i, std::uint32_t j) {
   return "edge (" + std::to_string(i) + ", " + std::to_string(j) + ")";
@@ -184,6 +192,114 @@ void check_shells_nest(const Surface& s) {
 }
 }  // namespace
 
+std::vector<std::uint32_t> fan_runs(const Surface& s, std::uint32_t v, std::span<const std::uint32_t> fan) {
+  std::vector<std::uint32_t> run(fan.size());
+  for (std::uint32_t i = 0; i < fan.size(); ++i) run[i] = i;  // no verdict: each its own
+  if (fan.size() < 3) return run;
+  // The triangle's other corners, in its turn: (v, b, c).
+  const auto corners = [&](std::uint32_t t) {
+    const TriangleIndices& tri = s.triangles[t];
+    const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    return std::pair{tri[(k + 1) % 3], tri[(k + 2) % 3]};
+  };
+  // Walked one way round (each triangle's c is the next one's b) or the other.
+  bool one_way = true, other_way = true;
+  for (std::size_t i = 0; i < fan.size(); ++i) {
+    const TriangleIndices& tri = s.triangles[fan[i]];
+    if (tri[0] != v && tri[1] != v && tri[2] != v) return run;
+    const auto [b, c] = corners(fan[i]);
+    const auto [nb, nc] = corners(fan[(i + 1) % fan.size()]);
+    one_way = one_way && c == nb;
+    other_way = other_way && b == nc;
+  }
+  if (!one_way && !other_way) return run;
+
+  // Look along w: a triangle turns forward about v where its normal n has
+  // n . w > 0. Begun at the mean of the unit normals, w is corrected by the
+  // triangles that turn back (a perceptron's steps: it finds a w that all
+  // face wherever one exists with room to spare, as a steep or uneven cone).
+  const Vec3& p = s.vertices[v];
+  std::vector<Vec3> unit_normal(fan.size());
+  Vec3 w{0, 0, 0};
+  for (std::size_t i = 0; i < fan.size(); ++i) {
+    const auto [b, c] = corners(fan[i]);
+    const Vec3 n = cross(s.vertices[b] - p, s.vertices[c] - p);
+    const Real size = length(n);
+    if (!(size > 0 && size < std::numeric_limits<Real>::infinity())) return run;
+    unit_normal[i] = n / size;
+    w = w + unit_normal[i];
+  }
+  const Real reach = length(s.vertices[corners(fan[0]).first] - p);
+  if (!(reach > 0 && reach < std::numeric_limits<Real>::infinity())) return run;
+  Vec3 eye;
+  // Each triangle's turn about v seen from eye (exact), and whether
+  // direction x lies in its corner.
+  const auto turn = [&](std::uint32_t x, std::uint32_t y) { return orient3d(p, s.vertices[x], s.vertices[y], eye); };
+  const auto in_corner = [&](std::uint32_t t, std::uint32_t x, int sign, bool closed) {
+    const auto [b, c] = corners(t);
+    return sign * turn(b, x) >= 0 && (closed ? sign * turn(x, c) >= 0 : sign * turn(x, c) > 0);
+  };
+  // Seen from eye, the turns; the number turning back (fan.size() + 1 where
+  // eye is no view).
+  std::vector<int> sign(fan.size());
+  const auto look_along = [&](const Vec3& along) {
+    const Real wn = length(along);
+    if (!(wn > 0 && wn < std::numeric_limits<Real>::infinity())) return fan.size() + 1;
+    eye = p + along * (reach / wn);  // any point off v will do: the predicates are exact
+    if (!(std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z))) return fan.size() + 1;
+    std::size_t back = 0;
+    for (std::size_t i = 0; i < fan.size(); ++i) {
+      sign[i] = turn(corners(fan[i]).first, corners(fan[i]).second);
+      back += sign[i] <= 0;
+    }
+    return back;
+  };
+  Vec3 best = w;
+  std::size_t fewest = fan.size() + 1;
+  for (int pass = 0; pass < kFanViewPasses; ++pass) {
+    const std::size_t back = look_along(w);
+    if (back < fewest) best = w, fewest = back;
+    if (back == 0 || back > fan.size()) break;
+    for (std::size_t i = 0; i < fan.size(); ++i)
+      if (sign[i] <= 0) w = w + unit_normal[i];
+  }
+  if (look_along(best) > fan.size()) return run;
+
+  // The whole fan as one run: one turn throughout, one round (counted half-open).
+  const std::uint32_t start = corners(fan[0]).first;
+  int rounds = 0;
+  bool one_turn = sign[0] != 0;
+  for (std::size_t i = 0; i < fan.size(); ++i) {
+    one_turn = one_turn && sign[i] == sign[0];
+    rounds += one_turn && in_corner(fan[i], start, sign[0], false);
+  }
+  if (one_turn && rounds == 1) {
+    std::fill(run.begin(), run.end(), 0u);
+    return run;
+  }
+  // Otherwise runs of consecutive triangles (in the walk's order) of one turn
+  // that fall short of a round: a triangle whose closed corner holds its
+  // run's first direction starts the next run. Begun where the turn changes,
+  // so that a fold does not cut the run that passes the walk's start in two.
+  const std::size_t n = fan.size();
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (sign[i] != sign[(i + n - 1) % n]) {
+      begin = i;
+      break;
+    }
+  std::size_t first = begin;
+  run[begin] = static_cast<std::uint32_t>(begin);
+  for (std::size_t step = 1; step < n; ++step) {
+    const std::size_t i = (begin + step) % n;
+    const std::uint32_t b0 = one_way ? corners(fan[first]).first : corners(fan[first]).second;
+    const bool joins = sign[i] != 0 && sign[i] == sign[first] && !in_corner(fan[i], b0, sign[i], true);
+    if (!joins) first = i;
+    run[i] = static_cast<std::uint32_t>(first);
+  }
+  return run;
+}
+
 bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f) {
   // Most pairs lie wholly on one side of the other's plane: three signs each.
   const int sd = orient3d(a, b, c, d), se = orient3d(a, b, c, e), sf = orient3d(a, b, c, f);
@@ -307,14 +423,22 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
   for (const TriangleIndices& tri : s.triangles)
     for (const std::uint32_t i : tri) ++incident[i];
   std::vector<std::uint8_t> walked(nv, 0);
+  // Per triangle corner, the fan run it lies in (fan_runs; kNoRun: none):
+  // two triangles of one run need not be checked against each other.
+  using Runs = std::array<std::uint32_t, 3>;
+  std::vector<Runs> corner_runs(nt, Runs{kNoRun, kNoRun, kNoRun});
+  std::uint32_t runs_made = 0;
+  std::vector<std::uint32_t> fan;
   for (std::uint32_t t0 = 0; t0 < nt; ++t0)
     for (int k0 = 0; k0 < 3; ++k0) {
       const std::uint32_t v = s.triangles[t0][k0];
       if (walked[v]) continue;
       walked[v] = 1;
       std::uint32_t t = t0, count = 0;
+      fan.clear();
       do {
         ++count;
+        if (incident[v] >= kCertifiedFanMinTriangles) fan.push_back(t);
         // The side of t that leaves v (v -> next): its other triangle comes next.
         int k = 0;
         while (s.triangles[t][k] != v) ++k;
@@ -323,6 +447,14 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       } while (t != t0 && count <= incident[v]);
       if (count != incident[v])
         throw SurfaceError("vertex " + std::to_string(v) + " joins separate fans of triangles: the surface is not manifold there");
+      if (!fan.empty()) {
+        const std::vector<std::uint32_t> run = fan_runs(s, v, fan);
+        for (std::size_t i = 0; i < fan.size(); ++i) {
+          const TriangleIndices& tri = s.triangles[fan[i]];
+          corner_runs[fan[i]][tri[0] == v ? 0 : (tri[1] == v ? 1 : 2)] = runs_made + run[i];
+        }
+        runs_made += static_cast<std::uint32_t>(fan.size());
+      }
     }
 
   s.vertex_edge_begin.assign(nv + 1, 0);
@@ -341,11 +473,40 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
   build_box_tree(s.triangle_boxes, ids, s.tree);
   s.box = s.tree.nodes[0].box;
 
-  overlapping_items(s.tree, s.tree, [&](std::uint32_t i, std::uint32_t j) {
-    if (i < j && triangles_clash(s, i, j))
-      throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
-                         " intersect: the surface crosses itself");
-  });
+  // No two triangles meet but as they should. Pairs in one fan run are
+  // decided already, and skipped a whole node pair at a time: each node keeps
+  // the runs all its triangles share (a fan of 32,000 triangles would
+  // otherwise be half a billion pairs).
+  const auto common = [](const Runs& a, const Runs& b) {
+    Runs out{kNoRun, kNoRun, kNoRun};
+    for (int k = 0; k < 3; ++k)
+      if (a[k] != kNoRun && std::find(b.begin(), b.end(), a[k]) != b.end()) out[k] = a[k];
+    return out;
+  };
+  const auto share = [](const Runs& a, const Runs& b) {
+    for (const std::uint32_t x : a)
+      if (x != kNoRun && std::find(b.begin(), b.end(), x) != b.end()) return true;
+    return false;
+  };
+  std::vector<Runs> node_runs(s.tree.nodes.size());
+  for (std::size_t k = s.tree.nodes.size(); k-- > 0;) {  // children come after their parent
+    const BoxTree::Node& n = s.tree.nodes[k];
+    if (n.count) {
+      node_runs[k] = corner_runs[s.tree.items[n.first]];
+      for (std::uint32_t i = n.first + 1; i < n.first + n.count; ++i)
+        node_runs[k] = common(node_runs[k], corner_runs[s.tree.items[i]]);
+    } else {
+      node_runs[k] = common(node_runs[n.left], node_runs[n.right]);
+    }
+  }
+  overlapping_items(
+      s.tree, s.tree,
+      [&](std::uint32_t i, std::uint32_t j) {
+        if (i < j && !share(corner_runs[i], corner_runs[j]) && triangles_clash(s, i, j))
+          throw SurfaceError("triangles " + std::to_string(i) + " and " + std::to_string(j) +
+                             " intersect: the surface crosses itself");
+      },
+      [&](std::uint32_t n, std::uint32_t m) { return share(node_runs[n], node_runs[m]); });
   check_volume_resolved(s);
   const MassProperties m = mass_properties(s);
   s.volume = m.volume, s.centroid = m.centroid;

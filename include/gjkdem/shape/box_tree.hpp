@@ -36,9 +36,11 @@ void refit_box_tree(BoxTree& tree, std::span<const Aabb> boxes);
 void query_box_tree(const BoxTree& tree, const Aabb& box, std::vector<std::uint32_t>& found);
 
 /// Calls visit(i, j) for every pair of ids, i of a and j of b, whose boxes
-/// overlap (the same frame).
-template <class Visit>
-void overlapping_items(const BoxTree& a, const BoxTree& b, Visit&& visit) {
+/// overlap (the same frame), except under a pair of nodes n of a and m of b
+/// for which skip(n, m) holds (node indices: the caller knows what their
+/// items share).
+template <class Visit, class Skip>
+void overlapping_items(const BoxTree& a, const BoxTree& b, Visit&& visit, Skip&& skip) {
   if (a.nodes.empty() || b.nodes.empty()) return;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0, 0}};
   while (!stack.empty()) {
@@ -46,7 +48,7 @@ void overlapping_items(const BoxTree& a, const BoxTree& b, Visit&& visit) {
     stack.pop_back();
     const BoxTree::Node& n = a.nodes[i];
     const BoxTree::Node& m = b.nodes[j];
-    if (!overlaps(n.box, m.box)) continue;
+    if (!overlaps(n.box, m.box) || skip(i, j)) continue;
     if (n.count && m.count) {
       for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
         for (std::uint32_t t = m.first; t < m.first + m.count; ++t)
@@ -62,6 +64,11 @@ void overlapping_items(const BoxTree& a, const BoxTree& b, Visit&& visit) {
       stack.push_back({i, m.right});
     }
   }
+}
+
+template <class Visit>
+void overlapping_items(const BoxTree& a, const BoxTree& b, Visit&& visit) {
+  overlapping_items(a, b, visit, [](std::uint32_t, std::uint32_t) { return false; });
 }
 
 }  // namespace gjkdem

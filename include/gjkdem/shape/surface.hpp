@@ -103,6 +103,19 @@ Real winding_number(std::span<const Vec3> vertices, std::span<const TriangleIndi
 /// or vertex they share (exact).
 bool triangles_clash(const Surface& surface, std::uint32_t s, std::uint32_t t);
 
+/// The triangles about vertex v (`fan`: all of them, in the order their
+/// shared edges chain them) in runs, by index: any two triangles of one run
+/// meet only at v and in the edge they share, by a sufficient test that is
+/// exact. Seen along the fan's mean normal, a run is consecutive triangles
+/// that turn the same way about v and fall short of a round (no direction
+/// from v in two of its corners), or the whole fan where its turns agree and
+/// make one round (each direction in exactly one corner, counted half-open):
+/// each triangle is then a one-to-one image, two images meet only at v or
+/// along a shared side, and so do the triangles. A flat cap or a cone is one
+/// run; a fold starts new runs; a triangle alone in its run has no verdict.
+/// make_surface checks pairs of triangles across runs only.
+std::vector<std::uint32_t> fan_runs(const Surface& surface, std::uint32_t v, std::span<const std::uint32_t> fan);
+
 /// True when the closed triangles abc and def share a point (exact).
 bool triangles_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e, const Vec3& f);
 
