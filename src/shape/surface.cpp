@@ -30,10 +30,13 @@ constexpr std::uint32_t kNoRun = 0xffffffffu;
 
 // Fans of this many triangles or more are taken by runs (fan_runs) rather
 // than pair by pair: below it the pairs are few and cheap.
-constexpr std::size_t kCertifiedFanMinTriangles = 16;
+constexpr std::size_t kFanRunMinTriangles = 16;
 // Corrections of the direction a fan is seen along before its runs are
 // taken as they are (fan_runs).
 constexpr int kFanViewPasses = 16;
+
+// Which corner of the triangle is vertex v (one of its corners).
+int corner_of(const TriangleIndices& tri, std::uint32_t v) { return tri[0] == v ? 0 : (tri[1] == v ? 1 : 2); }
 
 std::string edge_name(std::uint32_t i, std::uint32_t j) {
   return "edge (" + std::to_string(i) + ", " + std::to_string(j) + ")";
@@ -199,7 +202,7 @@ std::vector<std::uint32_t> fan_runs(const Surface& s, std::uint32_t v, std::span
   // The triangle's other corners, in its turn: (v, b, c).
   const auto corners = [&](std::uint32_t t) {
     const TriangleIndices& tri = s.triangles[t];
-    const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    const int k = corner_of(tri, v);
     return std::pair{tri[(k + 1) % 3], tri[(k + 2) % 3]};
   };
   // Walked one way round (each triangle's c is the next one's b) or the other.
@@ -255,15 +258,16 @@ std::vector<std::uint32_t> fan_runs(const Surface& s, std::uint32_t v, std::span
     return back;
   };
   Vec3 best = w;
-  std::size_t fewest = fan.size() + 1;
+  std::size_t fewest = fan.size() + 1, back = fewest;
   for (int pass = 0; pass < kFanViewPasses; ++pass) {
-    const std::size_t back = look_along(w);
+    back = look_along(w);
     if (back < fewest) best = w, fewest = back;
     if (back == 0 || back > fan.size()) break;
     for (std::size_t i = 0; i < fan.size(); ++i)
       if (sign[i] <= 0) w = w + unit_normal[i];
   }
-  if (look_along(best) > fan.size()) return run;
+  if (back != fewest && look_along(best) > fan.size()) return run;  // (the last look, where it was the best, stands)
+  if (fewest > fan.size()) return run;
 
   // The whole fan as one run: one turn throughout, one round (counted half-open).
   const std::uint32_t start = corners(fan[0]).first;
@@ -438,10 +442,9 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       fan.clear();
       do {
         ++count;
-        if (incident[v] >= kCertifiedFanMinTriangles) fan.push_back(t);
+        if (incident[v] >= kFanRunMinTriangles) fan.push_back(t);
         // The side of t that leaves v (v -> next): its other triangle comes next.
-        int k = 0;
-        while (s.triangles[t][k] != v) ++k;
+        const int k = corner_of(s.triangles[t], v);
         const std::uint32_t e = s.triangle_edges[t][k];
         t = s.edge_triangles[e][0] == t ? s.edge_triangles[e][1] : s.edge_triangles[e][0];
       } while (t != t0 && count <= incident[v]);
@@ -450,8 +453,7 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
       if (!fan.empty()) {
         const std::vector<std::uint32_t> run = fan_runs(s, v, fan);
         for (std::size_t i = 0; i < fan.size(); ++i) {
-          const TriangleIndices& tri = s.triangles[fan[i]];
-          corner_runs[fan[i]][tri[0] == v ? 0 : (tri[1] == v ? 1 : 2)] = runs_made + run[i];
+          corner_runs[fan[i]][corner_of(s.triangles[fan[i]], v)] = runs_made + run[i];
         }
         runs_made += static_cast<std::uint32_t>(fan.size());
       }
