@@ -40,7 +40,9 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
   ContactForce out;
   const Real m_eff = effective_mass(a.mass, b.mass);
   const Real r_star = effective_radius(a.curvature_radius, b.curvature_radius);
-  const Real e_star = mp.youngs_modulus;
+  // A contact a split relaxed acts as one of a softer material pair.
+  const Real scale = before.stiffness_scale;
+  const Real e_star = mp.youngs_modulus * scale;
   const Vec3 v_rel = point_velocity(b, g.point) - point_velocity(a, g.point);  // b relative to a
   const Real approach = -dot(v_rel, g.normal);
   Real magnitude, k_normal = 0, c_normal = 0;  // normal force on b; its stiffness and dashpot (linear and volume laws)
@@ -50,7 +52,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
   } else {
     if (s.model == ContactModel::Volume) {
       // k |S_A| on depth V / |S_A| is k V; the potential form scales it by |S_A| / A_ref.
-      const Real k_volume = s.volume_stiffness > 0 ? s.volume_stiffness : e_star / r_star;
+      const Real k_volume = s.volume_stiffness > 0 ? s.volume_stiffness * scale : e_star / r_star;
       k_normal = k_volume * g.area;
       if (a_is_plane) {
         out.elastic = k_volume * g.depth_integral;
@@ -62,7 +64,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
         out.elastic = 0.5 * k_normal * g.depth * g.depth;  // exact for flat contacts only
       }
     } else {
-      k_normal = s.linear_stiffness > 0 ? s.linear_stiffness : e_star * r_star;
+      k_normal = s.linear_stiffness > 0 ? s.linear_stiffness * scale : e_star * r_star;
       out.elastic = 0.5 * k_normal * g.depth * g.depth;
     }
     // The volume law's dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat
@@ -82,7 +84,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
     // the dashpot uses the normal law's calibrated damping, so sticking
     // contacts do not ring.
-    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * std::sqrt(r_star * g.depth)
+    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * scale * std::sqrt(r_star * g.depth)
                                                     : 2.0 / 7 * k_normal;
     const Real c_t = 2 * mp.damping * std::sqrt(k_t * m_eff);
     ft = spring * -k_t - v_t * c_t;  // on b, opposing its motion relative to a
@@ -144,6 +146,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     out.elastic += 0.5 * k_roll * dot(roll, roll);
     twisting += couple;
   }
+  out.history.stiffness_scale = scale;
   out.force = g.normal * magnitude + ft;
   out.torque = g.moment * magnitude + cross(g.point, ft) + twisting;
   return out;

@@ -26,6 +26,23 @@ const Body* non_finite_body(const World& w) {
   return nullptr;
 }
 
+// What the energy guard can say made the energy: the one law it knows is
+// not the gradient of an energy, or else a step too long for the stiffness.
+std::string energy_growth_cause(const World& w) {
+  if (w.settings.model != ContactModel::Volume)
+    for (const Body& b : w.bodies) {
+      const ShapeTemplate& t = w.templates[b.shape];
+      bool surface = t.surface_grain;
+      for (const TemplatePart& p : t.parts) surface = surface || p.surface_grain;
+      if (surface)
+        return std::string("body ") + std::to_string(b.id) + " is a surface grain, and under the " +
+               (w.settings.model == ContactModel::Hertz ? "hertz" : "linear") +
+               " law a surface grain's patch forces (at the depth V / |S_A|) are not the gradient of an energy: "
+               "its collisions gain or lose energy whatever dt; take model = \"volume\" for surface grains";
+    }
+  return "a blow-up: lower dt, or check the stiffness";
+}
+
 }  // namespace
 
 Real stable_time_step(const World& w) {
@@ -113,7 +130,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
     if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
       return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start, "
              "gravity, driven walls, inflows and applied loads supply " + number_text(available) + " J, at t = " + number_text(w.time) +
-             " s (a blow-up: lower dt, or check the stiffness)";
+             " s (" + energy_growth_cause(w) + ")";
   }
   return "";
 }
