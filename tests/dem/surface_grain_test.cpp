@@ -285,10 +285,13 @@ TEST(SurfaceGrain, AGeneratorAndAnInflowFillTheHollowOfABowl) {
   }
 }
 
-// Under the Hertz law (equivalent depth) a U stands on a plane on both
-// feet; a mesh floor's triangles are a margin of thickness / 2 about them,
-// and it stands on one as on the plane raised by the margin, with one
-// contact a foot though each foot's edge lies on a seam.
+// Under the Hertz law a U stands on a plane on both feet; a mesh floor's
+// triangles are a margin of thickness / 2 about them, and it stands on one
+// as on the plane raised by the margin, with one contact a foot though each
+// foot's edge lies on a seam. The plane's patches take an energy of their
+// depth integral (docs/contact.md), the mesh's margin contacts push at their
+// depth, so a foot of 1 cm^2 sinks 47 um into the plane and 19 um into the
+// mesh: the heights agree to 0.1 mm.
 TEST(SurfaceGrain, UStandsUnderTheHertzLawOnAPlaneAndOnAMeshFloor) {
   Real height[2];
   for (int mesh = 0; mesh < 2; ++mesh) {
@@ -316,7 +319,8 @@ TEST(SurfaceGrain, UStandsUnderTheHertzLawOnAPlaneAndOnAMeshFloor) {
     height[mesh] = b.position.z;
   }
   EXPECT_GT(height[0], 0.01);
-  EXPECT_NEAR(height[1], height[0], 1e-7);
+  EXPECT_NEAR(height[1], height[0], 1e-4);
+  EXPECT_GT(height[1], height[0]);  // the plane's law is the softer on a small foot
 }
 
 // One corner of a grain within a flat mesh floor's margin: the margin model
@@ -454,6 +458,92 @@ TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {
     error << kinetic_energy(w) / e0 - 1;
     RecordProperty("energy_error_" + std::to_string(trial), error.str());
   }
+}
+
+// Under Hertz and linear a patch's law takes an energy of its overlap
+// alone (issue 54: with the depth V / |S_A| two rocks left a collision with
+// 0.75 to 1.31 times their energy, whatever dt). Non-convex grains meeting
+// at random orientations, and falling on a plane wall, with restitution 1
+// and no friction: each leaves with its energy to 1e-8, the error shrinking
+// with dt (or at round-off). Where the overlap's pieces split or join
+// during the collision (its patch count changes between non-zero counts)
+// each piece's energy is its own, so the sum jumps there: those are held
+// to 2e-3, the jump measured (docs/contact.md).
+TEST(SurfaceGrain, PatchesKeepTheEnergyOfCollisionsUnderHertzAndLinear) {
+  // About their centroids, so that the grains meet near the middle.
+  auto centred = [](const test::Mesh& m) { return scaled(m, 1, -mass_properties(test::surface_of(m)).centroid); };
+  const test::Mesh meshes[] = {centred(scaled(test::l_prism(1), 0.01)), centred(scaled(test::u_prism(1), 0.01)),
+                               centred(scaled(test::torus(1.5, 0.6, 16, 8), 0.01))};
+  std::mt19937_64 rng(11);
+  std::normal_distribution<Real> turn;
+  std::uniform_real_distribution<Real> off(-0.002, 0.002);
+  struct Collision {
+    Real ratio = 0;           // energy after / before; 0: they never parted
+    bool regrouped = false;   // the patch count changed between non-zero counts
+  };
+  auto collide = [&](ContactModel model, const test::Mesh& ma, const test::Mesh& mb, const Quat& qa, const Quat& qb,
+                     const Vec3& offset, bool on_plane, Real dt) {
+    WorldSettings settings;
+    settings.model = model;
+    settings.gravity = {};
+    WorldBuilder builder(settings);
+    const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 1.0, 0});
+    BodyShape a, b;
+    a.surface = shared(ma), b.surface = shared(mb);
+    if (on_plane) {
+      builder.add_plane({-0.025, 0, 0}, {1, 0, 0}, rock, "wall");
+    } else {
+      builder.add_body({.shape = a, .material = rock, .position = {-0.025, 0, 0}, .rotation = qa,
+                        .velocity = {0.5, 0, 0}});
+    }
+    builder.add_body({.shape = b, .material = rock, .position = Vec3{0.025, 0, 0} + offset, .rotation = qb,
+                      .velocity = {-0.5, 0, 0}});
+    World w = builder.build();
+    const Real e0 = kinetic_energy(w);
+    Collision out;
+    int last = 0;
+    for (int i = 0; i < 400000; ++i) {
+      EXPECT_EQ(step(w, dt).status, StepStatus::Ok);
+      const int now = w.stats.contacts;
+      out.regrouped = out.regrouped || (last > 0 && now > 0 && now != last);
+      if (last > 0 && now == 0) {
+        out.ratio = kinetic_energy(w) / e0;
+        break;
+      }
+      last = now;
+    }
+    return out;
+  };
+  auto random_turn = [&] { return normalized(Quat{turn(rng), turn(rng), turn(rng), turn(rng)}); };
+  Real worst = 0;
+  int regrouped = 0;
+  for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear})
+    for (int trial = 0; trial < 8; ++trial) {
+      const bool on_plane = trial >= 6;
+      const test::Mesh& ma = meshes[trial % 3];
+      const test::Mesh& mb = meshes[(trial / 3 + trial) % 3];
+      const Quat qa = random_turn(), qb = random_turn();
+      const Vec3 offset{0, off(rng), off(rng)};
+      const Collision coarse = collide(model, ma, mb, qa, qb, offset, on_plane, 2e-6);
+      const Collision fine = collide(model, ma, mb, qa, qb, offset, on_plane, 5e-7);
+      SCOPED_TRACE("law " + std::to_string(static_cast<int>(model)) + ", trial " + std::to_string(trial));
+      ASSERT_GT(coarse.ratio, 0);
+      ASSERT_GT(fine.ratio, 0);
+      const Real error = std::fabs(fine.ratio - 1);
+      if (fine.regrouped || coarse.regrouped) {
+        ++regrouped;
+        EXPECT_LT(error, 2e-3);
+        continue;
+      }
+      EXPECT_LT(error, 1e-8);
+      EXPECT_LT(error, std::fmax(std::fabs(coarse.ratio - 1), 1e-11));
+      worst = std::fmax(worst, error);
+    }
+  EXPECT_LE(regrouped, 8);  // most collisions keep their pieces
+  std::ostringstream text;
+  text << worst;
+  RecordProperty("worst_energy_error", text.str());
+  RecordProperty("regrouped_collisions", std::to_string(regrouped));
 }
 
 TEST(SurfaceGrain, PatchSlotsFollowThePatches) {

@@ -19,10 +19,14 @@ struct ContactGeometry {
   Vec3 normal;              ///< unit, a -> b
   Vec3 point;               ///< where friction and damping act, world
   Real depth = 0;           ///< penetration depth, or V / |S_A| for the volume law (m)
-  Real area = 0;            ///< |S_A| (volume law, m^2)
-  Real volume = 0;          ///< overlap volume (volume law, m^3)
-  Real depth_integral = 0;  ///< plane walls, volume law: integral of the depth over the overlap (m^4)
+  Real area = 0;            ///< |S_A| (volume law and patches, m^2)
+  Real volume = 0;          ///< overlap volume (volume law and patches, m^3)
+  Real depth_integral = 0;  ///< plane walls, volume law and patches: integral of the depth over the overlap (m^4)
   Vec3 moment;              ///< moment about the world origin of a unit normal force on b (m)
+  /// A patch of surface grains (surface_contact.hpp): volume, area, depth
+  /// and (on a plane wall) depth_integral are set under every law, and the
+  /// Hertz and linear laws take an energy of the volume alone (contact_force.hpp).
+  bool patch = false;
 };
 
 }  // namespace gjkdem::dem

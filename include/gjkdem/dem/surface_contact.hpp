@@ -5,8 +5,9 @@
 // contact/surface_half_space.hpp). Each patch is a contact of its own, with
 // the convex overlap's geometry restricted to it: the volume, the normal
 // along its vector area S_A, Feng's line of action from S_A and its first
-// moment, and the equivalent depth V / |S_A| (the mean depth over the contact
-// area) that the Hertz and linear laws take (docs/contact.md).
+// moment, the mean depth V / |S_A| over the contact area, and (on a plane
+// wall) the depth integral, of which the Hertz and linear laws take an
+// energy (contact_force.hpp, docs/contact.md).
 //
 // A patch keeps its springs from step to step by its slot, the last field of
 // its pair key: each patch found now takes the slot of the nearest patch of
@@ -65,7 +66,7 @@ struct SurfaceScratch {
 /// inside the plate, each add up to nothing).
 GeometryStatus surface_patches(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                      const std::shared_ptr<const Surface>& b, const Transform& pose_b,
-                     ContactModel model, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
+                     SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
 
 /// Whether the solids of two placed surfaces meet: their overlap has a
 /// patch, or one lies wholly inside the other. Where a generator or an
@@ -89,8 +90,8 @@ bool placed_body_meets(const Shape& shape, const Transform& pose, const std::sha
 /// The patches of a placed surface (b) beyond a plane wall (a), largest
 /// first. Returns false when the whole surface lies beyond the plane (the
 /// body went through: no cut face can push it back).
-bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
-                           SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out);
+bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, SurfaceScratch& scratch,
+                           std::vector<SurfacePatchContact>& out);
 
 /// A mesh wall's piece (margin_piece) placed at `pose`: its triangle in
 /// world coordinates, with its margin.

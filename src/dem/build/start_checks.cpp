@@ -63,7 +63,7 @@ Real start_overlap(std::span<const ShapeTemplate> templates, const Body& a, std:
         return pr.intersect ? pr.depth : 0;
       }
       if (!sa || !sb) return 0;
-      if (surface_patches(sa, at_a.pose, sb, at_b.pose, ContactModel::Volume, scratch, patches) !=
+      if (surface_patches(sa, at_a.pose, sb, at_b.pose, scratch, patches) !=
           GeometryStatus::Touching)
         return std::numeric_limits<Real>::infinity();
       break;

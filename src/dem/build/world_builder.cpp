@@ -183,7 +183,7 @@ void WorldBuilder::check_compound(const BodyShape& shape, const std::string& lab
   std::vector<SurfacePatchContact> patches;
   for (std::size_t j = parts.size(); j < n; ++j)
     for (std::size_t i = 0; i < j; ++i) {
-      const GeometryStatus met = surface_patches(solids[i], pose_of(i), solids[j], pose_of(j), ContactModel::Volume, scratch, patches);
+      const GeometryStatus met = surface_patches(solids[i], pose_of(i), solids[j], pose_of(j), scratch, patches);
       if (met != GeometryStatus::Touching)
         throw overlap_error(i, j, met == GeometryStatus::Engulfed ? "(one wholly inside the other)" : "(one through the other)");
       const Real size = 2 * std::fmax(radii[i], radii[j]);

@@ -45,10 +45,27 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
   const Real e_star = mp.youngs_modulus * scale;
   const Vec3 v_rel = point_velocity(b, g.point) - point_velocity(a, g.point);  // b relative to a
   const Real approach = -dot(v_rel, g.normal);
-  Real magnitude, k_normal = 0, c_normal = 0;  // normal force on b; its stiffness and dashpot (linear and volume laws)
-  if (s.model == ContactModel::Hertz) {
-    magnitude = hertz_normal_force({m_eff, r_star, e_star, mp.damping}, g.depth, approach);
-    out.elastic = 8.0 / 15 * e_star * std::sqrt(r_star) * std::pow(g.depth, 2.5);
+  // A patch of surface grains takes, under Hertz and linear too, an energy
+  // of its overlap alone, so that its force is the energy's gradient: the
+  // law's depth is delta = V / a_ref^2 between bodies, sqrt(2 I) / a_ref on a
+  // plane wall (I the depth integral; a flat face of area a_ref^2 at depth d
+  // gives delta = d both ways), a_ref^3 the smaller body's volume. The
+  // approach x moves delta by `lever` = d(delta)/dx: |S_A| / a_ref^2 (dV/dx =
+  // |S_A|), or V / (a_ref^2 delta) on a plane (dI/dx = V); the force is the
+  // law's at delta times the lever, on the gradient's line (surface_patches.cpp).
+  Real depth = g.depth, lever = 1;
+  if (g.patch && s.model != ContactModel::Volume) {
+    const Real a_ref = std::cbrt(std::fmin(a.volume, b.volume)), a_ref2 = a_ref * a_ref;
+    depth = a_is_plane ? std::sqrt(2 * g.depth_integral) / a_ref : g.volume / a_ref2;
+    lever = !(depth > 0) ? 0 : a_is_plane ? g.volume / (a_ref2 * depth) : g.area / a_ref2;
+  }
+  Real magnitude = 0, k_normal = 0, c_normal = 0;  // normal force on b; its stiffness and dashpot (linear and volume laws)
+  if (!(lever > 0)) {
+    // a patch of no volume: no force
+  } else if (s.model == ContactModel::Hertz) {
+    // The law on delta, whose motion has the mass m* / lever^2.
+    magnitude = hertz_normal_force({m_eff / (lever * lever), r_star, e_star, mp.damping}, depth, approach * lever) * lever;
+    out.elastic = 8.0 / 15 * e_star * std::sqrt(r_star) * std::pow(depth, 2.5);
   } else {
     if (s.model == ContactModel::Volume) {
       // k |S_A| on depth V / |S_A| is k V; the potential form scales it by |S_A| / A_ref.
@@ -64,13 +81,14 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
         out.elastic = 0.5 * k_normal * g.depth * g.depth;  // exact for flat contacts only
       }
     } else {
-      k_normal = s.linear_stiffness > 0 ? s.linear_stiffness * scale : e_star * r_star;
-      out.elastic = 0.5 * k_normal * g.depth * g.depth;
+      const Real k_linear = s.linear_stiffness > 0 ? s.linear_stiffness * scale : e_star * r_star;
+      out.elastic = 0.5 * k_linear * depth * depth;
+      k_normal = k_linear * lever * lever;  // along the approach
     }
     // The volume law's dashpot 2 zeta sqrt(k |S_A| m*) v is exact for flat
     // contacts (V linear in the approach) and an approximation otherwise.
     c_normal = linear_damping(mp.damping, k_normal, m_eff);
-    magnitude = linear_normal_force(k_normal, c_normal, g.depth, approach);
+    magnitude = linear_normal_force(k_normal, c_normal, depth / lever, approach);
   }
   const Vec3 spin = b.spin - a.spin;
   const Real r2 = g.area / kPi;  // volume law: the contact seen as a disc of radius r
@@ -84,7 +102,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
     // the dashpot uses the normal law's calibrated damping, so sticking
     // contacts do not ring.
-    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * scale * std::sqrt(r_star * g.depth)
+    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * scale * std::sqrt(r_star * depth)
                                                     : 2.0 / 7 * k_normal;
     const Real c_t = 2 * mp.damping * std::sqrt(k_t * m_eff);
     ft = spring * -k_t - v_t * c_t;  // on b, opposing its motion relative to a
@@ -133,7 +151,8 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     const Real arm_area = rocks ? std::sqrt(r2) : 0;
     const Real arm_rolling = mu_roll * r_star;
     // Hertz has no constant k: its tangent stiffness dF/d(delta).
-    const Real k_contact = s.model == ContactModel::Hertz ? 2 * e_star * std::sqrt(r_star * g.depth) : k_normal;
+    const Real k_contact =
+        s.model == ContactModel::Hertz ? 2 * e_star * std::sqrt(r_star * depth) * lever * lever : k_normal;
     const Real k_rolling = 2.25 * k_contact * arm_rolling * arm_rolling;
     const Real inertia = 1.4 * m_eff * r_star * r_star;
     const Real k_roll = (rocks ? k_contact * r2 / 4 : 0) + k_rolling;

@@ -25,8 +25,8 @@ ContactRoute route_of(std::span<const Body> bodies, std::span<const ShapeTemplat
 // The patches of one listed contact of the Patches or Shell route (Margin
 // contacts are found by find_margin_patches), or why there are none to find.
 GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
-                            std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
-                            const StepContact& c, SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
+                            std::span<const PlaneWall> planes, const PeriodicCell& cell, const StepContact& c,
+                            SurfaceScratch& scratch, std::vector<SurfacePatchContact>& out) {
   out.clear();
   const ContactRoute route = route_of(bodies, templates, c);
   // A compound meets a surface part by part, as it meets other bodies.
@@ -40,7 +40,7 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
                                                                                : GeometryStatus::Through;
   if (c.a_is_plane && !sb) return GeometryStatus::Unsupported;
   if (c.a_is_plane)
-    return plane_surface_patches(planes[c.a], *sb, pb.pose, model, scratch, out) ? GeometryStatus::Touching
+    return plane_surface_patches(planes[c.a], *sb, pb.pose, scratch, out) ? GeometryStatus::Touching
                                                                                 : GeometryStatus::Through;
   const Body& a = bodies[c.a];
   const ShapeTemplate& ta = templates[a.shape];
@@ -53,7 +53,7 @@ GeometryStatus find_patches(std::span<const Body> bodies, std::span<const ShapeT
   // patch, and nothing to move or traverse.
   if (!intersect(*pa.shape, pa.pose, *pb.shape, pb.pose)) return GeometryStatus::Touching;
   if (!sa || !sb) return GeometryStatus::Unsupported;
-  return surface_patches(sa, pa.pose, sb, pb.pose, model, scratch, out);
+  return surface_patches(sa, pa.pose, sb, pb.pose, scratch, out);
 }
 
 // A contact of the Margin route, a grain and a mesh wall's piece: the
@@ -142,7 +142,7 @@ Real match_reach(std::span<const Body> bodies, std::span<const ShapeTemplate> te
 }  // namespace
 
 void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
-                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
+                             std::span<const PlaneWall> planes, const PeriodicCell& cell,
                              std::span<const PairState> last, int threads, StepResults& results,
                              StepWorkspace& work) {
   std::vector<StepContact>& contacts = results.contacts;
@@ -192,7 +192,7 @@ void expand_surface_contacts(std::span<const Body> bodies, std::span<const Shape
                             work.surface_found, work.surface_status);
       } else {
         const std::uint32_t i = members[0];
-        work.surface_status[i] = find_patches(bodies, templates, planes, cell, model, contacts[listed[i]],
+        work.surface_status[i] = find_patches(bodies, templates, planes, cell, contacts[listed[i]],
                                               work.surface[thread_id()], work.surface_found[i]);
       }
     } catch (const std::exception&) {

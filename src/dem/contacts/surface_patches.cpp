@@ -12,7 +12,7 @@
 namespace gjkdem::dem {
 
 GeometryStatus surface_patches(const std::shared_ptr<const Surface>& shared_a, const Transform& pose_a,
-                     const std::shared_ptr<const Surface>& shared_b, const Transform& pose_b, ContactModel model,
+                     const std::shared_ptr<const Surface>& shared_b, const Transform& pose_b,
                      SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
   out.clear();
   Transform frame;
@@ -29,21 +29,18 @@ GeometryStatus surface_patches(const std::shared_ptr<const Surface>& shared_a, c
       case PieceMeeting::Through: return GeometryStatus::Pierced;
     }
     g.status = GeometryStatus::Touching;
+    g.patch = true;
     g.normal = area_a / g.area;
     g.volume = p.volume;
     g.depth = p.volume / g.area;
     const Vec3 centroid = apply(frame, p.centroid);
-    if (model == ContactModel::Volume) {
-      // Feng's line of action (as for convex overlaps, narrow_phase.cpp),
-      // level with the centroid; the moment keeps the twisting couple.
-      const Vec3 moment_a = apply_rotation(frame, p.area_moment_a) + cross(frame.translation, area_a);
-      const Vec3 line = cross(area_a, moment_a) / dot(area_a, area_a);
-      g.point = line + g.normal * dot(centroid - line, g.normal);
-      g.moment = moment_a / g.area;
-    } else {
-      g.point = centroid;
-      g.moment = cross(g.point, g.normal);
-    }
+    // Under every law the force is along the gradient of V: S_A on Feng's
+    // line of action (as for convex overlaps, narrow_phase.cpp), level with
+    // the centroid; the moment keeps the twisting couple.
+    const Vec3 moment_a = apply_rotation(frame, p.area_moment_a) + cross(frame.translation, area_a);
+    const Vec3 line = cross(area_a, moment_a) / dot(area_a, area_a);
+    g.point = line + g.normal * dot(centroid - line, g.normal);
+    g.moment = moment_a / g.area;
     out.push_back({g, centroid});
   }
   return GeometryStatus::Touching;
@@ -52,7 +49,7 @@ GeometryStatus surface_patches(const std::shared_ptr<const Surface>& shared_a, c
 bool surfaces_meet(const std::shared_ptr<const Surface>& a, const Transform& pose_a,
                    const std::shared_ptr<const Surface>& b, const Transform& pose_b, SurfaceScratch& scratch,
                    std::vector<SurfacePatchContact>& patches) {
-  return surface_patches(a, pose_a, b, pose_b, ContactModel::Volume, scratch, patches) != GeometryStatus::Touching ||
+  return surface_patches(a, pose_a, b, pose_b, scratch, patches) != GeometryStatus::Touching ||
          !patches.empty();
 }
 
@@ -88,8 +85,8 @@ bool placed_body_meets(const Shape& shape, const Transform& pose, const std::sha
   return true;  // the hulls are the solids, or (a surface and a mesh wall's piece) taken as meeting
 }
 
-bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, ContactModel model,
-                           SurfaceScratch& s, std::vector<SurfacePatchContact>& out) {
+bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transform& pose_b, SurfaceScratch& s,
+                           std::vector<SurfacePatchContact>& out) {
   out.clear();
   const SurfaceHalfSpace h = surface_half_space(b, apply_inverse(pose_b, wall.point),
                                                 apply_inverse_rotation(pose_b, wall.normal), s.half_space);
@@ -98,15 +95,16 @@ bool plane_surface_patches(const PlaneWall& wall, const Surface& b, const Transf
     if (!(p.cut_area > 0)) continue;
     ContactGeometry g;
     g.status = GeometryStatus::Touching;
+    g.patch = true;
     g.normal = wall.normal;
     g.area = p.cut_area;
     g.volume = p.volume;
     g.depth = p.volume / p.cut_area;
     g.depth_integral = p.depth_integral;
     const Vec3 centroid = apply(pose_b, p.centroid);
-    // On the wall, below the centroid of the piece (as for convex bodies).
-    g.point = model == ContactModel::Volume ? centroid + wall.normal * dot(wall.point - centroid, wall.normal)
-                                            : centroid;
+    // On the wall, below the centroid of the piece (as for convex bodies
+    // under the volume law): the depth integral's gradient is V through it.
+    g.point = centroid + wall.normal * dot(wall.point - centroid, wall.normal);
     g.moment = cross(g.point, g.normal);
     out.push_back({g, centroid});
   }

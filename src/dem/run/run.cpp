@@ -26,21 +26,27 @@ const Body* non_finite_body(const World& w) {
   return nullptr;
 }
 
-// What the energy guard can say made the energy: the one law it knows is
-// not the gradient of an energy, or else a step too long for the stiffness.
+// Where the energy guard found the energy it cannot explain: the body
+// moving with the most kinetic energy and the contact storing the most
+// elastic energy, where a step too long for the stiffness blows up first.
 std::string energy_growth_cause(const World& w) {
-  if (w.settings.model != ContactModel::Volume)
-    for (const Body& b : w.bodies) {
-      const ShapeTemplate& t = w.templates[b.shape];
-      bool surface = t.surface_grain;
-      for (const TemplatePart& p : t.parts) surface = surface || p.surface_grain;
-      if (surface)
-        return std::string("body ") + std::to_string(b.id) + " is a surface grain, and under the " +
-               (w.settings.model == ContactModel::Hertz ? "hertz" : "linear") +
-               " law a surface grain's patch forces (at the depth V / |S_A|) are not the gradient of an energy: "
-               "its collisions gain or lose energy whatever dt; take model = \"volume\" for surface grains";
-    }
-  return "a blow-up: lower dt, or check the stiffness";
+  const Body* fastest = nullptr;
+  Real most = 0;
+  for (const Body& b : w.bodies) {
+    const Real e = b.fixed ? 0 : 0.5 * mass_of(w, b) * dot(b.velocity, b.velocity);
+    if (e > most) most = e, fastest = &b;
+  }
+  const StepContact* stiffest = nullptr;
+  for (const StepContact& c : w.results.contacts)
+    if (c.active && (!stiffest || c.elastic > stiffest->elastic)) stiffest = &c;
+  std::string where;
+  if (fastest)
+    where += "body " + std::to_string(fastest->id) + " moves fastest, at " + number_text(length(fastest->velocity)) + " m/s; ";
+  if (stiffest && stiffest->elastic > 0)
+    where += "the contact of " + name_of(w, stiffest->a_is_plane ? w.planes[stiffest->a].id : w.bodies[stiffest->a].id) +
+             " and body " + std::to_string(w.bodies[stiffest->b].id) + " stores the most, " +
+             number_text(stiffest->elastic) + " J; ";
+  return where + "a blow-up: lower dt, or check the stiffness";
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ StepReport list_contacts(ForceEvaluation& e) {
 StepReport surface_patches(ForceEvaluation& e) {
   World& w = e.world;
   if (w.work.kinds.surface_grains)
-    detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell.now, w.settings.model, w.pairs, e.threads,
+    detail::expand_surface_contacts(w.bodies, w.templates, w.planes, w.cell.now, w.pairs, e.threads,
                                     w.results, w.work);
   return {};
 }

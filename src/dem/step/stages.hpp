@@ -38,7 +38,7 @@ void list_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> 
 /// cannot take, or a body through a plane wall, stays one contact with that
 /// status. Nothing happens in a world without surface grains.
 void expand_surface_contacts(std::span<const Body> bodies, std::span<const ShapeTemplate> templates,
-                             std::span<const PlaneWall> planes, const PeriodicCell& cell, ContactModel model,
+                             std::span<const PlaneWall> planes, const PeriodicCell& cell,
                              std::span<const PairState> last, int threads, StepResults& results,
                              StepWorkspace& work);
 
