@@ -280,8 +280,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
     for (const Vec3& d : p.gjk.dirs) o.vec(d);
     o.u32(static_cast<std::uint32_t>(p.gjk.size)), o.u32(static_cast<std::uint32_t>(p.gjk.hint_a));
     o.u32(static_cast<std::uint32_t>(p.gjk.hint_b));
-    o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll), o.real(p.history.stiffness_scale);
-    o.vec(p.anchor);
+    o.vec(p.history.spring), o.real(p.history.twist), o.vec(p.history.roll), o.vec(p.anchor);
   }
   o.end(s);
   s = o.begin("BOND");  // what a bond's state holds beyond what the builder made: whether it broke, and when
@@ -498,16 +497,14 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   }
   in.close(end, "BOXS");
   end = in.section("PAIR");
-  std::vector<dem::PairState> pairs(in.count(2 * 8 + 4 + 12 * 8 + 3 * 4 + 11 * 8));
+  std::vector<dem::PairState> pairs(in.count(2 * 8 + 4 + 12 * 8 + 3 * 4 + 10 * 8));
   for (dem::PairState& p : pairs) {
     p.key.lo = in.u64(), p.key.hi = in.u64(), p.key.parts = in.u32();
     for (Vec3& d : p.gjk.dirs) d = in.vec();
     p.gjk.size = static_cast<int>(in.u32()), p.gjk.hint_a = static_cast<int>(in.u32());
     p.gjk.hint_b = static_cast<int>(in.u32());
     if (p.gjk.size < 0 || p.gjk.size > 4) in.fail("a warm start out of range");
-    p.history.spring = in.vec(), p.history.twist = in.real(), p.history.roll = in.vec();
-    p.history.stiffness_scale = in.real(), p.anchor = in.vec();
-    if (!(p.history.stiffness_scale > 0 && p.history.stiffness_scale <= 1)) in.fail("a contact's stiffness scale out of (0, 1]");
+    p.history.spring = in.vec(), p.history.twist = in.real(), p.history.roll = in.vec(), p.anchor = in.vec();
   }
   for (std::size_t k = 1; k < pairs.size(); ++k)
     if (!(pairs[k - 1].key < pairs[k].key)) in.fail("pairs out of order");

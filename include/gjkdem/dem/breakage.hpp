@@ -11,7 +11,6 @@
 #include <span>
 #include <vector>
 
-#include "gjkdem/dem/split_inheritance.hpp"
 #include "gjkdem/dem/world.hpp"
 
 namespace gjkdem::dem {
@@ -72,9 +71,6 @@ struct GrainSplit {
   };
   std::array<Piece, 2> fragments{};
   std::array<ShapeTemplate, 2> templates{};
-  /// What the grain's contacts stored, per side it touched (by id): its
-  /// fragments' contacts share it (split_inheritance.hpp).
-  std::vector<InheritedContact> inherited{};
 };
 
 /// The grains whose stress at the last force evaluation reaches their
@@ -85,8 +81,7 @@ std::vector<GrainSplit> find_splits(const World& world, const DomainRole* domain
 /// Carries out `splits` (in id order): their templates appended in order,
 /// the first fragment of each in its grain's place with its id, the second
 /// appended with the next of the ids from `next_id`, the grains' pairs
-/// dropped (and what they stored left in world.work.inherited for the next
-/// evaluation), every box made again where the bodies are. A domain holding a grain (owned or
+/// dropped, every box made again where the bodies are. A domain holding a grain (owned or
 /// not) places its fragments; every domain appends every template, so that
 /// template indices agree across ranks.
 void apply_splits(World& world, std::span<GrainSplit> splits, std::uint64_t next_id, DomainRole* domain);

@@ -5,8 +5,7 @@
 // Normal force: the world's law (contact_law.hpp) with the damping
 // calibrated for the pair's restitution; on a patch of surface grains
 // (ContactGeometry::patch) the Hertz and linear laws take an energy of the
-// overlap alone, whose gradient the force is (docs/contact.md). A contact a
-// split relaxed keeps PairHistory::stiffness_scale of its stiffness. Friction: an incremental tangential
+// overlap alone, whose gradient the force is (docs/contact.md). Friction: an incremental tangential
 // spring per persistent contact (Mindlin's stiffness 8 G* sqrt(R* delta) for
 // Hertz, 2/7 of the normal stiffness for the linear and volume laws), carried
 // into the current tangent plane each step and capped by Coulomb's mu F_n

@@ -39,11 +39,6 @@ struct PairHistory {
   Vec3 spring;   ///< tangential displacement (m)
   Real twist = 0;  ///< relative spin about the normal (rad), volume law
   Vec3 roll;     ///< relative rolling (rad): the volume law's rocking, rolling friction
-  /// The share of its material pair's stiffness the contact keeps: below 1
-  /// only on a contact a split left on a fragment, so that the split does not
-  /// raise the energy stored (breakage.hpp, relax_inherited_contacts); kept
-  /// while the pair touches, so the law stays the gradient of its energy.
-  Real stiffness_scale = 1;
 };
 
 struct PairState {

@@ -18,7 +18,6 @@
 #include "gjkdem/dem/motion.hpp"
 #include "gjkdem/dem/periodic.hpp"
 #include "gjkdem/dem/pair_state.hpp"
-#include "gjkdem/dem/split_inheritance.hpp"
 #include "gjkdem/dem/step_results.hpp"
 #include "gjkdem/dem/surface_contact.hpp"
 
@@ -58,7 +57,6 @@ struct StepWorkspace {
   std::vector<Aabb> moving_boxes;         ///< their boxes, for the sweep (and their periodic images)
   std::vector<std::uint32_t> image_body;  ///< periodic worlds: the body of each swept box
   std::vector<std::uint8_t> image_code;   ///< and its image
-  SplitInheritance inherited;             ///< the last splits', for the evaluation after them
 };
 
 }  // namespace gjkdem::dem

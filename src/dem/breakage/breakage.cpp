@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <utility>
 
 #include "gjkdem/dem/body_channels.hpp"
 #include "gjkdem/dem/boxes.hpp"
@@ -86,7 +85,6 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
   std::stable_sort(loads.begin(), loads.end(), [](const GrainLoad& x, const GrainLoad& y) { return x.body < y.body; });
 
   std::vector<GrainSplit> splits;
-  std::vector<std::int32_t> split_of;  // a body's index in splits, or -1
   std::vector<Vec3> points, forces;
   for (std::size_t k = 0; k < loads.size();) {
     const std::uint32_t i = loads[k].body;
@@ -95,7 +93,6 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
     const Body& b = w.bodies[i];
     const ShapeTemplate& t = w.templates[b.shape];
     const Material& m = w.materials[b.material];
-    if (split_of.empty()) split_of.assign(w.bodies.size(), -1);
     const BreakPlane plane = break_plane(grain_stress(b.position, t.unit_mass.volume, points, forces));
     const Real strength = grain_strength(m.strength, grain_size(t), strength_draw(m.strength.seed, b.id, t.generation));
     if (!(plane.deviatoric >= strength)) continue;
@@ -115,59 +112,8 @@ std::vector<GrainSplit> find_splits(const World& w, const DomainRole* domain) {
       continue;  // a piece too thin to be a surface grain's partner: the grain holds
     }
     splits.push_back(std::move(split));
-    split_of[i] = static_cast<std::int32_t>(splits.size() - 1);
-  }
-  // What each grain's contacts stored, per side in id order (the sums in
-  // contact-list order: the same bits in a domain, which lists them all).
-  if (!splits.empty()) {
-    for (const StepContact& c : w.results.contacts) {
-      if (!c.active) continue;
-      const std::uint64_t id_a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, id_b = w.bodies[c.b].id;
-      const Real volume = w.settings.model == ContactModel::Volume ? c.geometry.volume : 0;
-      if (split_of[c.b] >= 0) splits[split_of[c.b]].inherited.push_back({id_a, c.elastic, volume});
-      if (!c.a_is_plane && split_of[c.a] >= 0) splits[split_of[c.a]].inherited.push_back({id_b, c.elastic, volume});
-    }
-    for (GrainSplit& split : splits) {
-      std::vector<InheritedContact>& list = split.inherited;
-      std::stable_sort(list.begin(), list.end(),
-                       [](const InheritedContact& x, const InheritedContact& y) { return x.other < y.other; });
-      std::size_t n = 0;
-      for (const InheritedContact& e : list) {
-        if (n > 0 && list[n - 1].other == e.other) {
-          list[n - 1].energy += e.energy, list[n - 1].volume += e.volume;
-        } else {
-          list[n++] = e;
-        }
-      }
-      list.resize(n);
-    }
   }
   return splits;
-}
-
-Real inherited_scale(const SplitInheritance& inherited, std::uint64_t a, std::uint64_t b, Real volume, Real elastic,
-                     bool by_volume) noexcept {
-  using Piece = SplitInheritance::Fragment;
-  auto fragment = [&](std::uint64_t id) -> const Piece* {
-    const auto at = std::lower_bound(inherited.fragments.begin(), inherited.fragments.end(), id,
-                                     [](const Piece& f, std::uint64_t x) { return f.id < x; });
-    return at != inherited.fragments.end() && at->id == id ? &*at : nullptr;
-  };
-  const Piece* fa = fragment(a);
-  const Piece* fb = fragment(b);
-  if (!fa && !fb) return 1;
-  const std::uint64_t ga = fa ? fa->grain : a, gb = fb ? fb->grain : b;
-  if (ga == gb) return 1;  // two fragments of one grain, on their cut
-  const std::uint64_t lo = std::min(ga, gb), hi = std::max(ga, gb);
-  const auto at = std::lower_bound(inherited.sides.begin(), inherited.sides.end(), std::pair{lo, hi},
-                                   [](const SplitInheritance::Sides& s, const std::pair<std::uint64_t, std::uint64_t>& k) {
-                                     return std::pair{s.lo, s.hi} < k;
-                                   });
-  if (at == inherited.sides.end() || at->lo != lo || at->hi != hi) return 1;  // the grain did not touch it
-  const Real share = by_volume ? (at->volume > 0 ? volume / at->volume : 0)
-                               : (fa ? fa->share : Real(1)) * (fb ? fb->share : Real(1));
-  const Real budget = at->energy * share;
-  return elastic > budget ? budget / elastic : Real(1);
 }
 
 void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id, DomainRole* domain) {
@@ -177,27 +123,18 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
   if (!domain && w.bodies.size() + splits.size() > w.bodies.capacity())
     w.bodies.reserve(w.bodies.size() + splits.size() + static_cast<std::size_t>(most_fragments(w)));
   std::vector<std::uint64_t> broken_ids;
-  for (const GrainSplit& s : splits) broken_ids.push_back(s.parent);
-  std::sort(broken_ids.begin(), broken_ids.end());
-  SplitInheritance& inherited = w.work.inherited;
-  inherited = {};
   for (GrainSplit& s : splits) {
     const std::uint32_t first = static_cast<std::uint32_t>(w.templates.size());
-    const Real whole = s.templates[0].unit_mass.volume + s.templates[1].unit_mass.volume;
     for (ShapeTemplate& t : s.templates) w.templates.push_back(std::move(t));
     const std::uint64_t second_id = next_id++;
-    inherited.fragments.push_back({s.parent, s.parent, w.templates[first].unit_mass.volume / whole});
-    inherited.fragments.push_back({second_id, s.parent, w.templates[first + 1].unit_mass.volume / whole});
-    // Two grains broken against each other: their contacts' store once.
-    for (const InheritedContact& e : s.inherited)
-      if (e.other > s.parent || !std::binary_search(broken_ids.begin(), broken_ids.end(), e.other))
-        inherited.sides.push_back({std::min(s.parent, e.other), std::max(s.parent, e.other), e.energy, e.volume});
+    broken_ids.push_back(s.parent);
     // The grain, where this world holds it (a domain holds only some).
     const auto at = std::lower_bound(w.bodies.begin(), w.bodies.end(), s.parent,
                                      [](const Body& b, std::uint64_t id) { return b.id < id; });
     if (at == w.bodies.end() || at->id != s.parent) continue;
     const std::size_t i = static_cast<std::size_t>(at - w.bodies.begin());
     const Body parent = *at;
+    const Real volumes = w.templates[first].unit_mass.volume + w.templates[first + 1].unit_mass.volume;
     for (std::size_t f = 0; f < 2; ++f) {
       const GrainSplit::Piece& piece = s.fragments[f];
       Body b = parent;
@@ -205,7 +142,7 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
       b.position = piece.position, b.orientation = piece.orientation;
       b.velocity = piece.velocity, b.angular_momentum = piece.angular_momentum;
       // The other channels as their rows say (ByMass: by volume, one density).
-      const Real share = w.templates[b.shape].unit_mass.volume / whole;
+      const Real share = w.templates[b.shape].unit_mass.volume / volumes;
       for (const BodyChannel& c : kBodyChannels) {
         if (c.compute || c.split == ChannelSplit::Kinematic || c.split == ChannelSplit::Copied) continue;
         Real* v = c.in(b);
@@ -220,13 +157,8 @@ void apply_splits(World& w, std::span<GrainSplit> splits, std::uint64_t next_id,
       }
     }
   }
-  std::sort(inherited.fragments.begin(), inherited.fragments.end(),
-            [](const SplitInheritance::Fragment& x, const SplitInheritance::Fragment& y) { return x.id < y.id; });
-  std::sort(inherited.sides.begin(), inherited.sides.end(), [](const SplitInheritance::Sides& x, const SplitInheritance::Sides& y) {
-    return std::pair{x.lo, x.hi} < std::pair{y.lo, y.hi};
-  });
-  // The grains' pairs are forgotten: their fragments' contacts start afresh
-  // (relaxed to what the grains stored: inherited_scale).
+  // The grains' pairs are forgotten: their fragments' contacts start afresh.
+  std::sort(broken_ids.begin(), broken_ids.end());
   std::erase_if(w.pairs, [&](const PairState& p) {
     return std::binary_search(broken_ids.begin(), broken_ids.end(), p.key.lo) ||
            std::binary_search(broken_ids.begin(), broken_ids.end(), p.key.hi);

@@ -40,9 +40,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
   ContactForce out;
   const Real m_eff = effective_mass(a.mass, b.mass);
   const Real r_star = effective_radius(a.curvature_radius, b.curvature_radius);
-  // A contact a split relaxed acts as one of a softer material pair.
-  const Real scale = before.stiffness_scale;
-  const Real e_star = mp.youngs_modulus * scale;
+  const Real e_star = mp.youngs_modulus;
   const Vec3 v_rel = point_velocity(b, g.point) - point_velocity(a, g.point);  // b relative to a
   const Real approach = -dot(v_rel, g.normal);
   // A patch of surface grains takes, under Hertz and linear too, an energy
@@ -69,7 +67,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
   } else {
     if (s.model == ContactModel::Volume) {
       // k |S_A| on depth V / |S_A| is k V; the potential form scales it by |S_A| / A_ref.
-      const Real k_volume = s.volume_stiffness > 0 ? s.volume_stiffness * scale : e_star / r_star;
+      const Real k_volume = s.volume_stiffness > 0 ? s.volume_stiffness : e_star / r_star;
       k_normal = k_volume * g.area;
       if (a_is_plane) {
         out.elastic = k_volume * g.depth_integral;
@@ -81,7 +79,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
         out.elastic = 0.5 * k_normal * g.depth * g.depth;  // exact for flat contacts only
       }
     } else {
-      const Real k_linear = s.linear_stiffness > 0 ? s.linear_stiffness * scale : e_star * r_star;
+      const Real k_linear = s.linear_stiffness > 0 ? s.linear_stiffness : e_star * r_star;
       out.elastic = 0.5 * k_linear * depth * depth;
       k_normal = k_linear * lever * lever;  // along the approach
     }
@@ -102,7 +100,7 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     // Mindlin's stiffness for Hertz, 2/7 of the normal stiffness otherwise;
     // the dashpot uses the normal law's calibrated damping, so sticking
     // contacts do not ring.
-    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * scale * std::sqrt(r_star * depth)
+    const Real k_t = s.model == ContactModel::Hertz ? 8 * mp.shear_modulus * std::sqrt(r_star * depth)
                                                     : 2.0 / 7 * k_normal;
     const Real c_t = 2 * mp.damping * std::sqrt(k_t * m_eff);
     ft = spring * -k_t - v_t * c_t;  // on b, opposing its motion relative to a
@@ -165,7 +163,6 @@ ContactForce contact_force(const ContactGeometry& g, bool a_is_plane, const Mate
     out.elastic += 0.5 * k_roll * dot(roll, roll);
     twisting += couple;
   }
-  out.history.stiffness_scale = scale;
   out.force = g.normal * magnitude + ft;
   out.torque = g.moment * magnitude + cross(g.point, ft) + twisting;
   return out;

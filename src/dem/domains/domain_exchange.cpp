@@ -78,31 +78,21 @@ struct FragmentRecord {
 };
 static_assert(std::is_trivially_copyable_v<FragmentRecord>);
 
-// What a grain's contacts stored with one side, as it travels.
-struct InheritedRecord {
-  std::uint64_t grain = 0;
-  InheritedContact contact;
-};
-static_assert(std::is_trivially_copyable_v<InheritedRecord>);
-
 }  // namespace
 
 int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool found) {
   std::vector<FragmentRecord> records;
   std::vector<Vec3> vertices;
-  std::vector<InheritedRecord> stored;
   if (found)
-    for (const GrainSplit& s : find_splits(w, &role)) {
+    for (const GrainSplit& s : find_splits(w, &role))
       for (const GrainSplit::Piece& p : s.fragments) {
         records.push_back({s.parent, s.generation, s.surface ? 1u : 0u, p.vertices.size(), p.position, p.orientation,
                            p.velocity, p.angular_momentum});
         vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
       }
-      for (const InheritedContact& e : s.inherited) stored.push_back({s.parent, e});
-    }
   std::vector<std::uint64_t> top{w.bodies.empty() ? 0 : w.bodies.back().id + 1};
   Writer m;
-  m.put(records), m.put(vertices), m.put(top), m.put(stored);
+  m.put(records), m.put(vertices), m.put(top);
   std::vector<GrainSplit> splits;
   std::uint64_t next_id = 0;
   for (const std::string& message : all_gather(t, m.take())) {
@@ -110,8 +100,7 @@ int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool fou
     std::vector<FragmentRecord> in;
     std::vector<Vec3> points;
     std::vector<std::uint64_t> their_top;
-    std::vector<InheritedRecord> their_stored;
-    r.get(in), r.get(points), r.get(their_top), r.get(their_stored);
+    r.get(in), r.get(points), r.get(their_top);
     next_id = std::max(next_id, their_top.at(0));
     std::size_t at = 0;
     for (std::size_t k = 0; k + 1 < in.size(); k += 2) {
@@ -126,8 +115,6 @@ int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool fou
         at += c.vertices;
         s.templates[f] = fragment_template(make_polytope(s.fragments[f].vertices), s.generation, s.surface);
       }
-      for (const InheritedRecord& e : their_stored)
-        if (e.grain == s.parent) s.inherited.push_back(e.contact);
       splits.push_back(std::move(s));
     }
   }

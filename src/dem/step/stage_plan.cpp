@@ -185,31 +185,6 @@ StepReport contact_laws(ForceEvaluation& e) {
   return {};
 }
 
-// After splits, each contact a split left on a fragment keeps only its part
-// of what its grain's contact stored: its stiffness scaled down to it, so
-// that no split makes energy (breakage.hpp). Twice at most: the springs'
-// first stretch is not quite linear in the scale.
-StepReport relax_splits(ForceEvaluation& e) {
-  World& w = e.world;
-  if (w.work.inherited.empty()) return {};
-  const detail::SideSources sources{{w.templates, w.materials}, w.results.motion_frames, w.cell.rate};
-  const bool by_volume = w.settings.model == ContactModel::Volume;
-  for (std::size_t k = 0; k < w.results.contacts.size(); ++k) {
-    StepContact& c = w.results.contacts[k];
-    if (!c.active) continue;
-    const std::uint64_t a = c.a_is_plane ? w.planes[c.a].id : w.bodies[c.a].id, b = w.bodies[c.b].id;
-    PairHistory before = w.pairs[k].history;
-    for (int again = 0; again < 2; ++again) {
-      const Real scale = inherited_scale(w.work.inherited, a, b, c.geometry.volume, c.elastic, by_volume);
-      if (!(scale < 1)) break;
-      before.stiffness_scale = c.history.stiffness_scale * scale;
-      apply_law(w, sources, c, before, e.dt);
-    }
-  }
-  w.work.inherited = {};
-  return {};
-}
-
 StepReport sum_forces(ForceEvaluation& e) {
   World& w = e.world;
   w.stats = detail::sum_forces(w.results.contacts, w.bodies, w.pairs, w.planes, w.results.motion_frames, w.cell.now,
@@ -285,9 +260,6 @@ constexpr std::array kPlan{
           "one contact per body and wall (Hertz and linear laws)", merge_walls},
     Stage{"laws", P::PerContact, "contacts/contact_force.cpp, contacts/contact_sides.cpp", "geometry, material pair, sides, springs",
           "each contact's force, torque, springs and elastic energy", contact_laws},
-    Stage{"split relax", P::PerContact, "breakage/breakage.cpp (inherited_scale)",
-          "the last splits' stored energy per grain and side, the fragments' contacts",
-          "after a split only: each fragment's contact softened to its part of its grain's energy", relax_splits},
     Stage{"sums", P::Reduce, "contacts/force_sums.cpp", "the contacts' forces, in list order",
           "forces on bodies, springs kept, stats, the driven walls' power, the cell's stress", sum_forces},
     Stage{"bonds", P::Reduce, "breakage/bonds.cpp", "bonds, their bodies' poses",
