@@ -116,12 +116,12 @@ struct Endpoint {
 using namespace surface_overlap_detail;
 
 struct SurfaceOverlapWorkspace::Scratch {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, coplanar, links;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs, coplanar, links, same_point;
   View va, vb;
   std::vector<std::pair<std::uint64_t, Endpoint>> crossing_ends;
   std::vector<CycleSegment> segments;
   UnionFind joined;
-  std::vector<std::uint32_t> near, order, loop_members, loop_begin, loop_segment;
+  std::vector<std::uint32_t> near, order, loop_members, loop_begin, loop_segment, lobe;
   std::vector<Real> loop_area;
   std::vector<std::uint8_t> seen, cut;  // cut: per triangle (A's, then B's), set for those in cut_list
   std::vector<std::uint32_t> cut_list;
@@ -366,6 +366,65 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
   const auto loop = [&](std::size_t l) {
     return std::span<const std::uint32_t>(loop_members).subspan(loop_begin[l], loop_begin[l + 1] - loop_begin[l]);
   };
+  // A loop can pass twice through one point under two ids: a corner of its
+  // triangle through which an edge of the other surface passes (where two
+  // pieces touch along that edge, an L's inner edge at the other's inner
+  // corner). Its lobes there are faces that meet at a point only, not one
+  // piece: each lobe is joined on its own. The corner lies on the edge
+  // exactly when it is collinear with the edge's ends and none of them, the
+  // edge not in the triangle's plane (exact predicates).
+  constexpr std::uint32_t kNoCorner = ~std::uint32_t{0};
+  const auto corner_on_crossing = [&](std::uint32_t triangle, std::uint32_t id) -> std::uint32_t {
+    const bool of_a = triangle < triangles_a;
+    const Crossing* c = nullptr;
+    if (of_a && id >= base_cb) c = &vb.crossings[id - base_cb];
+    if (!of_a && id >= base_ca && id < base_cb) c = &va.crossings[id - base_ca];
+    if (!c) return kNoCorner;
+    const Surface& own = of_a ? a : b;
+    const Surface& other = of_a ? b : a;
+    const Vec3& p = other.vertices[other.edges[c->edge][0]];
+    const Vec3& q = other.vertices[other.edges[c->edge][1]];
+    const TriangleIndices& corners = own.triangles[of_a ? triangle : triangle - triangles_a];
+    const Vec3 &t0 = own.vertices[corners[0]], &t1 = own.vertices[corners[1]], &t2 = own.vertices[corners[2]];
+    // An edge in the triangle's plane meets it where the perturbation says.
+    if (orient3d(t0, t1, t2, p) == 0 && orient3d(t0, t1, t2, q) == 0) return kNoCorner;
+    for (const std::uint32_t corner : corners) {
+      const Vec3& v = own.vertices[corner];
+      if (v == p || v == q) continue;  // vertex on vertex: the perturbation parts them
+      if (orient2d(p, q, v, 0) == 0 && orient2d(p, q, v, 1) == 0 && orient2d(p, q, v, 2) == 0)
+        return (of_a ? 0 : base_b) + corner;
+    }
+    return kNoCorner;
+  };
+  std::vector<std::uint32_t>& lobe = w.lobe;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& same_point = w.same_point;  // (crossing id, corner id)
+  const auto join_loop = [&](std::uint32_t triangle, std::span<const std::uint32_t> members) {
+    same_point.clear();
+    for (const std::uint32_t g : members)
+      if (const std::uint32_t corner = corner_on_crossing(triangle, segments[g].from); corner != kNoCorner)
+        same_point.emplace_back(segments[g].from, corner);
+    if (same_point.empty()) {
+      for (const std::uint32_t g : members) joined.join(g, members[0]);
+      return;
+    }
+    const auto same = [&](std::uint32_t x, std::uint32_t y) {
+      if (x == y) return true;
+      for (const auto& [crossing, corner] : same_point)
+        if ((x == crossing && y == corner) || (x == corner && y == crossing)) return true;
+      return false;
+    };
+    lobe.clear();
+    for (const std::uint32_t g : members) {
+      std::size_t j = 0;
+      while (j < lobe.size() && !same(segments[lobe[j]].from, segments[g].from)) ++j;
+      if (j < lobe.size()) {  // the lobe from lobe[j] closes where g starts
+        for (std::size_t i = j; i < lobe.size(); ++i) joined.join(lobe[i], lobe[j]);
+        lobe.resize(j);
+      }
+      lobe.push_back(g);
+    }
+    for (const std::uint32_t g : lobe) joined.join(g, lobe[0]);
+  };
   for (std::size_t begin = 0; begin < order.size();) {
     std::size_t end = begin;
     const std::uint32_t triangle = segments[order[begin]].triangle;
@@ -387,8 +446,8 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
         seen[at] = 1;
         loop_members.push_back(at);
         area += cross(segments[at].p, segments[at].q);
-        joined.join(at, order[k]);
       }
+      join_loop(triangle, std::span<const std::uint32_t>(loop_members).subspan(loop_begin.back()));
       loop_begin.push_back(static_cast<std::uint32_t>(loop_members.size()));
       loop_area.push_back(dot(area, n));
     }
