@@ -462,14 +462,16 @@ TEST(SurfaceGrain, LShapesCollideWithTheirEnergyUnderThePotentialForm) {
 
 // Under Hertz and linear a patch's law takes an energy of its overlap
 // alone (issue 54: with the depth V / |S_A| two rocks left a collision with
-// 0.75 to 1.31 times their energy, whatever dt). Non-convex grains meeting
+// 0.75 to 1.31 times their energy, whatever dt), as the volume law's
+// potential form does (its twisting couple on; its rocking spring, a spring
+// on rolling rather than an energy of the overlap, off). Non-convex grains meeting
 // at random orientations, and falling on a plane wall, with restitution 1
 // and no friction: each leaves with its energy to 1e-8, the error shrinking
 // with dt (or at round-off). Where the overlap's pieces split or join
 // during the collision (its patch count changes between non-zero counts)
 // each piece's energy is its own, so the sum jumps there: those are held
 // to 2e-3, the jump measured (docs/contact.md).
-TEST(SurfaceGrain, PatchesKeepTheEnergyOfCollisionsUnderHertzAndLinear) {
+TEST(SurfaceGrain, PatchesKeepTheEnergyOfCollisionsUnderEveryLaw) {
   // About their centroids, so that the grains meet near the middle.
   auto centred = [](const test::Mesh& m) { return scaled(m, 1, -mass_properties(test::surface_of(m)).centroid); };
   const test::Mesh meshes[] = {centred(scaled(test::l_prism(1), 0.01)), centred(scaled(test::u_prism(1), 0.01)),
@@ -485,6 +487,8 @@ TEST(SurfaceGrain, PatchesKeepTheEnergyOfCollisionsUnderHertzAndLinear) {
                      const Vec3& offset, bool on_plane, Real dt) {
     WorldSettings settings;
     settings.model = model;
+    settings.volume_form = VolumeForm::Potential;  // the volume law's conservative form
+    settings.rocking_resistance = false;           // a spring on rolling, not an energy of the overlap
     settings.gravity = {};
     WorldBuilder builder(settings);
     const std::uint32_t rock = builder.add_material({"rock", 2500, 1e7, 0.25, 1.0, 0});
@@ -517,7 +521,7 @@ TEST(SurfaceGrain, PatchesKeepTheEnergyOfCollisionsUnderHertzAndLinear) {
   auto random_turn = [&] { return normalized(Quat{turn(rng), turn(rng), turn(rng), turn(rng)}); };
   Real worst = 0;
   int regrouped = 0;
-  for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear})
+  for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear, ContactModel::Volume})
     for (int trial = 0; trial < 8; ++trial) {
       const bool on_plane = trial >= 6;
       const test::Mesh& ma = meshes[trial % 3];
