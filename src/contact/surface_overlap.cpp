@@ -386,11 +386,14 @@ SurfaceOverlap surface_overlap(const Surface& a, const Surface& b, SurfaceOverla
     const Vec3& q = other.vertices[other.edges[c->edge][1]];
     const TriangleIndices& corners = own.triangles[of_a ? triangle : triangle - triangles_a];
     const Vec3 &t0 = own.vertices[corners[0]], &t1 = own.vertices[corners[1]], &t2 = own.vertices[corners[2]];
-    // An edge in the triangle's plane meets it where the perturbation says.
-    if (orient3d(t0, t1, t2, p) == 0 && orient3d(t0, t1, t2, q) == 0) return kNoCorner;
     for (const std::uint32_t corner : corners) {
       const Vec3& v = own.vertices[corner];
       if (v == p || v == q) continue;  // vertex on vertex: the perturbation parts them
+      // Only a crossing rounded near the corner can be at it (the exact test decides).
+      const Vec3 off = c->point - (v - origin);
+      if (dot(off, off) > 1e-12 * dot(q - p, q - p)) continue;
+      // An edge in the triangle's plane meets it where the perturbation says.
+      if (orient3d(t0, t1, t2, p) == 0 && orient3d(t0, t1, t2, q) == 0) return kNoCorner;
       if (orient2d(p, q, v, 0) == 0 && orient2d(p, q, v, 1) == 0 && orient2d(p, q, v, 2) == 0)
         return (of_a ? 0 : base_b) + corner;
     }

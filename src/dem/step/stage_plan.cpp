@@ -157,21 +157,6 @@ StepReport merge_walls(ForceEvaluation& e) {
   return {};
 }
 
-// Contact c's law, from the springs `before`.
-void apply_law(const World& w, const detail::SideSources& sources, StepContact& c, const PairHistory& before, Real dt) {
-  const Body& b = w.bodies[c.b];
-  const ContactSide side_a = c.a_is_plane ? detail::plane_side(sources, w.planes[c.a])
-                                          : detail::side_of(sources, w.bodies[c.a], c.part_a);
-  const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
-  const ContactForce f = contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
-                                       detail::side_of(sources, b, c.part_b, image_shift_of(w.cell.now, c)), before,
-                                       w.settings, dt);
-  c.force = f.force;
-  c.torque = f.torque;
-  c.history = f.history;
-  c.elastic = f.elastic;
-}
-
 StepReport contact_laws(ForceEvaluation& e) {
   World& w = e.world;
   std::vector<StepContact>& contacts = w.results.contacts;
@@ -180,7 +165,19 @@ StepReport contact_laws(ForceEvaluation& e) {
 #pragma omp parallel for num_threads(e.threads) schedule(dynamic, 32) if (m >= kMinParallelContacts)
   for (std::int64_t k = 0; k < m; ++k) {
     StepContact& c = contacts[k];
-    if (c.active) apply_law(w, sources, c, w.pairs[k].history, e.dt);
+    if (!c.active) continue;
+    const Body& b = w.bodies[c.b];
+    const ContactSide side_a = c.a_is_plane ? detail::plane_side(sources, w.planes[c.a])
+                                            : detail::side_of(sources, w.bodies[c.a], c.part_a);
+    const std::uint32_t material_a = c.a_is_plane ? w.planes[c.a].material : w.bodies[c.a].material;
+    const ContactForce f =
+        contact_force(c.geometry, c.a_is_plane, w.material_pairs(material_a, b.material), side_a,
+                      detail::side_of(sources, b, c.part_b, image_shift_of(w.cell.now, c)), w.pairs[k].history,
+                      w.settings, e.dt);
+    c.force = f.force;
+    c.torque = f.torque;
+    c.history = f.history;
+    c.elastic = f.elastic;
   }
   return {};
 }
