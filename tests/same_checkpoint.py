@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Exit 0 when two gjkdem checkpoints hold the same run state, apart from the
 wall-clock seconds they record (LOGS) and the header's checksum over them.
-Checkpoints of one format are compared byte for byte. Across formats 9 and
-10 (docs/checkpoints.md) the state is compared decoded: the bodies by their
+Checkpoints of one format are compared byte for byte. Across formats 9 to
+11 (docs/checkpoints.md) the state is compared decoded: the bodies by their
 named columns (format 9's fixed ones; a column one file lacks must be zero,
-bit for bit, in the other), STAT without format 10's applied_loads flag
-(which must then be 0), and every other section byte for byte; INFO, the
-text naming the format, is not compared. Usage: same_checkpoint.py A B"""
+bit for bit, in the other), STAT field by field (format 10's applied_loads
+flag must be 0 where the other file lacks it; format 11's split_energy is
+not compared with a file that lacks it: the older build did not count it),
+and every other section byte for byte; INFO, the text naming the format, is
+not compared. Usage: same_checkpoint.py A B"""
 import struct
 import sys
 
@@ -77,12 +79,32 @@ def same_bodies(a, va, b, vb):
     return True
 
 
+def stat_fields(section, version):
+    """{field: bytes} of a STAT section (src/io/checkpoint.cpp)."""
+    layout = [("forces_current", 1), ("elastic_energy", 8), ("contacts", 8), ("wall_contacts", 8),
+              ("wall_power", 8), ("wall_work", 8)]
+    if version >= 11:
+        layout.append(("split_energy", 8))
+    if version >= 10:
+        layout.append(("applied_loads", 1))
+    out, at = {}, 0
+    for name, size in layout:
+        out[name] = section[at:at + size]
+        at += size
+    return out if at == len(section) else None
+
+
 def same_stat(a, va, b, vb):
-    if va >= 10 and vb < 10:
-        return a[:-1] == b and a[-1] == 0
-    if vb >= 10 and va < 10:
-        return same_stat(b, vb, a, va)
-    return a == b
+    x, y = stat_fields(a, va), stat_fields(b, vb)
+    if x is None or y is None:
+        return False
+    for name in set(x) | set(y):
+        if name in x and name in y:
+            if x[name] != y[name]:
+                return False
+        elif name == "applied_loads" and (x.get(name) or y.get(name)) != bytes(1):
+            return False
+    return True
 
 
 magic_a, version_a, a = sections(sys.argv[1])

@@ -3,6 +3,8 @@
 // the values were chosen. Geometric tolerances are relative to the size of the
 // pair (the larger bounding diameter of the two shapes) unless the name says
 // otherwise; QuerySettings copies them so each call may override them.
+#include <cstddef>
+
 #include "gjkdem/math/real.hpp"
 
 namespace gjkdem {
@@ -150,6 +152,25 @@ inline constexpr Real kMinBondStiffnessRel = 1e-3;
 /// press example has one 50% of its radius in at its end; kLawRangeRel
 /// warns of it). Two spheres' centres lie inside each other only deeper.
 inline constexpr Real kDeepOverlapRel = 1.0;
+/// Surface grains' deep points (shape/deep_points.hpp), where a body passing
+/// through one is seen as a convex body's centre sees it: candidates at the
+/// centres of a kDeepPointGrid^3 grid over its box (and its centroid), at
+/// most kDeepPointsMax kept, each at least kDeepPointRel of the deepest's
+/// depth (a torus keeps points along its core, an L one per arm). A patch
+/// of a surface grain is tested when its mean depth (volume over area)
+/// passes kDeepReachRel of the shallower deep point of the pair: a contact
+/// reaching a point that deep is far beyond any law's range (kLawRangeRel),
+/// and a pointed body reaches it with a mean depth of a third of it.
+inline constexpr int kDeepPointGrid = 4;
+inline constexpr std::size_t kDeepPointsMax = 8;
+inline constexpr Real kDeepPointRel = 0.5;
+inline constexpr Real kDeepReachRel = 0.25;
+/// 2 kDeepPointsMax candidates, spread (the deepest, then each the farthest
+/// from those taken), are deepened by a compass search of at most
+/// kDeepPointSteps steps, ending when the step falls below kDeepPointStepRel
+/// of its depth.
+inline constexpr int kDeepPointSteps = 200;
+inline constexpr Real kDeepPointStepRel = 1e-2;
 /// Such a piece is the smaller solid wholly inside the other when its volume
 /// is that solid's within this (relative); a smaller piece is one solid
 /// passed through the other.

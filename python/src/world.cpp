@@ -792,11 +792,13 @@ void bind_world(py::module_& m) {
             double applied = 0;
             for (const Body& b : w.bodies) applied += b.applied_work;
             d["applied_work"] = applied;
+            d["split_energy"] = w.split_energy;
             return d;
           },
           "Kinetic, gravitational potential (zero at z = 0 along gravity) and elastic energy, the work driven\n"
-          "walls and bodies did on the others so far, the energy inserted bodies brought in and the work of\n"
-          "the applied loads (applied_forces) so far (J).")
+          "walls and bodies did on the others so far, the energy inserted bodies brought in, the work of\n"
+          "the applied loads (applied_forces) and what splits of broken grains stored in their fragments'\n"
+          "contacts so far (J).")
       .def_property_readonly("contact_count", [](const World& w) { return w.stats.contacts; })
       .def_property_readonly("bonds", [](const World& w) { return w.bonds.size(); },
                              "How many bonds the world's bonded assemblies hold (docs/breakage.md), intact or broken.")

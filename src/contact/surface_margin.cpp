@@ -3,33 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gjkdem/shape/triangle.hpp"
+
 namespace gjkdem {
-namespace {
-
-// The point of triangle abc nearest p, by the region p projects into
-// (corner, edge or face).
-Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const Real d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const Real d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const Real vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = p - c;
-  const Real d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const Real vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const Real va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const Real sum = va + vb + vc;
-  if (!(sum > 0)) return a;  // a degenerate triangle: its first corner
-  return a + ab * (vb / sum) + ac * (vc / sum);
-}
-
-}  // namespace
 
 void surface_margin_contacts(const TriangleSet& s, std::span<const MarginTriangle> triangles,
                              SurfaceMarginScratch& w, std::vector<MarginContact>& out) {
@@ -123,7 +99,7 @@ void surface_margin_contacts(const TriangleSet& s, std::span<const MarginTriangl
   for (const SurfaceMarginScratch::Close& c : w.close) {
     const MarginTriangle& t = triangles[w.pairs[c.pair].triangle];
     for (const std::uint32_t k : s.triangles[w.pairs[c.pair].facet]) {
-      const Vec3 q = nearest_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]);
+      const Vec3 q = closest_point_on_triangle(s.vertices[k], t.corners[0], t.corners[1], t.corners[2]);
       const Real d = length(s.vertices[k] - q);
       const std::uint32_t at = w.local_of[k];
       if (d < w.vertex_distance[at]) w.vertex_distance[at] = d, w.vertex_nearest[at] = q, w.vertex_rho[at] = t.rho;

@@ -17,9 +17,9 @@ namespace {
 constexpr char kMagic[8] = {'G', 'J', 'K', 'D', 'E', 'M', 'C', 'K'};
 constexpr std::uint32_t kHeaderBytes = 40;
 constexpr const char* kInfo =
-    "gjkdem checkpoint, format 10. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
+    "gjkdem checkpoint, format 11. Little-endian; reals are IEEE-754 binary64, counts u64. Sections (tag, u64 "
     "length): RUN dt steps_total steps_per_output step outputs initial_energy time; STAT forces_current(u8) "
-    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work applied_loads(u8); CELL periodic cell lo(3) hi(3) tilt(3) "
+    "elastic_energy contacts(u64) wall_contacts(u64) wall_power wall_work split_energy applied_loads(u8); CELL periodic cell lo(3) hi(3) tilt(3) "
     "velocity gradient(6) stress(6), cell of the last candidate search lo(3) hi(3) tilt(3); MAKE count, per shape "
     "template the builder made digest(u64), count, per plane wall digest(u64); FRAG grains broken(u64) count, per "
     "fragment template generation(u32) surface(u8) count, per hull vertex (3); BODY count, per column name(u64 "
@@ -224,7 +224,7 @@ std::string encode_checkpoint(const dem::World& w, const Checkpoint& c, std::uin
   s = o.begin("STAT");
   o.u8(w.forces_current ? 1 : 0), o.real(w.stats.elastic_energy);
   o.u64(static_cast<std::uint64_t>(w.stats.contacts)), o.u64(static_cast<std::uint64_t>(w.stats.wall_contacts));
-  o.real(w.stats.wall_power), o.real(w.wall_work), o.u8(w.applied_loads ? 1 : 0);
+  o.real(w.stats.wall_power), o.real(w.wall_work), o.real(w.split_energy), o.u8(w.applied_loads ? 1 : 0);
   o.end(s);
   s = o.begin("CELL");
   o.vec(w.cell.now.lo), o.vec(w.cell.now.hi), o.vec(w.cell.now.tilt);
@@ -355,10 +355,12 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   stats.wall_contacts = static_cast<int>(in.u64());
   stats.wall_power = in.real();
   const Real wall_work = in.real();
+  const Real split_energy = in.real();
   const std::uint8_t applied_loads = in.u8();
   in.close(end, "STAT");
   if (applied_loads > 1) in.fail("the applied loads' flag is not 0 or 1");
   if (!std::isfinite(stats.wall_power) || !std::isfinite(wall_work)) in.fail("the work of driven walls is not finite");
+  if (!std::isfinite(split_energy)) in.fail("the energy the splits stored is not finite");
   end = in.section("CELL");
   dem::PeriodicCell cell = w.settings.periodic, searched = w.settings.periodic;
   cell.lo = in.vec(), cell.hi = in.vec(), cell.tilt = in.vec();
@@ -542,9 +544,10 @@ Checkpoint decode_checkpoint(std::string_view bytes, dem::World& w, std::uint64_
   w.forces_current = forces_current;
   w.stats = stats;
   w.wall_work = wall_work;
+  w.split_energy = split_energy;
   w.applied_loads = w.applied_loads || applied_loads != 0;
   if (how == Restore::NewRun) {  // a new clock; forces under the new settings
-    w.time = 0, w.wall_work = 0, w.forces_current = false;
+    w.time = 0, w.wall_work = 0, w.split_energy = 0, w.forces_current = false;
     for (dem::Body& b : w.bodies) b.applied_work = 0;  // the loads stay, their work starts again
     c.logs = {};
   }

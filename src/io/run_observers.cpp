@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gjkdem/dem/breakage.hpp"
 #include "gjkdem/io/view_format.hpp"
 
 namespace gjkdem::io {
@@ -167,21 +168,21 @@ void TraceWriter::on_output(const dem::World& w, const dem::RunState&) {
 
 void EnergyWriter::on_output(const dem::World& w, const dem::RunState& state) {
   const dem::EnergyBalance e = dem::energy_balance(w, state.initial_energy);
-  append(energy_row(w.time, e, w.stats.contacts, applied));
+  append(energy_row(w.time, e, w.stats.contacts, {.applied = applied, .split = splits}));
 }
 
 bool EnergyWriter::take_applied_work() {
   if (applied) return false;
   applied = true;
-  if (bytes() == energy_header(false).size()) {
-    start(file(), energy_header(true));
+  if (bytes() == energy_header({.split = splits}).size()) {
+    start(file(), energy_header({.applied = true, .split = splits}));
     return true;
   }
   const std::optional<std::string> text = read_file(file());
-  if (!text || text->size() != bytes() || !text->starts_with(energy_header(false)))
+  if (!text || text->size() != bytes() || !text->starts_with(energy_header({.split = splits})))
     throw std::runtime_error(file().string() + " is not the energy log this run wrote: the run folder was changed");
-  std::string with = energy_header(true);
-  for (std::size_t at = energy_header(false).size(); at < text->size();) {
+  std::string with = energy_header({.applied = true, .split = splits});
+  for (std::size_t at = energy_header({.split = splits}).size(); at < text->size();) {
     const std::size_t end = text->find('\n', at);
     if (end == std::string::npos) break;  // (every row ends with its newline)
     with.append(*text, at, end - at).append(",0\n");
@@ -294,6 +295,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
                    restored ? restored->logs.wall_seconds : 0),
       info_(folder.run_json(), options.info_json, checkpoints_) {
   energy_.applied = world.applied_loads;
+  energy_.splits = dem::world_breaks(world);
   if (restored) {
     frames_.frames = restored->logs.frames;
     trace_.resume(folder.trace(), restored->logs.trace_bytes);
@@ -301,7 +303,7 @@ RunFolderWriters::RunFolderWriters(const RunPaths& folder, const dem::World& wor
     if (world.cell.now.active()) cell_.resume(folder.cell(), restored->logs.cell_bytes);
   } else {
     trace_.start(folder.trace(), trace_header());
-    energy_.start(folder.energy(), energy_header(energy_.applied));
+    energy_.start(folder.energy(), energy_header({.applied = energy_.applied, .split = energy_.splits}));
     if (world.cell.now.active()) cell_.start(folder.cell(), cell_header());
   }
   // After a kill, run.json tells how far the last checkpoint got.

@@ -248,9 +248,9 @@ std::string trace_row(const dem::World& w, const std::string& name, const dem::B
   return s;
 }
 
-std::string energy_header(bool applied) {
+std::string energy_header(EnergyColumns columns) {
   return std::string("time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy") +
-         (applied ? ",applied_work\n" : "\n");
+         (columns.split ? ",split_energy" : "") + (columns.applied ? ",applied_work\n" : "\n");
 }
 
 std::string cell_header() {
@@ -276,7 +276,7 @@ std::string cell_row(const dem::World& w) {
   return s;
 }
 
-std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts, bool applied) {
+std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts, EnergyColumns columns) {
   std::string s;
   for (Real v : {time, e.kinetic, e.potential, e.elastic, e.dissipated}) {
     append_number(s, v);
@@ -286,7 +286,11 @@ std::string energy_row(Real time, const dem::EnergyBalance& e, int contacts, boo
   append_number(s, e.wall_work);
   s += ',';
   append_number(s, e.inflow);
-  if (applied) {
+  if (columns.split) {
+    s += ',';
+    append_number(s, e.split);
+  }
+  if (columns.applied) {
     s += ',';
     append_number(s, e.applied_work);
   }

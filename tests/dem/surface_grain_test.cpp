@@ -27,6 +27,7 @@
 #include "gjkdem/dem/world.hpp"
 #include "gjkdem/dem/world_builder.hpp"
 #include "shape/surface_shapes.hpp"
+#include "thrown_pair.hpp"
 
 namespace gjkdem::dem {
 namespace {
@@ -668,6 +669,33 @@ TEST(SurfaceGrain, SameBitsOnOneThreadAndTwo) {
 // convex or a surface grain, thrown at a thin mesh wall at growing speeds
 // under every law either stays on its side or stops the run naming the
 // wall's piece, never ends beyond it silently.
+// Issue 54, points 3 and 17: the crossing check of two bodies held only
+// convex ones. Surface grains (a cube, an L, a torus; alike, or one 1e4
+// times denser) thrown at each other at growing speeds under every law (the
+// energy guard lifted) either bounce (each stays on its side) or stop the
+// run naming the pair (or, faster, the travel guard names the body); never
+// end on each other's side silently.
+TEST(SurfaceGrain, NoTwoSurfaceGrainsPassThroughEachOtherSilently) {
+  auto centred = [](const test::Mesh& m) { return scaled(m, 1, -mass_properties(test::surface_of(m)).centroid); };
+  const test::Mesh meshes[] = {test::box_surface({-0.005, -0.005, -0.005}, {0.005, 0.005, 0.005}),
+                               centred(scaled(test::l_prism(1), 0.006)),
+                               centred(scaled(test::torus(1.5, 0.6, 16, 8), 0.004))};
+  const char* names[] = {"cube", "L", "torus"};
+  std::mt19937_64 rng(17);
+  std::normal_distribution<Real> turn;
+  for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear, ContactModel::Volume})
+    for (int k = 0; k < 3; ++k)
+      for (const Real density_ratio : {1.0, 1e4})
+        for (const Real speed : {3.0, 30.0, 200.0}) {
+          ThrownPair pair{.model = model, .density_ratio = density_ratio, .speed = speed, .start = 0.012, .travel = 0.05};
+          pair.shape.surface = shared(meshes[k]);
+          pair.below = normalized(Quat{turn(rng), turn(rng), turn(rng), turn(rng)});
+          pair.above = normalized(Quat{turn(rng), turn(rng), turn(rng), turn(rng)});
+          EXPECT_EQ(thrown_pair_verdict(pair), "") << name_of(model) << " " << names[k] << " ratio "
+                                                          << density_ratio << " at " << speed << " m/s";
+        }
+}
+
 TEST(SurfaceGrain, NoCubeCrossesAThinMeshWallSilentlyUnderAnyLaw) {
   for (const ContactModel model : {ContactModel::Hertz, ContactModel::Linear, ContactModel::Volume})
     for (int surface = 0; surface < 2; ++surface)

@@ -534,6 +534,9 @@ def test_grains_break_in_a_press_and_views_taken_before_stay_valid():
     assert w.body_count == 1 + w.grains_broken
     assert before.ctypes.data == w.positions.ctypes.data  # the same memory: no reallocation
     assert len(set(w.ids.tolist())) == w.body_count
+    e = w.energies()  # the splits stored energy in the fragments' contacts: the balance counts it
+    assert e["split_energy"] > 0
+    assert e["wall_work"] + e["split_energy"] >= e["kinetic"] + e["elastic"]
     with pytest.raises(ValueError, match="unbreakable_below"):
         gjkdem.WorldBuilder(s).add_material("weak", density=2500, youngs_modulus=1e7, strength=1e4,
                                             strength_size=0.01)

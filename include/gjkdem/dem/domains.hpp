@@ -102,8 +102,14 @@ std::uint64_t insert_inflow_bodies(World& domain, StepContext& context, const Do
 /// and appends every fragment's template in id order (the same indices on
 /// every rank), with ids from the whole world's next one. All ranks call it
 /// together after finish_step (`found` false: a rank whose step failed
-/// offers none). Returns how many grains broke.
-int break_domain_grains(World& domain, DomainRole& role, DomainTransport& transport, bool found = true);
+/// offers none). Returns how many grains broke and, where any did, the whole
+/// world's contact energy before the splits (whole_contact_energy: on rank
+/// 0), from which the evaluation after them gives World::split_energy.
+struct DomainBreakage {
+  int broken = 0;
+  Real energy_before = 0;
+};
+DomainBreakage break_domain_grains(World& domain, DomainRole& role, DomainTransport& transport, bool found = true);
 
 /// Tells every rank the bonds this domain broke since it last told them
 /// (bonds.hpp): a bond breaks in the domains that hold both its bodies, and
@@ -124,6 +130,12 @@ Real whole_wall_power(const World& domain, DomainTransport& transport);
 /// rank 0 in the order of their keys, as a whole world sums them, and told
 /// to every rank. All ranks call it together.
 CellTensor whole_cell_stress(const World& domain, DomainTransport& transport);
+
+/// The elastic energy of every domain's touching contacts at the last force
+/// evaluation, added on rank 0 in the order of their keys as contact_energy
+/// adds a whole world's list (world.hpp): on rank 0; 0 on the others. All
+/// ranks call it together.
+Real whole_contact_energy(const World& domain, DomainTransport& transport);
 
 /// Adds to rank 0's World::wall_work the kinetic energy a deforming cell's
 /// field gave the whole world's bodies this step: by its change, then by

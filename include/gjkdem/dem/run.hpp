@@ -30,13 +30,14 @@ struct RunState {
 RunState plan_run(Real duration, Real dt, Real output_every);
 
 /// Where the energy went (J): dissipated = initial + wall_work + inflow +
-/// applied_work - kinetic - potential - elastic, what damping and friction
-/// took out of the system; wall_work is what driven walls and bodies put in
-/// (World::wall_work), inflow what inserted bodies brought (InflowState),
-/// applied_work what applied loads did (the bodies' Body::applied_work, in
-/// id order).
+/// applied_work + split - kinetic - potential - elastic, what damping and
+/// friction took out of the system; wall_work is what driven walls and
+/// bodies put in (World::wall_work), inflow what inserted bodies brought
+/// (InflowState), applied_work what applied loads did (the bodies'
+/// Body::applied_work, in id order), split what the splits of broken grains
+/// stored in their fragments' contacts (World::split_energy).
 struct EnergyBalance {
-  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0, inflow = 0, applied_work = 0;
+  Real kinetic = 0, potential = 0, elastic = 0, dissipated = 0, wall_work = 0, inflow = 0, applied_work = 0, split = 0;
 };
 
 EnergyBalance energy_balance(const World& world, Real initial_energy) noexcept;

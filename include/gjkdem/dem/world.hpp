@@ -109,6 +109,11 @@ struct World {
   std::vector<PlaneWall> planes;
   bool forces_current = false;    ///< bodies' forces belong to the current positions
   Real wall_work = 0;             ///< work done on the bodies by driven walls and bodies so far (J)
+  /// What the splits of broken grains put into the contacts so far (J): at
+  /// each split, the contacts' elastic energy evaluated on the fragments less
+  /// what it was on the grains, at the same positions (breakage.hpp; negative
+  /// where a split let energy go). The energy balance counts it as supplied.
+  Real split_energy = 0;
   /// Bodies may carry applied loads (Body::applied_force): each force
   /// evaluation adds them and each kick counts their work. Set by a run with
   /// a step listener (run.hpp) and by Python's views of the applied loads;
@@ -171,6 +176,11 @@ Real kinetic_energy(const World& world) noexcept;
 
 /// Potential energy of gravity (J), zero at the world origin.
 Real potential_energy(const World& world) noexcept;
+
+/// The elastic energy of the last force evaluation's touching contacts (J),
+/// added in list order (World::stats.elastic_energy less the bonds'); a
+/// domain run's whole is whole_contact_energy (domains.hpp).
+Real contact_energy(const World& world) noexcept;
 
 /// A critical time step estimate (s): the shortest contact duration between
 /// two of the world's bodies divided by 20, or for the Hertz law the Rayleigh

@@ -30,7 +30,7 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr std::uint32_t kCheckpointVersion = 10;
+inline constexpr std::uint32_t kCheckpointVersion = 11;
 
 /// What a run folder keeps beside the world and the run state.
 struct RunLogState {

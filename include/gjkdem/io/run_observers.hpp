@@ -96,8 +96,10 @@ class TraceWriter : public CsvLog {
 };
 
 /// energy.csv: the energy balance at every output.
-/// A world with applied loads (World::applied_loads, as the run starts or
-/// is resumed) adds their work as a last column, applied_work.
+/// A world whose grains can break (world_breaks) has a split_energy column
+/// after inflow_energy; a world with applied loads (World::applied_loads, as
+/// the run starts or is resumed) adds their work as a last column,
+/// applied_work.
 class EnergyWriter : public CsvLog {
  public:
   void on_output(const dem::World& world, const dem::RunState& state) override;
@@ -107,6 +109,7 @@ class EnergyWriter : public CsvLog {
   /// any work before). Returns whether it changed the file.
   bool take_applied_work();
   bool applied = false;
+  bool splits = false;
 };
 
 /// cell.csv: a periodic world's cell and stress at every output (nothing

@@ -64,11 +64,17 @@ std::vector<TracedBody> traced_bodies(const dem::World& world);
 std::string trace_header();
 /// One trace.csv row (with newline): time,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz.
 std::string trace_row(const dem::World& world, const std::string& name, const dem::Body& body);
-/// `applied`: with the applied loads' work as a last column (applied_work).
-std::string energy_header(bool applied = false);
+/// energy.csv's optional columns: `split`, the energy splits stored
+/// (split_energy, after inflow_energy: a world whose grains can break);
+/// `applied`, the applied loads' work (applied_work, last).
+struct EnergyColumns {
+  bool applied = false;
+  bool split = false;
+};
+std::string energy_header(EnergyColumns columns = {});
 /// One energy.csv row (with newline): time,kinetic,potential,elastic,dissipated,contacts,wall_work,inflow_energy
-/// and, `applied`, applied_work.
-std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts, bool applied = false);
+/// then the optional columns.
+std::string energy_row(Real time, const dem::EnergyBalance& energy, int contacts, EnergyColumns columns = {});
 
 /// A wall time as "4m05s" or "1h02m" ("?" when negative or not finite).
 std::string duration_text(double seconds);

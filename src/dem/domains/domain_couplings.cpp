@@ -38,9 +38,13 @@ void wall_power(CouplingContext& c) {
 // holds the fragments near it (a fragment's box can reach where its
 // grain's did not), and find the fragments' forces at once.
 void breakage(CouplingContext& c) {
-  const int broken = break_domain_grains(c.world, c.role, c.transport, c.failed.empty());
-  if (broken > 0) (*c.evaluate_again)(c.failed);
-  c.world.stats.broken = broken;
+  const DomainBreakage broke = break_domain_grains(c.world, c.role, c.transport, c.failed.empty());
+  if (broke.broken > 0) {
+    (*c.evaluate_again)(c.failed);
+    const Real after = whole_contact_energy(c.world, c.transport);
+    if (c.transport.rank() == 0) c.world.split_energy += after - broke.energy_before;
+  }
+  c.world.stats.broken = broke.broken;
 }
 
 using enum CouplingPoint;
@@ -59,7 +63,7 @@ constexpr std::array kCouplings{
                    "domains/domains.cpp (whole_wall_power)", "every domain's powered contact terms",
                    "rank 0's stats.wall_power, wall_work", driven, wall_power},
     DomainCoupling{"breakage", AfterStep, "breakable grains", "domains/domain_exchange.cpp (break_domain_grains)",
-                   "each domain's splits", "fragments, templates, stats.broken on every rank; an evaluation",
+                   "each domain's splits", "fragments, templates, stats.broken on every rank; an evaluation; rank 0's split_energy",
                    breaking, breakage},
 };
 

@@ -80,7 +80,7 @@ static_assert(std::is_trivially_copyable_v<FragmentRecord>);
 
 }  // namespace
 
-int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool found) {
+DomainBreakage break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool found) {
   std::vector<FragmentRecord> records;
   std::vector<Vec3> vertices;
   if (found)
@@ -118,10 +118,11 @@ int break_domain_grains(World& w, DomainRole& role, DomainTransport& t, bool fou
       splits.push_back(std::move(s));
     }
   }
-  if (splits.empty()) return 0;
+  if (splits.empty()) return {};
   std::sort(splits.begin(), splits.end(), [](const GrainSplit& x, const GrainSplit& y) { return x.parent < y.parent; });
+  const Real before = whole_contact_energy(w, t);
   apply_splits(w, splits, next_id, &role);
-  return static_cast<int>(splits.size());
+  return {static_cast<int>(splits.size()), before};
 }
 
 void sync_bonds(World& w, DomainRole& role, DomainTransport& t) {

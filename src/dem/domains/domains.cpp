@@ -122,6 +122,7 @@ World make_domain(const World& whole, const DomainLayout& layout, int rank, Doma
   d.time = whole.time;
   d.forces_current = whole.forces_current;
   d.wall_work = whole.wall_work;
+  d.split_energy = whole.split_energy;
   d.applied_loads = whole.applied_loads;
   d.stats = whole.stats;
   const BoxCache& boxes = whole.search.boxes;
@@ -215,6 +216,7 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
   whole.time = d.time;
   whole.forces_current = d.forces_current;
   whole.wall_work = d.wall_work;
+  whole.split_energy = d.split_energy;  // rank 0's, as wall_work
   // The stats and the fixed bodies' reactions, summed as one rank sums
   // them (force_sums.cpp, contact_sums.hpp): in the order of the contact
   // list, which is the order of keys.
@@ -260,6 +262,10 @@ void gather_world(const World& d, const DomainRole& role, DomainTransport& t, Wo
 Real whole_wall_power(const World& d, DomainTransport& t) {
   constexpr std::uint8_t kPowered = kTermImage | kTermDrivenA | kTermDrivenB;
   return gathered_sums(d, t, [](const ContactTerm& x) { return (x.holds & kPowered) != 0; }).stats().wall_power;
+}
+
+Real whole_contact_energy(const World& d, DomainTransport& t) {
+  return gathered_sums(d, t, [](const ContactTerm&) { return true; }).stats().elastic_energy;
 }
 
 CellTensor whole_cell_stress(const World& d, DomainTransport& t) {

@@ -31,6 +31,13 @@ Real kinetic_energy(const World& w) noexcept {
   return e;
 }
 
+Real contact_energy(const World& w) noexcept {
+  Real e = 0;
+  for (const StepContact& c : w.results.contacts)
+    if (c.active) e += c.elastic;
+  return e;
+}
+
 Real potential_energy(const World& w) noexcept {
   Real e = 0;
   for (const Body& b : w.bodies)

@@ -135,7 +135,7 @@ std::string check_guards(const World& w, const RunState& state, const RunGuards&
       if (!b.fixed) floor += kEnergyGuardFloorRel * mass_of(w, b) * length(w.settings.gravity) * w.templates[b.shape].reach;
     if (excess > g.max_energy_gain * std::fmax(available, Real(0)) + floor)
       return "the energy grew from nowhere: kinetic + elastic " + number_text(moving) + " J where the start, "
-             "gravity, driven walls, inflows and applied loads supply " + number_text(available) + " J, at t = " + number_text(w.time) +
+             "gravity, driven walls, inflows, applied loads and splits supply " + number_text(available) + " J, at t = " + number_text(w.time) +
              " s (" + energy_growth_cause(w) + ")";
   }
   return "";
@@ -182,6 +182,8 @@ EnergyBalance energy_balance(const World& w, Real initial) noexcept {
     for (const Body& b : w.bodies) e.applied_work += b.applied_work;
     supplied += e.applied_work;
   }
+  e.split = w.split_energy;
+  supplied += e.split;
   e.dissipated = supplied - e.kinetic - e.potential - e.elastic;
   return e;
 }

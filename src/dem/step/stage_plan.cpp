@@ -207,10 +207,12 @@ StepReport bond_forces(ForceEvaluation& e) {
 StepReport break_grains(ForceEvaluation& e) {
   World& w = e.world;
   if (e.domain || !world_breaks(w)) return {};
+  const Real before = contact_energy(w);
   const int broken = dem::break_grains(w);
   if (broken > 0) {
     const StepReport again = compute_forces_now(w);
     if (again.status != StepStatus::Ok) return again;
+    w.split_energy += contact_energy(w) - before;  // at the same positions: what the splits stored
   }
   w.stats.broken = broken;
   return {};
@@ -251,8 +253,9 @@ constexpr std::array kPlan{
           "each contact's geometry: GJK/EPA, the overlap region, half-spaces", narrow_phase},
     Stage{"geometry checks", P::PerContact, "step/stage_plan.cpp", "each contact's geometry",
           "the first pair the model cannot take, or past holding: the step stops", geometry_checks},
-    Stage{"body crossing", P::PerContact, "contacts/body_crossing.cpp", "deep contacts of two convex bodies, their centres",
-          "two bodies passing through each other (a centre inside the other): the step stops", body_crossing},
+    Stage{"body crossing", P::PerContact, "contacts/body_crossing.cpp",
+          "deep contacts of two convex bodies, their centres; deep patches of surface grains, their deep points",
+          "two bodies passing through each other (a centre or deep point inside the other): the step stops", body_crossing},
     Stage{"wall merge", P::PerContact, "contacts/narrow_phase.cpp", "a body's contacts with one wall's pieces",
           "one contact per body and wall (Hertz and linear laws)", merge_walls},
     Stage{"laws", P::PerContact, "contacts/contact_force.cpp, contacts/contact_sides.cpp", "geometry, material pair, sides, springs",
