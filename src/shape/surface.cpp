@@ -7,6 +7,7 @@
 #include <mutex>
 #include <string>
 
+#include "gjkdem/shape/deep_points.hpp"
 #include "gjkdem/shape/hull_surface_slot.hpp"
 #include "gjkdem/math/union_find.hpp"
 #include "gjkdem/shape/predicates.hpp"
@@ -519,6 +520,7 @@ Surface make_surface(std::vector<Vec3> vertices, std::vector<TriangleIndices> tr
                        "): give the surface in other units");
   }
   check_shells_nest(s);
+  s.deep = deep_points_slot(s);
   return s;
 }
 
@@ -530,6 +532,7 @@ Surface moved(const Surface& surface, const Transform& pose) {
 
 void move_into(const Surface& surface, const Transform& pose, Surface& s) {
   s = surface;
+  s.deep.reset();  // its deep points lie in the surface's frame
   repose(surface, pose, s);
 }
 

@@ -16,7 +16,6 @@
 #include "gjkdem/shape/mass_properties.hpp"
 #include "gjkdem/shape/shape.hpp"
 #include "gjkdem/shape/shell.hpp"
-#include "gjkdem/shape/deep_points.hpp"
 #include "gjkdem/shape/surface.hpp"
 
 namespace gjkdem::dem {
@@ -75,11 +74,6 @@ struct ShapeTemplate {
   /// tessellation when curved) in a world with surface grains; null otherwise.
   /// In the shape's frame.
   std::shared_ptr<const Surface> surface;
-  /// Where a moving surface grain keeps its deep points (shape/deep_points.hpp,
-  /// in the shape's frame; made when first needed, shared by copies):
-  /// another body reaching one is passing through it (body_crossing.cpp).
-  /// Null for other templates.
-  std::shared_ptr<DeepPointsSlot> deep;
   /// A thin shell (shape/shell.hpp): its triangles with their margin meet
   /// surfaces by the margin model and planes by their corners; `shape` is
   /// its hull grown by the margin, used only where a bound will do. In the

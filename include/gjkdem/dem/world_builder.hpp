@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <unordered_set>
 #include <vector>
@@ -321,6 +322,9 @@ class WorldBuilder {
   std::vector<std::string> inflow_labels_;  ///< per inflow
   std::vector<Shape> given_shapes_;     ///< per template, as given (before preparation)
   std::vector<std::uint32_t> explicit_; ///< bodies from add_body
+  /// Each bonded assembly's pieces, [first, end) of the bodies: the cells of
+  /// one solid tile it, so the start check skips their pairs.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> assemblies_;
   std::size_t prepared_templates_ = 0;  ///< templates of a continued world, prepared already
   struct SharedShape {
     std::uint32_t index;  ///< template

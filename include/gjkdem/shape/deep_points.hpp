@@ -26,10 +26,10 @@ struct DeepPoint {
 /// part of the solid. Empty for a solid no candidate lies in.
 std::vector<DeepPoint> deep_points(const Surface& surface);
 
-/// Where a template keeps its surface's deep points: made on the first call
-/// of the overload below, by whichever thread asks first (0.05 s for a
-/// thousand triangles, 5 s for a million: a run makes them only once a
-/// patch is deep, beyond reach_bound).
+/// Where a surface keeps its deep points (Surface::deep, from make_surface):
+/// made on the first call of the overload below, by whichever thread asks
+/// first (0.05 s for a thousand triangles, 5 s for a million: a run makes
+/// them only once a patch is deep, beyond reach_bound).
 struct DeepPointsSlot {
   /// kDeepReachRel kDeepPointRel V / S of the solid (volume V, area S): a
   /// convex solid's inradius is at most 3 V / S and a ball's, a cube's or a

@@ -27,6 +27,7 @@
 namespace gjkdem {
 
 using TriangleIndices = std::array<std::uint32_t, 3>;
+struct DeepPointsSlot;
 
 /// What is wrong with a triangle's corners as indices into `vertex_count`
 /// vertices: one out of range, or a vertex named twice; "" when nothing is.
@@ -53,6 +54,9 @@ struct Surface {
   Aabb box;
   Real volume = 0;  ///< of the solid (mass_properties)
   Vec3 centroid;    ///< of the solid, in the surface's frame (moved with it)
+  /// Where its deep points are kept, made when first asked for
+  /// (deep_points.hpp); shared by its copies, null in a moved one.
+  std::shared_ptr<DeepPointsSlot> deep;
 };
 
 /// A surface that breaks a rule: the message names the edge, vertex or

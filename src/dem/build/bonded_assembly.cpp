@@ -105,6 +105,7 @@ std::vector<std::uint32_t> WorldBuilder::add_bonded(const BondedDef& d) {
     piece.label = label + ".piece[" + std::to_string(k) + "]";
     indices.push_back(add_body(piece));
   }
+  assemblies_.emplace_back(indices.front(), indices.back() + 1);
   for (const CellFace& f : cells.faces) {
     const Body& a = world_.bodies[indices[f.a]];
     const Body& b = world_.bodies[indices[f.b]];

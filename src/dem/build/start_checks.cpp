@@ -84,6 +84,9 @@ void WorldBuilder::check_explicit_bodies() const {
   if (!check_overlaps_ || explicit_.empty()) return;
   std::vector<bool> is_explicit(w.bodies.size(), false);
   for (std::uint32_t i : explicit_) is_explicit[i] = true;
+  std::vector<std::uint32_t> assembly(w.bodies.size(), 0);  // 1 + a bonded assembly's index, 0 for none
+  for (std::size_t k = 0; k < assemblies_.size(); ++k)
+    for (std::uint32_t i = assemblies_[k].first; i < assemblies_[k].second; ++i) assembly[i] = static_cast<std::uint32_t>(k + 1);
   std::vector<Transform> poses(w.bodies.size());
   std::vector<Aabb> boxes(w.bodies.size());  // of bounding spheres
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
@@ -109,6 +112,7 @@ void WorldBuilder::check_explicit_bodies() const {
   std::vector<std::uint32_t> hosts;
   for (const auto& [i, j] : pairs) {  // i < j; reported as the explicit one of smaller index first
     if (!is_explicit[i] && !is_explicit[j]) continue;
+    if (assembly[i] != 0 && assembly[i] == assembly[j]) continue;  // cells of one solid: they tile it (voronoi.hpp)
     const Body& a = w.bodies[i];
     const Body& b = w.bodies[j];
     if (a.fixed && b.fixed) continue;

@@ -301,6 +301,7 @@ World WorldBuilder::build() {
   inflow_labels_.clear();
   given_shapes_.clear();
   explicit_.clear();
+  assemblies_.clear();
   groups_ = 0;
   prepared_templates_ = 0;
   continued_ = false;

@@ -43,8 +43,9 @@ bool reached(const ShapeTemplate& t, const Body& body, Real depth, const ShapeTe
              const Transform& other_pose) {
   if (t.surface_grain && t.parts.empty()) {
     // The points are made once a patch is deep enough to reach some.
-    if (!t.deep || !(depth > t.deep->reach_bound)) return false;
-    const std::vector<DeepPoint>& deep = deep_points(*t.surface, *t.deep);
+    DeepPointsSlot* slot = t.surface->deep.get();
+    if (!slot || !(depth > slot->reach_bound)) return false;
+    const std::vector<DeepPoint>& deep = deep_points(*t.surface, *slot);
     if (deep.empty() || !(depth > kDeepReachRel * deep.back().depth)) return false;
     const Transform pose = part_pose(t, body, 0).pose;
     for (const DeepPoint& d : deep)

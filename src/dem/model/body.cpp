@@ -123,7 +123,6 @@ ShapeTemplate make_surface_template(std::shared_ptr<const Surface> surface, bool
     t.curvature_radius = equivalent_sphere_radius(t.unit_mass.volume);
     t.reach = 0;
     for (const Vec3& v : surface->vertices) t.reach = std::fmax(t.reach, length(v - t.unit_mass.centroid));
-    t.deep = deep_points_slot(*surface);
   }
   t.surface_grain = true;
   t.surface = std::move(surface);
