@@ -207,12 +207,15 @@ StepReport bond_forces(ForceEvaluation& e) {
 StepReport break_grains(ForceEvaluation& e) {
   World& w = e.world;
   if (e.domain || !world_breaks(w)) return {};
-  const Real before = contact_energy(w);
   const int broken = dem::break_grains(w);
   if (broken > 0) {
+    // The splits left the contact list as the grains had it (apply_splits
+    // drops only their pairs): what it held, then what the fragments hold
+    // at the same positions.
+    const Real before = contact_energy(w);
     const StepReport again = compute_forces_now(w);
     if (again.status != StepStatus::Ok) return again;
-    w.split_energy += contact_energy(w) - before;  // at the same positions: what the splits stored
+    w.split_energy += contact_energy(w) - before;
   }
   w.stats.broken = broken;
   return {};
